@@ -1,0 +1,41 @@
+// The registry: every subcommand's name, one-line summary and factory, in the order
+// `cinepath --help` lists them. A subcommand whose area library is not built is left out
+// (CINEPATH_WITH_<AREA>, set by cli/CMakeLists.txt).
+#include "cli/command.h"
+
+namespace cinepath::cli {
+
+std::unique_ptr<Command> MakeLensCommand();
+#ifdef CINEPATH_WITH_PHOTOGRAMMETRY
+std::unique_ptr<Command> MakeMeshCommand();
+#endif
+#ifdef CINEPATH_WITH_SHOTS
+std::unique_ptr<Command> MakePlanCommand();
+#endif
+#ifdef CINEPATH_WITH_EXPORT
+std::unique_ptr<Command> MakeExportCommand();
+std::unique_ptr<Command> MakeInfoCommand();
+#endif
+
+const std::vector<CommandInfo>& Commands() {
+  static const std::vector<CommandInfo> commands = {
+#ifdef CINEPATH_WITH_PHOTOGRAMMETRY
+      {"mesh", "COLMAP reconstruction -> cleaned, georeferenced mesh (scene.glb + scene.json)",
+       &MakeMeshCommand},
+#endif
+#ifdef CINEPATH_WITH_SHOTS
+      {"plan", "shot list -> keyframed, per-frame camera flight with lens tracks (plan.json)",
+       &MakePlanCommand},
+#endif
+#ifdef CINEPATH_WITH_EXPORT
+      {"export", "plan -> drone missions (QGC .plan/WPL, MAVLink, DJI WPML/MSDK, Litchi CSV)",
+       &MakeExportCommand},
+      {"info", "inspect a cinepath file or mission, print a summary or JSON", &MakeInfoCommand},
+#endif
+      {"lens", "depth-of-field calculator: hyperfocal distance, near/far limits, field of view, blur",
+       &MakeLensCommand},
+  };
+  return commands;
+}
+
+}  // namespace cinepath::cli

@@ -1,0 +1,189 @@
+#include "core/json.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/file_io.h"
+
+namespace cinepath {
+namespace {
+
+void RequireFinite(const Json& node, const std::string& path) {
+  if (node.is_number_float()) {
+    if (!std::isfinite(node.get<double>())) {
+      throw InternalError("JSON writer: non-finite number at " + (path.empty() ? "/" : path));
+    }
+  } else if (node.is_object()) {
+    for (const auto& [key, value] : node.items()) RequireFinite(value, path + "/" + key);
+  } else if (node.is_array()) {
+    for (size_t i = 0; i < node.size(); ++i) RequireFinite(node[i], path + "/" + std::to_string(i));
+  }
+}
+
+std::string TypeName(const Json& node) {
+  if (node.is_null()) return "null";
+  if (node.is_boolean()) return "a boolean";
+  if (node.is_number()) return "a number";
+  if (node.is_string()) return "a string";
+  if (node.is_array()) return "an array";
+  return "an object";
+}
+
+}  // namespace
+
+std::string DumpJson(const Json& document) {
+  RequireFinite(document, "");
+  std::string text = document.dump(2, ' ', /*ensure_ascii=*/false,
+                                   nlohmann::json::error_handler_t::strict);
+  text.push_back('\n');
+  return text;
+}
+
+double RoundToDecimals(double value, int decimals) {
+  if (!std::isfinite(value)) return value;
+  const double scale = std::pow(10.0, decimals);
+  const double rounded = std::round(value * scale) / scale;
+  return rounded == 0.0 ? 0.0 : rounded;  // no "-0.0" in outputs
+}
+
+Json ParseJsonText(std::string_view text, const std::string& source_name) {
+  try {
+    return Json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    // Convert the byte offset into a line and column for people.
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string what = e.what();
+    const auto pos = what.find("syntax error");
+    if (pos != std::string::npos) what = what.substr(pos);
+    throw InputError(source_name + ": line " + std::to_string(line) + ", column " +
+                     std::to_string(column) + ": invalid JSON: " + what);
+  }
+}
+
+Json ParseJsonFile(const std::filesystem::path& path) {
+  return ParseJsonText(ReadFileToString(path), path.string());
+}
+
+JsonField::JsonField(const Json& node, std::string source, std::string path)
+    : node_(&node), source_(std::move(source)), path_(std::move(path)) {}
+
+std::string JsonField::Where() const {
+  if (path_.empty()) return source_;
+  return source_.empty() ? path_ : source_ + ": " + path_;
+}
+
+void JsonField::Fail(const std::string& what) const { throw InputError(Located(Where(), what)); }
+
+JsonField JsonField::operator[](std::string_view key) const {
+  if (!node_->is_object()) Fail("expected an object, found " + TypeName(*node_));
+  const std::string child_path = path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  auto it = node_->find(std::string(key));
+  if (it == node_->end()) {
+    throw InputError(Located(source_.empty() ? child_path : source_ + ": " + child_path,
+                             "missing (required)"));
+  }
+  return JsonField(*it, source_, child_path);
+}
+
+std::optional<JsonField> JsonField::Find(std::string_view key) const {
+  if (!node_->is_object()) Fail("expected an object, found " + TypeName(*node_));
+  auto it = node_->find(std::string(key));
+  if (it == node_->end() || it->is_null()) return std::nullopt;
+  const std::string child_path = path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  return JsonField(*it, source_, child_path);
+}
+
+bool JsonField::Has(std::string_view key) const { return Find(key).has_value(); }
+
+JsonField JsonField::At(size_t index) const {
+  if (!node_->is_array()) Fail("expected an array, found " + TypeName(*node_));
+  if (index >= node_->size()) Fail("index " + std::to_string(index) + " out of range");
+  return JsonField((*node_)[index], source_, path_ + "[" + std::to_string(index) + "]");
+}
+
+std::vector<JsonField> JsonField::Elements() const {
+  if (!node_->is_array()) Fail("expected an array, found " + TypeName(*node_));
+  std::vector<JsonField> out;
+  out.reserve(node_->size());
+  for (size_t i = 0; i < node_->size(); ++i) out.push_back(At(i));
+  return out;
+}
+
+size_t JsonField::size() const { return node_->size(); }
+
+double JsonField::AsDouble() const {
+  if (!node_->is_number()) Fail("expected a number, found " + TypeName(*node_));
+  const double v = node_->get<double>();
+  if (!std::isfinite(v)) Fail("must be finite");
+  return v;
+}
+
+double JsonField::AsPositive() const {
+  const double v = AsDouble();
+  if (!(v > 0)) Fail("must be > 0");
+  return v;
+}
+
+double JsonField::AsNonNegative() const {
+  const double v = AsDouble();
+  if (!(v >= 0)) Fail("must be >= 0");
+  return v;
+}
+
+int64_t JsonField::AsInt() const {
+  if (node_->is_number_integer()) return node_->get<int64_t>();
+  if (node_->is_number_float()) {
+    const double v = node_->get<double>();
+    if (std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 9e15) return static_cast<int64_t>(v);
+  }
+  Fail("expected an integer, found " + TypeName(*node_));
+}
+
+bool JsonField::AsBool() const {
+  if (!node_->is_boolean()) Fail("expected true or false, found " + TypeName(*node_));
+  return node_->get<bool>();
+}
+
+std::string JsonField::AsString() const {
+  if (!node_->is_string()) Fail("expected a string, found " + TypeName(*node_));
+  return node_->get<std::string>();
+}
+
+double JsonField::DoubleOr(std::string_view key, double fallback) const {
+  auto f = Find(key);
+  return f ? f->AsDouble() : fallback;
+}
+
+std::string JsonField::StringOr(std::string_view key, const std::string& fallback) const {
+  auto f = Find(key);
+  return f ? f->AsString() : fallback;
+}
+
+bool JsonField::BoolOr(std::string_view key, bool fallback) const {
+  auto f = Find(key);
+  return f ? f->AsBool() : fallback;
+}
+
+void JsonField::RejectUnknownKeys(std::initializer_list<std::string_view> known) const {
+  if (!node_->is_object()) Fail("expected an object, found " + TypeName(*node_));
+  for (const auto& item : node_->items()) {
+    bool ok = false;
+    for (auto k : known) ok = ok || (k == item.key());
+    if (!ok) {
+      const std::string child = path_.empty() ? item.key() : path_ + "." + item.key();
+      throw InputError(Located(source_.empty() ? child : source_ + ": " + child, "unknown key"));
+    }
+  }
+}
+
+}  // namespace cinepath

@@ -1,0 +1,75 @@
+// Thin-lens optics: the one module that computes blur, depth of field and field of view for every
+// stage (the planner, the optimizer, the renderer and the exporters). Formulas and conventions:
+// docs/optics.md (from ../shared/specs/optics.md).
+//
+// Symbols: f focal length, N f-number, s focus distance (object side, from the lens), d subject
+// distance along the optical axis, c blur-circle diameter on the sensor, c0 acceptable blur.
+// Distances are metres, focal lengths and sensor sizes millimetres, as the names say. A focus
+// distance of +infinity means focused at infinity. Domain errors (d <= f, s <= f, N <= 0,
+// non-finite input) throw InputError naming the quantity.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cinepath {
+
+struct Filmback {
+  std::string name;  // preset key, e.g. "super35"
+  std::string label; // human name, e.g. "Super 35"
+  double width_mm = 0;
+  double height_mm = 0;
+  double DiagonalMm() const;
+};
+
+// Presets: super35, digital-film-16x9, full-frame, aps-c, micro-four-thirds, one-inch,
+// and the small drone sensors (one-over-2.3-inch). See docs/optics.md for sources.
+const std::vector<Filmback>& FilmbackPresets();
+std::optional<Filmback> FindFilmback(std::string_view name);
+
+// The conventional acceptable blur for a filmback: 0.03 mm on full frame (43.27 mm diagonal),
+// scaled by the diagonal: c0 = 0.03 mm * diagonal / 43.27 mm.
+double DefaultCocMm(double sensor_width_mm, double sensor_height_mm);
+
+// Validation, shared with callers that want to name their own option in the message.
+void ValidateFocalLengthMm(double focal_length_mm, const std::string& what = "focal length");
+void ValidateFNumber(double f_number, const std::string& what = "f-number");
+// s > f (or +infinity).
+void ValidateFocusDistanceM(double focus_distance_m, double focal_length_mm,
+                            const std::string& what = "focus distance");
+
+// Blur-circle diameter on the sensor, mm, for a point at distance d when focused at s (stable form):
+//   c = (f^2 / N) * |1/s - 1/d| / (1 - f/s)
+// s = +inf gives c = f^2 / (N d); d = +inf gives c = (f^2/N) (1/s) / (1 - f/s).
+double BlurCircleMm(double focal_length_mm, double f_number, double focus_distance_m,
+                    double subject_distance_m);
+
+// mm on the sensor to pixels: c_px = c * width_px / sensor_width_mm.
+double MmToPixels(double sensor_mm, double sensor_width_mm, int width_px);
+
+// Hyperfocal distance H = f^2 / (N c0) + f, metres.
+double HyperfocalDistanceM(double focal_length_mm, double f_number, double coc_mm);
+
+struct DepthOfField {
+  double hyperfocal_m = 0;
+  double near_m = 0;
+  double far_m = 0;  // +infinity when focus >= hyperfocal
+};
+
+// near = s (H - f) / (H + s - 2f); far = s (H - f) / (H - s), infinite when s >= H.
+// s = +inf gives near = H - f, far = +inf.
+DepthOfField DepthOfFieldLimits(double focal_length_mm, double f_number, double focus_distance_m,
+                                double coc_mm);
+
+// Angle of view across a sensor extent: 2 atan(extent / (2 f)), radians (focus at infinity, no
+// focus breathing).
+double FieldOfViewRad(double sensor_extent_mm, double focal_length_mm);
+// Inverse: the focal length giving that angle of view across the extent.
+double FocalLengthForFieldOfViewMm(double sensor_extent_mm, double field_of_view_rad);
+
+// Lateral magnification of an object at distance d: m = f / (d - f) (image size / object size).
+double MagnificationAt(double focal_length_mm, double subject_distance_m);
+
+}  // namespace cinepath

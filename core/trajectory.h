@@ -1,0 +1,132 @@
+// The sampled camera flight every stage after `plan` exchanges (plan.json in memory).
+//
+// Frames and units (design.md): positions in the scene's local ENU frame (metres) about `origin`;
+// world_from_camera maps camera-frame vectors (x right, y down, z forward) into ENU; quaternions are
+// Hamilton (w, x, y, z), unit norm. Drone yaw is a compass heading (clockwise from true north,
+// degrees, [0, 360)); gimbal angles are relative to the horizon and the drone's heading:
+// pitch 0 = level, -90 = straight down; gimbal yaw relative to the drone's nose.
+// Focus at infinity is +infinity in memory and null in JSON.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "core/geodesy.h"
+
+namespace cinepath {
+
+struct CameraSpec {
+  std::string filmback = "custom";     // preset name, or "custom"
+  double sensor_width_mm = 24.89;      // Super 35 by default
+  double sensor_height_mm = 18.67;
+  int width_px = 3840;
+  int height_px = 2160;
+  double min_focal_length_mm = 24;
+  double max_focal_length_mm = 24;
+  double min_f_number = 2.8;
+  double max_f_number = 16;
+  double min_focus_distance_m = 0.5;
+  double coc_mm = 0.0;  // acceptable blur for DoF reports; 0 = derive from the filmback diagonal
+  // Lens servo limits for feasibility checks (planning priors, ../shared/specs/optics.md).
+  double max_focal_rate_mm_s = 20;         // zoom speed
+  double max_focus_rate_m_s = 15;          // follow-focus speed
+  double max_aperture_rate_stops_s = 3;    // iris speed
+};
+
+// The flight limits a plan is checked against (profiles in shots/drone_profiles.h). Altitudes are
+// ENU z (metres above the origin); rates are magnitudes.
+struct DroneLimits {
+  std::string name = "custom";
+  double max_horizontal_speed_m_s = 12;
+  double max_climb_rate_m_s = 3;
+  double max_descent_rate_m_s = 1.5;
+  double max_acceleration_m_s2 = 5;
+  double max_jerk_m_s3 = 4;
+  double max_yaw_rate_deg_s = 45;
+  double min_gimbal_pitch_deg = -90;
+  double max_gimbal_pitch_deg = 30;
+  double max_gimbal_pitch_rate_deg_s = 90;
+  double min_altitude_m = 1;
+  double max_altitude_m = 120;
+  double min_subject_distance_m = 2;  // keep-out radius around every subject
+};
+
+struct TrajectorySample {
+  double time_s = 0;
+  Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
+  Geodetic geodetic;  // filled when the plan has an origin
+  Eigen::Quaterniond world_from_camera = Eigen::Quaterniond::Identity();
+  double drone_heading_deg = 0;   // compass heading of the drone's nose
+  double gimbal_pitch_deg = 0;    // -90 straight down .. +30 up
+  double gimbal_roll_deg = 0;
+  double gimbal_yaw_deg = 0;      // relative to the drone's nose
+  double focal_length_mm = 24;
+  double focus_distance_m = 10;   // +inf = focused at infinity
+  double f_number = 2.8;
+  double shutter_s = 1.0 / 50.0;
+  std::string shot;                   // name of the shot this sample belongs to
+  std::vector<std::string> subjects_in_frame;
+};
+
+struct ShotSpan {
+  std::string name;
+  std::string type;  // "ORBIT", "CHASE", ...
+  double start_time_s = 0;
+  double end_time_s = 0;
+  std::string subject;                  // the actor the shot frames ("" for none)
+  std::string transition = "continuous";  // how this shot joins the previous one: "continuous" | "cut"
+};
+
+// A key pose a shot was built from: what an editor shows as keyframes (the samples are the truth).
+struct Keyframe {
+  std::string shot;
+  double time_s = 0;
+  Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond world_from_camera = Eigen::Quaterniond::Identity();
+  double focal_length_mm = 24;
+  double focus_distance_m = 10;  // +inf = infinity
+  double f_number = 2.8;
+};
+
+// A subject's path, one position per sample (aligned with Trajectory::samples). The position is the
+// subject's base (its feet / ground contact); height_m its size for framing.
+struct SubjectTrack {
+  std::string name;
+  double height_m = 1.8;
+  std::vector<Eigen::Vector3d> positions_enu_m;
+};
+
+// One broken limit over a time range (consecutive samples merged).
+struct FeasibilityViolation {
+  std::string limit;  // "horizontal_speed", "acceleration", "jerk", "yaw_rate", "gimbal_pitch", ...
+  std::string shot;
+  double start_time_s = 0;
+  double end_time_s = 0;
+  double worst_value = 0;  // the worst value seen in the range, in `unit`
+  double limit_value = 0;
+  std::string unit;
+};
+
+struct FeasibilityReport {
+  std::vector<FeasibilityViolation> violations;
+  bool feasible() const { return violations.empty(); }
+};
+
+struct Trajectory {
+  std::optional<Geodetic> origin;  // WGS84 origin of the ENU frame, when known
+  double frame_rate_hz = 30;
+  CameraSpec camera;
+  std::vector<ShotSpan> shots;
+  std::vector<TrajectorySample> samples;  // one per frame, increasing time
+  // Added by `cinepath plan` (core/plan_file.h); empty for trajectories built elsewhere.
+  DroneLimits drone;
+  std::vector<Keyframe> keyframes;
+  std::vector<SubjectTrack> subjects;
+  FeasibilityReport feasibility;
+};
+
+}  // namespace cinepath

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages cinepath builds, tests and runs with (docs/dependencies.md),
+# only when some are missing. Idempotent: a machine that has them all is left alone.
+#   scripts/install-deps.sh          install what is missing
+#   scripts/install-deps.sh --check  exit 0 when nothing is missing, 1 otherwise (installs nothing)
+set -euo pipefail
+
+PACKAGES=(
+  # build
+  cmake g++ ninja-build ccache pkg-config
+  # libraries (design.md)
+  libcgal-dev libopenmesh-dev libgeographiclib-dev libceres-dev libtinygltf-dev libdraco-dev
+  libopenimageio-dev openimageio-tools libembree-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
+  libfmt-dev libtbb-dev libgtest-dev libbenchmark-dev libstb-dev libmeshoptimizer-dev zlib1g-dev
+  # data and tools the pipeline runs
+  proj-data colmap
+  # independent tools the tests compare against
+  geographiclib-tools libxml2-utils
+)
+# Node.js runs the interop tests (glTF-Validator, node-mavlink, ajv); use the machine's own if present.
+if ! command -v node > /dev/null 2>&1 || ! command -v npm > /dev/null 2>&1; then
+  PACKAGES+=(nodejs npm)
+fi
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2> /dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+if [[ "${1:-}" == "--check" ]]; then
+  echo "missing Debian packages: ${missing[*]}" >&2
+  exit 1
+fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then
+  if command -v sudo > /dev/null 2>&1 && sudo -n true 2> /dev/null; then
+    SUDO="sudo"
+  else
+    echo "install-deps: these Debian packages are missing and this user cannot install them:" >&2
+    echo "  ${missing[*]}" >&2
+    echo "Run as root:  apt-get install --no-install-recommends ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+# --no-install-recommends: the recommends add ~300 MB of GTK/VA/Qt extras nobody needs.
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" > /dev/null
+echo "install-deps: done" >&2
