@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Runs every pipeline stage cinepath has on the bundled sample (data/brighton_beach) into OUT.
+#   scripts/demo.sh BUILD/cli/cinepath OUT
+set -euo pipefail
+CINEPATH=${1:-build/cli/cinepath}
+OUT=${2:-demo-out}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+SAMPLE=$ROOT/data/brighton_beach
+mkdir -p "$OUT"
+has() { "$CINEPATH" --help | grep -q "^  $1 "; }
+step() { echo "== $*" >&2; }
+
+step "cinepath lens: depth of field of the sample's camera (DJI FC300S, 3.61 mm f/2.8, focused at 40 m)"
+"$CINEPATH" lens --focal-mm 3.61 --f-number 2.8 --focus-m 40 --sensor one-over-2.3-inch --width-px 4000 \
+  --at-m 5 --at-m 20 | tee "$OUT/lens.txt"
+
+if has mesh; then
+  step "cinepath mesh: COLMAP sparse model + GPS references -> georeferenced mesh"
+  "$CINEPATH" mesh --colmap "$SAMPLE/colmap/sparse_default" --refs "$SAMPLE/refs_gps.txt" \
+    --images "$SAMPLE/images" --quality draft --draco -o "$OUT/scene"
+  ls -l "$OUT/scene"
+fi
+
+SHOTS=$(ls "$ROOT"/examples/*shots*.json 2> /dev/null | head -1 || true)
+if has plan && [[ -n "$SHOTS" ]]; then
+  step "cinepath plan: $(basename "$SHOTS") -> plan.json (+ CSV and SVG plot)"
+  "$CINEPATH" plan "$SHOTS" --csv "$OUT/plan.csv" --plot "$OUT/plan.svg" -o "$OUT/plan.json"
+  if has export; then
+    step "cinepath export: plan.json -> missions for QGroundControl, MAVLink, DJI and Litchi"
+    mkdir -p "$OUT/missions"
+    "$CINEPATH" export "$OUT/plan.json" --format qgc-plan --format qgc-wpl --format mavlink-bin \
+      --format dji-wpml --format dji-msdk-json --format litchi-csv -o "$OUT/missions"
+    ls -l "$OUT/missions"
+  fi
+fi
+step "demo outputs are in $OUT/"
