@@ -1,0 +1,35 @@
+// Options every stage shares (style.md "mixins"): --progress and --depfile.
+//   CommonOptions common;  common.Add(app);            // in Setup()
+//   Progress p("mesh", n, common.progress_mode());     // in Run()
+//   common.WriteDepfileIfAsked({output}, {inputs...});  // after the outputs landed
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/depfile.h"
+#include "core/progress.h"
+
+namespace cinepath::cli {
+
+class CommonOptions {
+ public:
+  void Add(CLI::App& app) {
+    app.add_option("--progress", progress_, "Progress bar: auto (only on a terminal), always, never")
+        ->check(CLI::IsMember({"auto", "always", "never"}));
+    app.add_option("--depfile", depfile_, "Write a make-style dependency line for what this run read");
+  }
+  ProgressMode progress_mode() const { return ParseProgressMode(progress_); }
+  void WriteDepfileIfAsked(const std::vector<std::string>& targets,
+                           const std::vector<std::string>& dependencies) const {
+    if (!depfile_.empty()) WriteDepfile(depfile_, targets, dependencies);
+  }
+
+ private:
+  std::string progress_ = "auto";
+  std::string depfile_;
+};
+
+}  // namespace cinepath::cli
