@@ -2,12 +2,14 @@
 // `cinepath --help` lists them. A subcommand whose area library is not built is left out
 // (CINEPATH_WITH_<AREA>, set by cli/CMakeLists.txt).
 #include "cli/command.h"
+#include "cli/command_plugin.h"
 
 namespace cinepath::cli {
 
 std::unique_ptr<Command> MakeLensCommand();
 #ifdef CINEPATH_WITH_PHOTOGRAMMETRY
-std::unique_ptr<Command> MakeMeshCommand();
+// A plugin module (cli/command_plugin.h): photogrammetry's libraries load only for this command.
+std::unique_ptr<Command> MakeMeshCommand() { return LoadCommandPlugin("libcinepath_cmd_mesh.so"); }
 #endif
 #ifdef CINEPATH_WITH_SHOTS
 std::unique_ptr<Command> MakePlanCommand();

@@ -1,0 +1,111 @@
+// Bundle adjustment of a COLMAP model already moved into local ENU metres (Ceres), with priors:
+//   * reprojection of every 3D point into every image of its track (robust Huber loss, pixels),
+//     through the camera's own COLMAP model (camera_models.h);
+//   * GPS camera centres: (C - C_gps) / sigma, horizontal and vertical sigmas in metres;
+//   * focal length: (f - f_prior) / (ratio * f_prior) where a prior is given (EXIF FocalLength and the
+//     sensor width, see exif_gps.h).
+// Unknowns: each image's rotation (cam_from_enu, unit quaternion) and centre C (ENU m), each point, each
+// camera's focal length(s) and distortion terms (the principal point stays fixed).
+//
+// Why (../shared/data/README.md): a flat scene seen straight down cannot tell focal length from flying
+// height. The reprojection error is (nearly) the same for f and a depth scaled with it, so the
+// reconstruction drifts along that valley (COLMAP's default run of Brighton Beach grew f by 31 %, and
+// a similarity fit to GPS then puts the ground 10.9 m low). The GPS priors fix the cameras' heights and
+// the focal prior fixes the depth scale, which puts the ground back.
+//
+// Procedure, when every camera has a focal prior:
+//   1. Start at the prior focal length with the points moved along the focal/depth valley (each depth
+//      scaled by f_prior / f), and solve with the focal length held at the prior.
+//   2. Profile: move the focal length by ±profile_step (points moved along the valley again), hold it,
+//      re-solve; the reprojection cost's curvature over the three solutions gives the focal length's
+//      standard deviation from the images alone (sigma_f = sigma_px / sqrt(d²cost/df²)) and the focal
+//      they prefer (the parabola's minimum).
+//   3. Only with free_focal_when_resolved, and when the images resolve it (sigma below `resolvable_sigma_ratio`) AND agree with the prior
+//      (preferred focal within `max_focal_disagreement_ratio`) is the focal length freed (with its
+//      prior) and solved again. Otherwise it stays at the prior, and the report says why. (On Brighton
+//      Beach the images "prefer" +24 % with a formal sigma of 0.7 %: a systematic pull along the valley
+//      that the independent OpenDroneMap reference shows to be wrong.)
+// Without priors the focal length is free from the start and the profile only reports.
+//
+// Deterministic: one thread, fixed iteration order (ordered maps). CINEPATH_BA_VERBOSE=1 in the
+// environment prints each solve (iterations, time, cost) to stderr.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "photogrammetry/colmap_model.h"
+
+namespace cinepath::photogrammetry {
+
+struct BundleAdjustOptions {
+  double reprojection_huber_px = 1.0;
+  double gps_sigma_horizontal_m = 3.0;
+  double gps_sigma_vertical_m = 3.0;
+  double focal_prior_sigma_ratio = 0.01;
+  bool refine_focal = true;
+  bool refine_distortion = true;
+  int max_iterations = 100;
+  double profile_step_ratio = 0.05;    // focal moved by ±5 % for the resolvability profile
+  double resolvable_sigma_ratio = 0.02;
+  // The images "conflict" with the prior when the focal length they prefer is further than this from it;
+  // the focal length then stays at the prior.
+  double max_focal_disagreement_ratio = 0.05;
+  int profile_iterations = 15;
+  // Geometry that can separate focal length from depth: enough depth relief in the views (RMS depth
+  // spread / median depth, per image, median over images) or enough spread of viewing directions
+  // (largest angle between an optical axis and their mean). Below both, the images cannot resolve it
+  // whatever the statistics say (a near-planar scene under near-parallel views is exactly ambiguous).
+  double min_depth_relief_ratio = 0.15;
+  double min_view_axis_spread_deg = 20.0;
+  // Step 3 below is off by default: on Brighton Beach freeing the focal length (prior sigma 1 %) lets the
+  // GPS heights pull it to +2.2 % and the ground 0.9 m lower, although the images agree with the prior.
+  bool free_focal_when_resolved = false;
+  bool profile_focal = true;
+};
+
+struct FocalReport {
+  uint32_t camera_id = 0;
+  double before_px = 0;  // mean of fx, fy
+  double after_px = 0;
+  std::optional<double> prior_px;
+  // From the profile: the focal's standard deviation from the images alone (relative), and the focal the
+  // images alone prefer (parabola minimum); unset when the profile was not run or is degenerate.
+  std::optional<double> images_sigma_ratio;
+  std::optional<double> images_preferred_px;
+  bool images_resolve_focal = false;
+  bool images_conflict_with_prior = false;
+  bool held_at_prior = false;  // the focal length was fixed at the prior
+};
+
+struct BundleAdjustReport {
+  double depth_relief_ratio = 0;     // see BundleAdjustOptions::min_depth_relief_ratio
+  double view_axis_spread_deg = 0;   // see BundleAdjustOptions::min_view_axis_spread_deg
+  bool geometry_resolves_focal = false;
+  int num_images = 0;
+  int num_points = 0;
+  int num_observations = 0;
+  int num_gps_priors = 0;
+  int iterations = 0;
+  bool converged = false;
+  double rms_reprojection_before_px = 0;
+  double rms_reprojection_after_px = 0;
+  std::vector<FocalReport> focal;
+  double time_s = 0;
+};
+
+// Adjusts `model_enu` in place (poses, points, intrinsics). `gps_enu_m` maps image ids to their
+// reference centres in ENU; `focal_prior_px` maps camera ids to prior focal lengths.
+// InfeasibleError when the problem has no observations.
+BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
+                                   const std::map<uint32_t, double>& focal_prior_px,
+                                   const BundleAdjustOptions& options);
+
+// RMS reprojection error over every track observation (pixels), through each camera's model.
+double RmsReprojectionErrorPx(const ColmapModel& model);
+
+}  // namespace cinepath::photogrammetry

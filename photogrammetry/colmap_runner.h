@@ -1,0 +1,31 @@
+// Runs the `colmap` binary (Debian's COLMAP 3.8, CPU only) on a folder of photos, for `cinepath mesh
+// --images DIR` without --colmap: feature extraction (one shared camera, OPENCV model, GPU off),
+// exhaustive matching (GPU off), mapping. Flags from ../shared/specs/stack.md §COLMAP: with the GPU
+// default and no display COLMAP aborts, so --SiftExtraction.use_gpu 0 / --SiftMatching.use_gpu 0.
+//
+// The workspace folder keeps database.db, sparse/<n>/ and one log per step (colmap_<step>.log); a
+// workspace that already holds a sparse model is reused (delete it to start over). The largest model
+// (most registered images) is returned.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace cinepath::photogrammetry {
+
+struct ColmapRunOptions {
+  std::string colmap_binary = "colmap";
+  std::string camera_model = "OPENCV";
+  bool single_camera = true;
+  int num_threads = -1;  // COLMAP's default: all cores
+};
+
+// Returns the sparse model folder. RuntimeError (with the log's last lines) when a step fails or no
+// model comes out; InputError when the images folder does not exist. `on_step` (optional) is told the
+// name of each step as it starts.
+std::filesystem::path RunColmapReconstruction(const std::filesystem::path& images_dir,
+                                              const std::filesystem::path& workspace, const ColmapRunOptions& options,
+                                              const std::function<void(const std::string&)>& on_step = {});
+
+}  // namespace cinepath::photogrammetry

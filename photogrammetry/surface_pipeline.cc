@@ -1,0 +1,316 @@
+#include "photogrammetry/surface_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "core/error.h"
+#include "photogrammetry/gltf_writer.h"
+#include "photogrammetry/mesh_clean.h"
+#include "photogrammetry/mesh_colors.h"
+#include "photogrammetry/mesh_decimate.h"
+#include "photogrammetry/mesh_distance.h"
+#include "photogrammetry/surface_height_field.h"
+#include "photogrammetry/surface_points.h"
+#include "photogrammetry/surface_poisson.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+// The --quality presets (docs/mesh.md; figures in bench/RESULTS.md).
+struct QualityDefaults {
+  int64_t face_budget;           // default decimation target
+  int64_t hausdorff_samples;     // per mesh, for the reported error
+  int64_t height_field_points;   // grid thinning above this many points
+  double poisson_spacing_factor; // > 1: coarser, faster Poisson
+};
+
+QualityDefaults DefaultsFor(Quality quality) {
+  switch (quality) {
+    case Quality::kDraft: return {200000, 20000, 250000, 2.0};
+    case Quality::kStandard: return {1000000, 100000, 1000000, 1.0};
+    case Quality::kFinal: return {3000000, 400000, 4000000, 1.0};
+  }
+  return {1000000, 100000, 1000000, 1.0};
+}
+
+class StepTimer {
+ public:
+  StepTimer() : start_(std::chrono::steady_clock::now()) {}
+  double Seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+void AddTime(Json& step, const StepTimer& timer, const SurfacePipelineOptions& options) {
+  if (options.report_times) step["time_s"] = RoundToDecimals(timer.Seconds(), 3);
+}
+
+Json BoundsJson(const TriangleMesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const auto& v : mesh.vertices_m) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  Json j;
+  j["bbox_min_m"] = Json::array({RoundToDecimals(lo.x(), 4), RoundToDecimals(lo.y(), 4),
+                                 RoundToDecimals(lo.z(), 4)});
+  j["bbox_max_m"] = Json::array({RoundToDecimals(hi.x(), 4), RoundToDecimals(hi.y(), 4),
+                                 RoundToDecimals(hi.z(), 4)});
+  return j;
+}
+
+// Clean → decimate → colours → GLB, shared by both entry points.
+SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_source,
+                                    const SurfacePipelineOptions& options, Json report) {
+  const QualityDefaults defaults = DefaultsFor(options.quality);
+  Json& steps = report["steps"];
+
+  {
+    StepTimer timer;
+    MeshCleanReport clean_report;
+    mesh = CleanMesh(mesh, MeshCleanOptions{}, &clean_report);
+    Json step;
+    step["step"] = "clean";
+    step.update(clean_report.ToJson());
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
+  }
+  if (mesh.num_faces() == 0) {
+    throw InfeasibleError("mesh: no surface is left after cleaning (see the report's steps)");
+  }
+
+  double hausdorff_m = 0;
+  {
+    StepTimer timer;
+    DecimateOptions decimate;
+    // The default simplifier (bench/mesh_decimate_bench.cc, figures in bench/RESULTS.md): on a
+    // 2.5 M-face terrain, tiled meshoptimizer is ~40x faster than CGAL Garland-Heckbert at a
+    // similar or lower Hausdorff error, and lower than whole-mesh meshoptimizer.
+    decimate.method = DecimationMethod::kMeshoptimizerPartitioned;
+    HausdorffOptions hausdorff;
+    hausdorff.samples_per_mesh = defaults.hausdorff_samples;
+    hausdorff.seed = 1;
+    Json step;
+    step["step"] = "decimate";
+    step["method"] = DecimationMethodName(decimate.method);
+    step["faces_in"] = static_cast<int64_t>(mesh.num_faces());
+    TriangleMesh simplified;
+    DecimateStats stats;
+    int attempts = 0;
+    if (options.max_error_m) {
+      // Error bound: meshoptimizer's own estimate is not a Hausdorff distance, so tighten it until
+      // the measured symmetric Hausdorff distance is within the bound (at most 8 halvings; the
+      // undecimated mesh always meets it).
+      step["goal"] = "max_error_m";
+      step["max_error_m"] = *options.max_error_m;
+      decimate.max_error_m = *options.max_error_m;
+      simplified = mesh;
+      for (; attempts < 8; ++attempts) {
+        TriangleMesh candidate = DecimateMesh(mesh, decimate, &stats);
+        const double d = candidate.num_faces() < mesh.num_faces() && candidate.num_faces() > 0
+                             ? ApproximateHausdorff(mesh, candidate, hausdorff).symmetric_m
+                             : 0.0;
+        if (candidate.num_faces() > 0 && d <= *options.max_error_m) {
+          simplified = std::move(candidate);
+          hausdorff_m = d;
+          break;
+        }
+        decimate.max_error_m *= 0.5;
+      }
+      step["attempts"] = attempts + 1;
+    } else {
+      decimate.target_faces = options.target_faces ? *options.target_faces : defaults.face_budget;
+      step["goal"] = options.target_faces ? "target_faces" : "quality_preset";
+      step["target_faces"] = decimate.target_faces;
+      simplified = DecimateMesh(mesh, decimate, &stats);
+      if (simplified.num_faces() < mesh.num_faces() && simplified.num_faces() > 0) {
+        hausdorff_m = ApproximateHausdorff(mesh, simplified, hausdorff).symmetric_m;
+      }
+    }
+    if (simplified.num_faces() == 0) {
+      throw InfeasibleError("mesh: decimation left no face");
+    }
+    step["faces_out"] = static_cast<int64_t>(simplified.num_faces());
+    step["vertices_out"] = static_cast<int64_t>(simplified.num_vertices());
+    step["hausdorff_m"] = hausdorff_m;
+    step["hausdorff_samples"] = defaults.hausdorff_samples;
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
+    mesh = std::move(simplified);
+  }
+
+  {
+    StepTimer timer;
+    Json step;
+    step["step"] = "colors";
+    if (mesh.has_colors()) {
+      step["source"] = "surface";
+    } else if (color_source && color_source->has_colors() && color_source->size() > 0) {
+      ColorVerticesFromPoints(mesh, *color_source);
+      step["source"] = "nearest_points";
+    } else {
+      step["source"] = "none";
+    }
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
+  }
+
+  SurfacePipelineResult result;
+  {
+    StepTimer timer;
+    GlbWriteOptions glb;
+    glb.draco = options.draco;
+    glb.extras = options.gltf_extras;
+    result.glb = WriteGlb(mesh, glb);
+    Json step;
+    step["step"] = "glb";
+    step["draco"] = options.draco;
+    step["bytes"] = static_cast<int64_t>(result.glb.size());
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
+  }
+
+  Json output;
+  output["vertices"] = static_cast<int64_t>(mesh.num_vertices());
+  output["faces"] = static_cast<int64_t>(mesh.num_faces());
+  output["hausdorff_m"] = hausdorff_m;
+  output.update(BoundsJson(mesh));
+  report["output"] = std::move(output);
+  result.report = std::move(report);
+  result.mesh = std::move(mesh);
+  return result;
+}
+
+Json StartReport(const SurfacePipelineOptions& options, const char* input) {
+  Json report;
+  report["quality"] = QualityName(options.quality);
+  report["input"] = input;
+  report["steps"] = Json::array();
+  return report;
+}
+
+}  // namespace
+
+Quality ParseQuality(const std::string& text, const std::string& where) {
+  if (text == "draft") return Quality::kDraft;
+  if (text == "standard") return Quality::kStandard;
+  if (text == "final") return Quality::kFinal;
+  throw InputError(Located(where, "must be draft, standard or final, not '" + text + "'"));
+}
+
+const char* QualityName(Quality quality) {
+  switch (quality) {
+    case Quality::kDraft: return "draft";
+    case Quality::kStandard: return "standard";
+    case Quality::kFinal: return "final";
+  }
+  return "?";
+}
+
+SurfaceMethod ParseSurfaceMethod(const std::string& text, const std::string& where) {
+  if (text == "auto") return SurfaceMethod::kAuto;
+  if (text == "height-field") return SurfaceMethod::kHeightField;
+  if (text == "poisson") return SurfaceMethod::kPoisson;
+  throw InputError(Located(where, "must be auto, height-field or poisson, not '" + text + "'"));
+}
+
+const char* SurfaceMethodName(SurfaceMethod method) {
+  switch (method) {
+    case SurfaceMethod::kAuto: return "auto";
+    case SurfaceMethod::kHeightField: return "height-field";
+    case SurfaceMethod::kPoisson: return "poisson";
+  }
+  return "?";
+}
+
+void SurfacePipelineOptions::Check() const {
+  if (target_faces && max_error_m) {
+    throw InputError("--target-faces and --max-error-m: give at most one of them");
+  }
+  if (target_faces && *target_faces <= 0) throw InputError("--target-faces: must be > 0");
+  if (max_error_m && !(*max_error_m > 0 && std::isfinite(*max_error_m))) {
+    throw InputError("--max-error-m: must be a finite number > 0");
+  }
+  if (!gltf_extras.is_null() && !gltf_extras.is_object()) {
+    throw InputError("gltf extras: must be a JSON object");
+  }
+}
+
+SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points,
+                                             const SurfacePipelineOptions& options) {
+  options.Check();
+  const QualityDefaults defaults = DefaultsFor(options.quality);
+  Json report = StartReport(options, "points");
+  Json& steps = report["steps"];
+
+  PointCloud filtered;
+  {
+    StepTimer timer;
+    PointFilterReport filter_report;
+    filtered = FilterPoints(points, PointFilterOptions{}, &filter_report);
+    Json step;
+    step["step"] = "filter_points";
+    step.update(filter_report.ToJson());
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
+  }
+  if (filtered.size() < 3) {
+    throw InputError("mesh: only " + std::to_string(filtered.size()) +
+                     " points are left after filtering: too few for a surface");
+  }
+
+  SurfaceMethod method = options.method;
+  if (method == SurfaceMethod::kAuto) {
+    method = LooksLikeNadirCapture(filtered) ? SurfaceMethod::kHeightField : SurfaceMethod::kPoisson;
+  }
+  TriangleMesh mesh;
+  {
+    StepTimer timer;
+    Json step;
+    if (method == SurfaceMethod::kHeightField) {
+      HeightFieldOptions height_field;
+      height_field.max_points = defaults.height_field_points;
+      HeightFieldReport surface_report;
+      mesh = HeightFieldSurface(filtered, height_field, &surface_report);
+      step["step"] = "height_field";
+      step.update(surface_report.ToJson());
+    } else {
+      PoissonOptions poisson;
+      poisson.spacing_factor = defaults.poisson_spacing_factor;
+      PoissonReport surface_report;
+      mesh = PoissonSurface(filtered, poisson, &surface_report);
+      step["step"] = "poisson";
+      step.update(surface_report.ToJson());
+    }
+    step["method_requested"] = SurfaceMethodName(options.method);
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
+  }
+  if (mesh.num_faces() == 0) {
+    throw InfeasibleError("mesh: the surface reconstruction produced no face");
+  }
+  return FinishSurface(std::move(mesh), &filtered, options, std::move(report));
+}
+
+SurfacePipelineResult BuildSurfaceFromMesh(TriangleMesh mesh, const PointCloud* color_source,
+                                           const SurfacePipelineOptions& options) {
+  options.Check();
+  Json report = StartReport(options, "mesh");
+  Json step;
+  step["step"] = "input_mesh";
+  step["vertices"] = static_cast<int64_t>(mesh.num_vertices());
+  step["faces"] = static_cast<int64_t>(mesh.num_faces());
+  step["colors"] = mesh.has_colors();
+  report["steps"].push_back(std::move(step));
+  if (mesh.num_faces() == 0) throw InputError("mesh: the given mesh has no face");
+  return FinishSurface(std::move(mesh), color_source, options, std::move(report));
+}
+
+}  // namespace cinepath::photogrammetry

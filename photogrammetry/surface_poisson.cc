@@ -1,0 +1,155 @@
+#include "photogrammetry/surface_poisson.h"
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/compute_average_spacing.h>
+#include <CGAL/jet_estimate_normals.h>
+#include <CGAL/poisson_surface_reconstruction.h>
+#include <CGAL/property_map.h>
+
+#include "core/error.h"
+#include "photogrammetry/cgal_point_search_internal.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Vector = Kernel::Vector_3;
+using PointWithNormal = std::pair<Point, Vector>;
+using PointMap = CGAL::First_of_pair_property_map<PointWithNormal>;
+using NormalMap = CGAL::Second_of_pair_property_map<PointWithNormal>;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+}  // namespace
+
+Json PoissonReport::ToJson() const {
+  Json j;
+  j["points"] = points;
+  j["normals_estimated"] = normals_estimated;
+  j["normals_flipped_toward_cameras"] = normals_flipped_toward_cameras;
+  j["normals_oriented_up"] = normals_oriented_up;
+  j["average_spacing_m"] = average_spacing_m;
+  j["faces_reconstructed"] = faces_reconstructed;
+  j["faces_trimmed"] = faces_trimmed;
+  j["faces_out"] = faces_out;
+  return j;
+}
+
+TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options,
+                            PoissonReport* report_out) {
+  PoissonReport report;
+  std::vector<PointWithNormal> points;
+  std::vector<uint32_t> source;
+  for (uint32_t i = 0; i < cloud.size(); ++i) {
+    const auto& p = cloud.positions_m[i];
+    if (!p.allFinite()) continue;
+    Vector n(0, 0, 0);
+    if (cloud.has_normals() && cloud.normals[i].allFinite()) {
+      n = Vector(cloud.normals[i].x(), cloud.normals[i].y(), cloud.normals[i].z());
+    }
+    points.emplace_back(Point(p.x(), p.y(), p.z()), n);
+    source.push_back(i);
+  }
+  report.points = static_cast<int64_t>(points.size());
+  if (points.size() < 10) {
+    throw InputError("poisson: fewer than 10 usable points (" + std::to_string(points.size()) +
+                     ")");
+  }
+  const int k = std::max(3, std::min<int>(options.normal_neighbours,
+                                          static_cast<int>(points.size()) - 1));
+
+  // Normals: estimated by jet fitting when the cloud has none, then oriented toward the cameras
+  // that saw each point (mean direction to them), or up when nobody is recorded.
+  if (!cloud.has_normals()) {
+    report.normals_estimated = true;
+    CGAL::jet_estimate_normals<CGAL::Sequential_tag>(
+        points, k, CGAL::parameters::point_map(PointMap()).normal_map(NormalMap()));
+  }
+  for (size_t j = 0; j < points.size(); ++j) {
+    const uint32_t i = source[j];
+    Vector toward(0, 0, 1);
+    bool from_cameras = false;
+    if (i < cloud.observers.size() && !cloud.observers[i].empty()) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (uint32_t c : cloud.observers[i]) {
+        if (c >= cloud.camera_centers_m.size()) continue;
+        const Eigen::Vector3d d = cloud.camera_centers_m[c] - cloud.positions_m[i];
+        if (d.norm() > 0) sum += d.normalized();
+      }
+      if (sum.norm() > 0) {
+        toward = Vector(sum.x(), sum.y(), sum.z());
+        from_cameras = true;
+      }
+    }
+    if (points[j].second * toward < 0) {
+      points[j].second = -points[j].second;
+      ++(from_cameras ? report.normals_flipped_toward_cameras : report.normals_oriented_up);
+    }
+  }
+
+  report.average_spacing_m = CGAL::compute_average_spacing<CGAL::Sequential_tag>(
+      points, k, CGAL::parameters::point_map(PointMap()));
+  if (!(report.average_spacing_m > 0)) {
+    throw InputError("poisson: the points have no spacing (all coincide)");
+  }
+  Mesh sm;
+  if (!CGAL::poisson_surface_reconstruction_delaunay(
+          points.begin(), points.end(), PointMap(), NormalMap(), sm,
+          report.average_spacing_m * std::max(options.spacing_factor, 1e-3), options.angle_deg,
+          options.radius_factor, options.distance_factor)) {
+    throw RuntimeError("poisson: CGAL's Poisson solver failed");
+  }
+  report.faces_reconstructed = static_cast<int64_t>(sm.number_of_faces());
+
+  // Trim: drop triangles whose centroid is far from every input point.
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(points.size());
+  for (const auto& pn : points) positions.emplace_back(pn.first.x(), pn.first.y(), pn.first.z());
+  const internal::PointSearch search(positions);
+  const double max_distance_m = options.trim_factor * report.average_spacing_m;
+
+  TriangleMesh mesh;
+  std::vector<int64_t> remap(sm.number_of_vertices() + sm.number_of_removed_vertices(), -1);
+  for (Mesh::Face_index f : sm.faces()) {
+    std::array<Mesh::Vertex_index, 3> v;
+    int n = 0;
+    for (Mesh::Vertex_index u : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+      if (n < 3) v[n] = u;
+      ++n;
+    }
+    if (n != 3) continue;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (auto u : v) centroid += Eigen::Vector3d(sm.point(u).x(), sm.point(u).y(), sm.point(u).z());
+    centroid /= 3.0;
+    if (options.trim_factor > 0 &&
+        std::sqrt(search.Nearest(centroid, 1).front().first) > max_distance_m) {
+      ++report.faces_trimmed;
+      continue;
+    }
+    std::array<uint32_t, 3> tri{};
+    for (int c = 0; c < 3; ++c) {
+      if (remap[v[c].idx()] < 0) {
+        remap[v[c].idx()] = static_cast<int64_t>(mesh.vertices_m.size());
+        const Point& q = sm.point(v[c]);
+        mesh.vertices_m.emplace_back(q.x(), q.y(), q.z());
+      }
+      tri[c] = static_cast<uint32_t>(remap[v[c].idx()]);
+    }
+    mesh.faces.push_back(tri);
+  }
+  if (cloud.has_colors() && mesh.num_vertices() > 0) {
+    mesh.colors_rgb.reserve(mesh.num_vertices());
+    for (const auto& v : mesh.vertices_m) {
+      mesh.colors_rgb.push_back(cloud.colors_rgb[source[search.Nearest(v, 1).front().second]]);
+    }
+  }
+  report.faces_out = static_cast<int64_t>(mesh.num_faces());
+  if (report_out) *report_out = report;
+  return mesh;
+}
+
+}  // namespace cinepath::photogrammetry

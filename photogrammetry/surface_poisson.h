@@ -1,0 +1,42 @@
+// Screened-free (classic) Poisson surface reconstruction with CGAL (Kazhdan et al. 2006, CGAL's
+// Poisson_reconstruction_function + Delaunay-refinement meshing). Normals come from the cloud, or
+// are estimated by jet fitting (CGAL jet_estimate_normals) and oriented toward the cameras that
+// observed each point (COLMAP tracks: PointCloud.observers / camera_centers_m); points without
+// observations are oriented up. Poisson closes every surface: triangles far from any input point
+// (more than trim_factor × the average spacing) are trimmed away.
+#pragma once
+
+#include <cstdint>
+
+#include "core/json.h"
+#include "photogrammetry/point_cloud.h"
+#include "photogrammetry/triangle_mesh.h"
+
+namespace cinepath::photogrammetry {
+
+struct PoissonOptions {
+  int normal_neighbours = 18;  // k for jet normal estimation and for the average spacing
+  // Meshing criteria (CGAL: facet angle in degrees, radius and distance relative to the spacing).
+  double angle_deg = 20.0;
+  double radius_factor = 1.0;  // CGAL example: 30, far too coarse for terrain detail
+  double distance_factor = 0.375;
+  // Spacing multiplier: > 1 gives a coarser (faster) surface.
+  double spacing_factor = 1.0;
+  double trim_factor = 3.0;  // 0 = no trimming
+};
+
+struct PoissonReport {
+  int64_t points = 0;
+  bool normals_estimated = false;
+  int64_t normals_flipped_toward_cameras = 0, normals_oriented_up = 0;
+  double average_spacing_m = 0;
+  int64_t faces_reconstructed = 0, faces_trimmed = 0, faces_out = 0;
+  Json ToJson() const;
+};
+
+// Throws InputError for fewer than 10 finite points, RuntimeError if the Poisson solver fails.
+// Colours: the vertices take the colour of their nearest input point.
+TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options,
+                            PoissonReport* report);
+
+}  // namespace cinepath::photogrammetry

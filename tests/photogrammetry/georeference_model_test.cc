@@ -1,0 +1,253 @@
+#include "photogrammetry/georeference_model.h"
+
+#include <gtest/gtest.h>
+
+#include <GeographicLib/UTMUPS.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/geoid.h"
+#include "photogrammetry/colmap_reader.h"
+#include "synthetic_colmap.h"
+#include "test_paths.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Synthetic: a survey generated in code, its GPS references derived from the known ENU truth.
+
+struct SyntheticRefs {
+  testing::SyntheticScene scene;
+  Geodetic origin{46.84, -91.99, 160.0};
+  std::vector<ImageReference> refs;
+};
+
+SyntheticRefs MakeSurvey(double gps_noise_m, double outlier_fraction, uint64_t seed) {
+  SyntheticRefs s;
+  testing::SyntheticOptions o;
+  o.enu_from_colmap = testing::DefaultColmapFrame();
+  s.scene = testing::MakeSyntheticScene(o);
+  const EnuFrame frame(s.origin);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0, gps_noise_m);
+  const int n = static_cast<int>(s.scene.camera_centers_enu_m.size());
+  const int n_bad = static_cast<int>(outlier_fraction * n);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d p = s.scene.camera_centers_enu_m[i] + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    if (i % (n / std::max(n_bad, 1)) == 1 && i / (n / std::max(n_bad, 1)) < n_bad) {
+      p += 50 * Eigen::Vector3d(std::cos(i), std::sin(i), 0.2).normalized();
+    }
+    const Geodetic g = frame.GeodeticFromEnu(p);
+    s.refs.push_back({s.scene.model.images.at(i + 1).name, g.lat_deg, g.lon_deg, g.height_m, "synthetic"});
+  }
+  return s;
+}
+
+ModelGeoreferenceOptions SyntheticOptions(const Geodetic& origin) {
+  ModelGeoreferenceOptions o;
+  o.origin = origin;
+  return o;
+}
+
+TEST(GeoreferenceModel, SyntheticSurveyRecoversTheTransform) {
+  const SyntheticRefs s = MakeSurvey(0.5, 0.0, 1);
+  ModelGeoreferenceOptions options = SyntheticOptions(s.origin);
+  options.bundle_adjust = false;
+  const ModelGeoreference r = GeoreferenceModel(s.scene.model, s.refs, options);
+  const Similarity3 truth = testing::DefaultColmapFrame();
+  EXPECT_NEAR(r.enu_from_colmap.scale / truth.scale, 1, 0.01);
+  EXPECT_LT(Eigen::AngleAxisd(r.enu_from_colmap.rotation.conjugate() * truth.rotation).angle(), 0.5 * M_PI / 180);
+  double worst = 0;
+  for (const auto& [id, p] : r.model_enu.points3d) worst = std::max(worst, (p.xyz - s.scene.model_enu.points3d.at(id).xyz).norm());
+  EXPECT_LT(worst, 0.8);
+  EXPECT_EQ(r.final_fit.num_inliers, 18);
+}
+
+TEST(GeoreferenceModel, SyntheticSurveyWithThirtyPercentWrongGpsAndBundleAdjustment) {
+  const SyntheticRefs s = MakeSurvey(0.5, 0.3, 2);
+  ModelGeoreferenceOptions options = SyntheticOptions(s.origin);
+  options.ba.focal_prior_sigma_ratio = 0.01;
+  options.focal_prior_px[1] = 900;
+  const ModelGeoreference r = GeoreferenceModel(s.scene.model, s.refs, options);
+  EXPECT_EQ(r.first_fit.num_inliers, 18 - 5);
+  ASSERT_TRUE(r.bundle_adjustment);
+  EXPECT_EQ(r.bundle_adjustment->num_gps_priors, 13);
+  EXPECT_LT(r.bundle_adjustment->rms_reprojection_after_px, 0.6);
+  std::vector<double> err;
+  for (const auto& [id, p] : r.model_enu.points3d) err.push_back((p.xyz - s.scene.model_enu.points3d.at(id).xyz).norm());
+  std::sort(err.begin(), err.end());
+  EXPECT_LT(err[err.size() / 2], 0.5);
+  EXPECT_NEAR(r.bundle_adjustment->focal[0].after_px, 900, 9);
+  // Determinism.
+  const ModelGeoreference again = GeoreferenceModel(s.scene.model, s.refs, options);
+  EXPECT_EQ(DumpJson(GeoreferenceJson(r, options, false)), DumpJson(GeoreferenceJson(again, options, false)));
+}
+
+TEST(GeoreferenceModel, AmslAltitudesAreConvertedWithEgm96) {
+  SyntheticRefs s = MakeSurvey(0.0, 0.0, 3);
+  const double n = Egm96Geoid::Default().UndulationM(s.origin.lat_deg, s.origin.lon_deg);
+  for (auto& ref : s.refs) ref.alt_m -= Egm96Geoid::Default().UndulationM(ref.lat_deg, ref.lon_deg);  // to AMSL
+  ModelGeoreferenceOptions options;
+  options.bundle_adjust = false;
+  options.altitude_datum = AltitudeDatum::kAmslEgm96;
+  const ModelGeoreference r = GeoreferenceModel(s.scene.model, s.refs, options);
+  EXPECT_NEAR(r.geoid_undulation_m, n, 1e-9);
+  EXPECT_LT(r.final_fit.rmse_m, 1e-3);
+  const Json j = GeoreferenceJson(r, options, false);
+  EXPECT_EQ(j["georeferencing"]["altitude_datum"], "amsl_egm96");
+  // The mean camera height is 40 m above the origin's (ellipsoidal) 160 m.
+  EXPECT_NEAR(j["origin"]["height_m"].get<double>(), 160 + 40, 0.5);
+}
+
+TEST(GeoreferenceModel, ReferencesWithFoldersMatchByFileName) {
+  SyntheticRefs s = MakeSurvey(0.0, 0.0, 4);
+  for (auto& ref : s.refs) ref.image_name = "C:\\flight\\" + ref.image_name;
+  ModelGeoreferenceOptions options;
+  options.bundle_adjust = false;
+  const ModelGeoreference r = GeoreferenceModel(s.scene.model, s.refs, options);
+  EXPECT_EQ(r.final_fit.num_inliers, 18);
+  EXPECT_TRUE(r.references[0].matched_by_file_name);
+}
+
+TEST(GeoreferenceModel, NoMatchingNamesIsRefused) {
+  SyntheticRefs s = MakeSurvey(0.0, 0.0, 4);
+  for (auto& ref : s.refs) ref.image_name = "other_" + ref.image_name;
+  try {
+    GeoreferenceModel(s.scene.model, s.refs, ModelGeoreferenceOptions());
+    FAIL();
+  } catch (const InfeasibleError& e) {
+    EXPECT_NE(std::string(e.what()).find("none of the 18 references names a registered image"), std::string::npos)
+        << e.what();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Real data: Brighton Beach (tests/data/colmap/PROVENANCE.md).
+
+struct ReferenceGrid {
+  std::map<std::pair<int, int>, double> height_by_cell;  // ENU, 2 m cells
+  static std::pair<int, int> Cell(double e, double n) {
+    return {static_cast<int>(std::floor(e / 2)), static_cast<int>(std::floor(n / 2))};
+  }
+};
+
+ReferenceGrid LoadReference(const EnuFrame& frame) {
+  std::ifstream f(testing::TestDataDir() / "colmap" / "odm_reference_2m.txt");
+  ReferenceGrid grid;
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream is(line);
+    double x, y, h;
+    is >> x >> y >> h;
+    double lat, lon;
+    GeographicLib::UTMUPS::Reverse(15, true, x, y, lat, lon);
+    const Eigen::Vector3d enu = frame.EnuFromGeodetic({lat, lon, h});
+    grid.height_by_cell[ReferenceGrid::Cell(enu.x(), enu.y())] = enu.z();
+  }
+  return grid;
+}
+
+// Median of (sparse point height - reference height) over points whose 2 m cell has a reference value.
+double MedianVerticalOffset(const ModelGeoreference& r, size_t* compared) {
+  const ReferenceGrid grid = LoadReference(EnuFrame(r.origin));
+  std::vector<double> dz;
+  for (const auto& [id, p] : r.model_enu.points3d) {
+    const auto it = grid.height_by_cell.find(ReferenceGrid::Cell(p.xyz.x(), p.xyz.y()));
+    if (it != grid.height_by_cell.end()) dz.push_back(p.xyz.z() - it->second);
+  }
+  *compared = dz.size();
+  if (dz.empty()) return NAN;
+  std::nth_element(dz.begin(), dz.begin() + dz.size() / 2, dz.end());
+  return dz[dz.size() / 2];
+}
+
+ModelGeoreferenceOptions BrightonOptions() {
+  ModelGeoreferenceOptions options;
+  // EXIF (tests/data/colmap/brighton_exif.txt): FC300S, FocalLength 3.61 mm; 6.317 mm sensor; 1600 px.
+  options.focal_prior_px[1] = 3.61 / 6.317 * 1600;
+  options.focal_prior_source = "test fixture";
+  return options;
+}
+
+TEST(GeoreferenceModel, BrightonBeachSimilarityAloneLeavesTheGroundElevenMetresLow) {
+  const ColmapModel model = ReadColmapModel(testing::TestDataDir() / "colmap" / "brighton_sparse_default");
+  const auto refs = ReadReferencesFile(testing::TestDataDir() / "colmap" / "brighton_refs_gps.txt");
+  ModelGeoreferenceOptions options = BrightonOptions();
+  options.bundle_adjust = false;
+  const ModelGeoreference r = GeoreferenceModel(model, refs, options);
+  size_t n = 0;
+  const double dz = MedianVerticalOffset(r, &n);
+  EXPECT_GT(n, 3000u);
+  EXPECT_NEAR(dz, -10.9, 0.7);  // the data README's figure for COLMAP's model_aligner
+  EXPECT_LT(r.first_fit.rmse_m, 1.0);
+}
+
+TEST(GeoreferenceModel, BrightonBeachBundleAdjustmentPutsTheGroundWithinOneMetre) {
+  const ColmapModel model = ReadColmapModel(testing::TestDataDir() / "colmap" / "brighton_sparse_default");
+  const auto refs = ReadReferencesFile(testing::TestDataDir() / "colmap" / "brighton_refs_gps.txt");
+  const ModelGeoreferenceOptions options = BrightonOptions();
+  const ModelGeoreference r = GeoreferenceModel(model, refs, options);
+  size_t n = 0;
+  const double dz = MedianVerticalOffset(r, &n);
+  EXPECT_GT(n, 3000u);
+  EXPECT_LT(std::abs(dz), 1.0) << dz;
+  ASSERT_TRUE(r.bundle_adjustment);
+  const FocalReport& f = r.bundle_adjustment->focal.at(0);
+  EXPECT_NEAR(f.before_px, 1200.3, 1.0);
+  EXPECT_NEAR(f.after_px, 914.3, 25);
+  EXPECT_TRUE(f.held_at_prior);
+  EXPECT_DOUBLE_EQ(f.after_px, 3.61 / 6.317 * 1600);
+  // COLMAP's 31 % focal drift is reported.
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("COLMAP's focal length (1200.3 px) differs from the prior (914.4 px) by 31.3 %"),
+            std::string::npos) << r.warnings.back();
+  EXPECT_LT(r.final_fit.rmse_m, 1.5);
+  for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
+  std::cerr << "iterations " << r.bundle_adjustment->iterations << " time " << r.bundle_adjustment->time_s << " converged " << r.bundle_adjustment->converged << "\n";
+  std::cerr << "median dz " << dz << " m over " << n << " points; focal " << f.after_px << " px; images sigma "
+            << f.images_sigma_ratio.value_or(-1) << "; preferred " << f.images_preferred_px.value_or(-1) << "\n"
+            << DumpJson(GeoreferenceJson(r, options, true)).substr(0, 0);
+}
+
+// The model COLMAP mapped with the focal length fixed at the EXIF value (shared data only).
+TEST(GeoreferenceModel, BrightonBeachExifFocalModelStaysWithinOneMetre) {
+  const auto dir = testing::SharedDataDir() / "brighton_beach" / "colmap" / "sparse_exif_focal";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no " << dir;
+  const ColmapModel model = ReadColmapModel(dir);
+  const auto refs = ReadReferencesFile(testing::TestDataDir() / "colmap" / "brighton_refs_gps.txt");
+  for (bool ba : {false, true}) {
+    ModelGeoreferenceOptions options = BrightonOptions();
+    options.bundle_adjust = ba;
+    const ModelGeoreference r = GeoreferenceModel(model, refs, options);
+    size_t n = 0;
+    EXPECT_LT(std::abs(MedianVerticalOffset(r, &n)), 1.0) << ba;
+    EXPECT_GT(n, 3000u);
+  }
+}
+
+TEST(GeoreferenceModel, BrightonBeachWithoutFocalPriorSaysItCannotResolveTheAmbiguity) {
+  const ColmapModel model = ReadColmapModel(testing::TestDataDir() / "colmap" / "brighton_sparse_default");
+  const auto refs = ReadReferencesFile(testing::TestDataDir() / "colmap" / "brighton_refs_gps.txt");
+  const ModelGeoreference r = GeoreferenceModel(model, refs, ModelGeoreferenceOptions());
+  ASSERT_TRUE(r.bundle_adjustment);
+  EXPECT_FALSE(r.bundle_adjustment->geometry_resolves_focal);
+  EXPECT_LT(r.bundle_adjustment->depth_relief_ratio, 0.05);
+  EXPECT_LT(r.bundle_adjustment->view_axis_spread_deg, 5.0);
+  EXPECT_FALSE(r.bundle_adjustment->focal.at(0).images_resolve_focal);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("cannot resolve focal length vs flying height"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("no focal-length prior is known"), std::string::npos) << r.warnings[0];
+  // Without a prior nothing can put the ground back: it stays where a similarity puts it.
+  size_t n = 0;
+  EXPECT_LT(MedianVerticalOffset(r, &n), -9.0);
+}
+
+}  // namespace
+}  // namespace cinepath::photogrammetry

@@ -1,0 +1,102 @@
+#include "photogrammetry/surface_pipeline.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "surface_test_meshes.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+const Json* FindStep(const Json& report, const std::string& name) {
+  for (const Json& step : report["steps"]) {
+    if (step["step"] == name) return &step;
+  }
+  return nullptr;
+}
+
+TEST(BuildSurfaceFromPoints, NadirCloudGivesAHeightFieldReportAndGlb) {
+  PointCloud cloud = testing::TerrainCloud(60, 50, 1.0);
+  cloud.reprojection_error_px[10] = 9.0;
+  SurfacePipelineOptions options;
+  options.target_faces = 1500;
+  options.report_times = false;
+  options.gltf_extras = Json::parse(R"({"origin": {"lat_deg": 1.0, "lon_deg": 2.0, "height_m": 3.0}})");
+  const SurfacePipelineResult result = BuildSurfaceFromPoints(cloud, options);
+  const Json& report = result.report;
+  ASSERT_NE(FindStep(report, "filter_points"), nullptr);
+  EXPECT_EQ((*FindStep(report, "filter_points"))["removed_reprojection"], 1);
+  ASSERT_NE(FindStep(report, "height_field"), nullptr);
+  ASSERT_NE(FindStep(report, "clean"), nullptr);
+  const Json* decimate = FindStep(report, "decimate");
+  ASSERT_NE(decimate, nullptr);
+  EXPECT_EQ((*decimate)["faces_out"].get<size_t>(), result.mesh.num_faces());
+  EXPECT_LE(result.mesh.num_faces(), 1800u);
+  EXPECT_GT((*decimate)["hausdorff_m"].get<double>(), 0.0);
+  EXPECT_LT((*decimate)["hausdorff_m"].get<double>(), 0.5);
+  EXPECT_FALSE((*decimate).contains("time_s"));
+  EXPECT_EQ((*FindStep(report, "colors"))["source"], "surface");
+  EXPECT_EQ(report["output"]["faces"].get<size_t>(), result.mesh.num_faces());
+  EXPECT_EQ(result.mesh.colors_rgb.size(), result.mesh.num_vertices());
+  ASSERT_GT(result.glb.size(), 100u);
+  EXPECT_EQ(result.glb.substr(0, 4), "glTF");
+  EXPECT_NE(result.glb.find("\"lat_deg\""), std::string::npos);
+
+  // Deterministic bytes and report.
+  const SurfacePipelineResult again = BuildSurfaceFromPoints(cloud, options);
+  EXPECT_EQ(again.glb, result.glb);
+  EXPECT_EQ(DumpJson(again.report), DumpJson(result.report));
+}
+
+TEST(BuildSurfaceFromPoints, ErrorBoundIsMetByTheMeasuredHausdorffDistance) {
+  const PointCloud cloud = testing::TerrainCloud(60, 50, 1.0);
+  SurfacePipelineOptions options;
+  options.max_error_m = 0.05;
+  options.draco = true;
+  const SurfacePipelineResult result = BuildSurfaceFromPoints(cloud, options);
+  const Json* decimate = FindStep(result.report, "decimate");
+  ASSERT_NE(decimate, nullptr);
+  EXPECT_LE((*decimate)["hausdorff_m"].get<double>(), 0.05);
+  EXPECT_LT((*decimate)["faces_out"].get<int64_t>(), (*decimate)["faces_in"].get<int64_t>());
+  EXPECT_TRUE((*decimate).contains("time_s"));
+  EXPECT_NE(result.glb.find("KHR_draco_mesh_compression"), std::string::npos);
+}
+
+TEST(BuildSurfaceFromMesh, UsesTheGivenMeshAndColoursItFromPoints) {
+  TriangleMesh mesh = testing::TerrainGrid(30, 30, 1.0);
+  mesh.colors_rgb.clear();
+  const PointCloud cloud = testing::TerrainCloud(30, 30, 1.0);
+  SurfacePipelineOptions options;
+  options.quality = Quality::kDraft;
+  const SurfacePipelineResult result = BuildSurfaceFromMesh(mesh, &cloud, options);
+  EXPECT_EQ(result.mesh.num_faces(), mesh.num_faces());  // under the draft budget: untouched
+  EXPECT_EQ((*FindStep(result.report, "colors"))["source"], "nearest_points");
+  EXPECT_EQ(result.mesh.colors_rgb.size(), result.mesh.num_vertices());
+  EXPECT_EQ(result.report["quality"], "draft");
+}
+
+TEST(SurfacePipelineOptions, CheckRejectsConflictingOrInvalidGoals) {
+  SurfacePipelineOptions options;
+  options.target_faces = 10;
+  options.max_error_m = 0.1;
+  EXPECT_THROW(options.Check(), InputError);
+  options.max_error_m.reset();
+  options.target_faces = 0;
+  EXPECT_THROW(options.Check(), InputError);
+  options.target_faces.reset();
+  options.max_error_m = -1.0;
+  EXPECT_THROW(options.Check(), InputError);
+  EXPECT_EQ(ParseQuality("final"), Quality::kFinal);
+  EXPECT_THROW(ParseQuality("best"), InputError);
+  EXPECT_EQ(ParseSurfaceMethod("poisson"), SurfaceMethod::kPoisson);
+  EXPECT_THROW(ParseSurfaceMethod("marching"), InputError);
+}
+
+TEST(BuildSurfaceFromPoints, TooFewPointsIsBadInput) {
+  PointCloud cloud;
+  cloud.positions_m = {{0, 0, 0}, {1, 0, 0}};
+  EXPECT_THROW(BuildSurfaceFromPoints(cloud, SurfacePipelineOptions{}), InputError);
+}
+
+}  // namespace
+}  // namespace cinepath::photogrammetry

@@ -1,0 +1,99 @@
+#include "photogrammetry/surface_poisson.h"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+// Points on a sphere (Fibonacci lattice) of radius r about c, seen by 6 cameras outside it.
+PointCloud SphereCloud(int n, double r, const Eigen::Vector3d& c) {
+  PointCloud cloud;
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n;
+    const double rho = std::sqrt(1.0 - z * z);
+    cloud.positions_m.push_back(c + r * Eigen::Vector3d(rho * std::cos(golden * i),
+                                                        rho * std::sin(golden * i), z));
+    cloud.colors_rgb.push_back({static_cast<uint8_t>(z > 0 ? 250 : 10), 100, 100});
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double s : {-1.0, 1.0}) {
+      Eigen::Vector3d d = Eigen::Vector3d::Zero();
+      d[axis] = s * 5 * r;
+      cloud.camera_centers_m.push_back(c + d);
+    }
+  }
+  // Each point is observed by the cameras on its side.
+  for (const auto& p : cloud.positions_m) {
+    std::vector<uint32_t> seen;
+    for (uint32_t k = 0; k < cloud.camera_centers_m.size(); ++k) {
+      if ((cloud.camera_centers_m[k] - c).dot(p - c) > 0) seen.push_back(k);
+    }
+    cloud.observers.push_back(seen);
+  }
+  return cloud;
+}
+
+double SignedVolume(const TriangleMesh& mesh) {
+  double v = 0;
+  for (const auto& f : mesh.faces) {
+    v += mesh.vertices_m[f[0]].dot(mesh.vertices_m[f[1]].cross(mesh.vertices_m[f[2]])) / 6.0;
+  }
+  return v;
+}
+
+TEST(PoissonSurface, ReconstructsASphereOrientedOutwardFromEstimatedNormals) {
+  const Eigen::Vector3d center(10, 20, 5);
+  const PointCloud cloud = SphereCloud(3000, 4.0, center);
+  PoissonReport report;
+  TriangleMesh mesh = PoissonSurface(cloud, PoissonOptions{}, &report);
+  EXPECT_TRUE(report.normals_estimated);
+  EXPECT_EQ(report.points, 3000);
+  EXPECT_GT(mesh.num_faces(), 500u);
+  for (const auto& v : mesh.vertices_m) EXPECT_NEAR((v - center).norm(), 4.0, 0.2);
+  // Outward normals: a closed surface's signed volume about the centre is +4/3 π r³.
+  for (auto& v : mesh.vertices_m) v -= center;
+  EXPECT_NEAR(SignedVolume(mesh), 4.0 / 3.0 * M_PI * 64.0, 0.1 * 4.0 / 3.0 * M_PI * 64.0);
+  ASSERT_EQ(mesh.colors_rgb.size(), mesh.num_vertices());
+}
+
+TEST(PoissonSurface, NormalsFlippedInTheInputAreTurnedTowardTheCameras) {
+  const Eigen::Vector3d center(0, 0, 0);
+  PointCloud cloud = SphereCloud(2000, 3.0, center);
+  for (const auto& p : cloud.positions_m) cloud.normals.push_back(-(p - center).normalized());
+  PoissonReport report;
+  const TriangleMesh mesh = PoissonSurface(cloud, PoissonOptions{}, &report);
+  EXPECT_FALSE(report.normals_estimated);
+  EXPECT_EQ(report.normals_flipped_toward_cameras, 2000);
+  EXPECT_GT(SignedVolume(mesh), 0.0);
+}
+
+TEST(PoissonSurface, TrimsTheSurfaceFarFromThePoints) {
+  // A hemisphere of points: Poisson closes it; trimming removes the invented lower half.
+  PointCloud cloud = SphereCloud(4000, 3.0, Eigen::Vector3d::Zero());
+  PointCloud upper;
+  upper.camera_centers_m = cloud.camera_centers_m;
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    if (cloud.positions_m[i].z() < 0.3) continue;
+    upper.positions_m.push_back(cloud.positions_m[i]);
+    upper.observers.push_back(cloud.observers[i]);
+  }
+  PoissonReport report;
+  const TriangleMesh mesh = PoissonSurface(upper, PoissonOptions{}, &report);
+  EXPECT_GT(report.faces_trimmed, 0);
+  for (const auto& v : mesh.vertices_m) EXPECT_GT(v.z(), -1.0);
+}
+
+TEST(PoissonSurface, RejectsTinyClouds) {
+  PointCloud cloud;
+  for (int i = 0; i < 5; ++i) cloud.positions_m.emplace_back(i, i * i, 0);
+  EXPECT_THROW(PoissonSurface(cloud, PoissonOptions{}, nullptr), InputError);
+}
+
+}  // namespace
+}  // namespace cinepath::photogrammetry
