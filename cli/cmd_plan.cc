@@ -1,0 +1,92 @@
+// cinepath plan: shot list -> keyframes, one sample per frame, lens tracks and a feasibility
+// report (docs/plan.md, plan.json format: docs/plan-format.md).
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/command.h"
+#include "cli/common_options.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/plan_file.h"
+#include "shots/plan_plot.h"
+#include "shots/planner.h"
+#include "shots/shot_list.h"
+
+namespace cinepath::cli {
+namespace {
+
+std::string Number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  return buf;
+}
+
+std::string Number(double v, const char* format) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+class PlanCommand : public Command {
+ public:
+  void Setup(CLI::App& app) override {
+    app.add_option("shots", shots_path_, "Shot list (shots.json, docs/plan.md)")->required();
+    app.add_option("--scene", scene_path_, "scene.json whose \"origin\" places the plan on WGS84");
+    app.add_option("-o,--output", output_, "Where to write plan.json ('-' = stdout)")->required();
+    app.add_option("--csv", csv_path_, "Also write the samples as CSV");
+    app.add_option("--plot", plot_path_, "Also write an SVG: top-down and side views, frustums, lens curves");
+    app.add_flag("--strict", strict_, "Exit 3 (writing nothing) when any drone or lens limit is broken");
+    common_.Add(app);
+  }
+
+  int Run() override {
+    std::optional<Geodetic> scene_origin;
+    if (!scene_path_.empty()) scene_origin = ReadSceneOrigin(scene_path_);
+    const ShotList list = ReadShotListFile(shots_path_, scene_origin);
+    const Trajectory plan = PlanShots(list);
+
+    if (strict_ && !plan.feasibility.feasible()) {
+      std::string msg = "the plan breaks " + std::to_string(plan.feasibility.violations.size()) +
+                        " limit range(s) (--strict; nothing written):";
+      for (const auto& v : plan.feasibility.violations) {
+        const bool minimum = v.limit.ends_with("_min") || v.limit == "subject_distance";
+        msg += "\n  " + Number(v.start_time_s) + "-" + Number(v.end_time_s) + " s  shot \"" + v.shot + "\"  " + v.limit +
+               ": " + Number(v.worst_value, "%.4g") + (v.unit.empty() ? "" : " " + v.unit) + (minimum ? " < " : " > ") +
+               Number(v.limit_value, "%.4g") + (v.unit.empty() ? "" : " " + v.unit);
+      }
+      throw InfeasibleError(msg);
+    }
+
+    AtomicOutputs outputs;
+    outputs.Add(output_, PlanToText(plan));
+    if (!csv_path_.empty()) outputs.Add(csv_path_, PlanSamplesToCsv(plan));
+    if (!plot_path_.empty()) outputs.Add(plot_path_, PlanToSvg(plan));
+    outputs.Commit();
+
+    std::vector<std::string> targets = {output_};
+    if (!csv_path_.empty()) targets.push_back(csv_path_);
+    if (!plot_path_.empty()) targets.push_back(plot_path_);
+    std::vector<std::string> inputs = {shots_path_};
+    if (!scene_path_.empty()) inputs.push_back(scene_path_);
+    common_.WriteDepfileIfAsked(targets, inputs);
+    return 0;
+  }
+
+ private:
+  std::string shots_path_;
+  std::string scene_path_;
+  std::string output_;
+  std::string csv_path_;
+  std::string plot_path_;
+  bool strict_ = false;
+  CommonOptions common_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> MakePlanCommand() { return std::make_unique<PlanCommand>(); }
+
+}  // namespace cinepath::cli

@@ -1,0 +1,395 @@
+#include "core/plan_file.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/version.h"
+
+namespace cinepath {
+namespace {
+
+constexpr int kMetres = 6;
+constexpr int kDegrees = 6;
+constexpr int kLatLon = 9;
+constexpr int kQuaternion = 9;
+constexpr int kTime = 9;
+constexpr int kLens = 6;
+
+// Rounds to the documented precision; magnitudes where the scaled value would overflow are already
+// coarser than that precision and are written as they are.
+double R(double v, int decimals) { return std::fabs(v) > 1e15 ? v : RoundToDecimals(v, decimals); }
+
+Json Vec3(const Eigen::Vector3d& v) {
+  return Json::array({R(v.x(), kMetres), R(v.y(), kMetres), R(v.z(), kMetres)});
+}
+
+Json Quat(const Eigen::Quaterniond& q_in) {
+  // Renormalize only what is not already unit to the written precision, so that reading a plan and
+  // writing it again gives the same bytes.
+  Eigen::Quaterniond q = q_in;
+  if (std::fabs(q.norm() - 1.0) > 1e-8) q.normalize();
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
+  return Json::array({R(q.w(), kQuaternion), R(q.x(), kQuaternion), R(q.y(), kQuaternion), R(q.z(), kQuaternion)});
+}
+
+Json Focus(double focus_m) {
+  if (std::isinf(focus_m)) return Json(nullptr);
+  return Json(R(focus_m, kMetres));
+}
+
+Json GeodeticJson(const Geodetic& g) {
+  Json j = Json::object();
+  j["lat_deg"] = R(g.lat_deg, kLatLon);
+  j["lon_deg"] = R(g.lon_deg, kLatLon);
+  j["height_m"] = R(g.height_m, kMetres);
+  return j;
+}
+
+Json CameraJson(const CameraSpec& c) {
+  Json j = Json::object();
+  j["filmback"] = c.filmback;
+  j["sensor_width_mm"] = c.sensor_width_mm;
+  j["sensor_height_mm"] = c.sensor_height_mm;
+  j["width_px"] = c.width_px;
+  j["height_px"] = c.height_px;
+  j["min_focal_length_mm"] = c.min_focal_length_mm;
+  j["max_focal_length_mm"] = c.max_focal_length_mm;
+  j["min_f_number"] = c.min_f_number;
+  j["max_f_number"] = c.max_f_number;
+  j["min_focus_distance_m"] = c.min_focus_distance_m;
+  j["coc_mm"] = c.coc_mm;
+  j["max_focal_rate_mm_s"] = c.max_focal_rate_mm_s;
+  j["max_focus_rate_m_s"] = c.max_focus_rate_m_s;
+  j["max_aperture_rate_stops_s"] = c.max_aperture_rate_stops_s;
+  return j;
+}
+
+Json DroneJson(const DroneLimits& d) {
+  Json j = Json::object();
+  j["name"] = d.name;
+  j["max_horizontal_speed_m_s"] = d.max_horizontal_speed_m_s;
+  j["max_climb_rate_m_s"] = d.max_climb_rate_m_s;
+  j["max_descent_rate_m_s"] = d.max_descent_rate_m_s;
+  j["max_acceleration_m_s2"] = d.max_acceleration_m_s2;
+  j["max_jerk_m_s3"] = d.max_jerk_m_s3;
+  j["max_yaw_rate_deg_s"] = d.max_yaw_rate_deg_s;
+  j["min_gimbal_pitch_deg"] = d.min_gimbal_pitch_deg;
+  j["max_gimbal_pitch_deg"] = d.max_gimbal_pitch_deg;
+  j["max_gimbal_pitch_rate_deg_s"] = d.max_gimbal_pitch_rate_deg_s;
+  j["min_altitude_m"] = d.min_altitude_m;
+  j["max_altitude_m"] = d.max_altitude_m;
+  j["min_subject_distance_m"] = d.min_subject_distance_m;
+  return j;
+}
+
+// ---- reading -------------------------------------------------------------------------------
+
+Eigen::Vector3d ReadVec3(const JsonField& f) {
+  if (!f.IsArray() || f.size() != 3) f.Fail("expected [x, y, z]");
+  return {f.At(0).AsDouble(), f.At(1).AsDouble(), f.At(2).AsDouble()};
+}
+
+Eigen::Quaterniond ReadQuat(const JsonField& f) {
+  if (!f.IsArray() || f.size() != 4) f.Fail("expected [w, x, y, z]");
+  Eigen::Quaterniond q(f.At(0).AsDouble(), f.At(1).AsDouble(), f.At(2).AsDouble(), f.At(3).AsDouble());
+  const double n = q.norm();
+  if (!(n > 0.5 && n < 1.5)) f.Fail("not a unit quaternion (norm " + std::to_string(n) + ")");
+  if (std::fabs(n - 1.0) > 1e-8) q.coeffs() /= n;  // values rounded to 1e-9 stay as written
+  return q;
+}
+
+double ReadFocus(const JsonField& parent, const char* key) {
+  if (!parent.Has(key)) {
+    if (!parent.node().contains(key)) parent[key];  // throws "missing"
+    return std::numeric_limits<double>::infinity();  // null = infinity
+  }
+  return parent[key].AsPositive();
+}
+
+Geodetic ReadGeodetic(const JsonField& f) {
+  Geodetic g;
+  g.lat_deg = f["lat_deg"].AsDouble();
+  g.lon_deg = f["lon_deg"].AsDouble();
+  g.height_m = f["height_m"].AsDouble();
+  if (g.lat_deg < -90 || g.lat_deg > 90) f["lat_deg"].Fail("must be in [-90, 90]");
+  return g;
+}
+
+CameraSpec ReadCamera(const JsonField& f) {
+  CameraSpec c;
+  c.filmback = f.StringOr("filmback", c.filmback);
+  c.sensor_width_mm = f["sensor_width_mm"].AsPositive();
+  c.sensor_height_mm = f["sensor_height_mm"].AsPositive();
+  c.width_px = static_cast<int>(f["width_px"].AsInt());
+  c.height_px = static_cast<int>(f["height_px"].AsInt());
+  c.min_focal_length_mm = f["min_focal_length_mm"].AsPositive();
+  c.max_focal_length_mm = f["max_focal_length_mm"].AsPositive();
+  c.min_f_number = f["min_f_number"].AsPositive();
+  c.max_f_number = f["max_f_number"].AsPositive();
+  c.min_focus_distance_m = f["min_focus_distance_m"].AsPositive();
+  c.coc_mm = f.DoubleOr("coc_mm", c.coc_mm);
+  c.max_focal_rate_mm_s = f.DoubleOr("max_focal_rate_mm_s", c.max_focal_rate_mm_s);
+  c.max_focus_rate_m_s = f.DoubleOr("max_focus_rate_m_s", c.max_focus_rate_m_s);
+  c.max_aperture_rate_stops_s = f.DoubleOr("max_aperture_rate_stops_s", c.max_aperture_rate_stops_s);
+  if (c.width_px <= 0) f["width_px"].Fail("must be > 0");
+  if (c.height_px <= 0) f["height_px"].Fail("must be > 0");
+  return c;
+}
+
+DroneLimits ReadDrone(const JsonField& f) {
+  DroneLimits d;
+  d.name = f.StringOr("name", d.name);
+  d.max_horizontal_speed_m_s = f.DoubleOr("max_horizontal_speed_m_s", d.max_horizontal_speed_m_s);
+  d.max_climb_rate_m_s = f.DoubleOr("max_climb_rate_m_s", d.max_climb_rate_m_s);
+  d.max_descent_rate_m_s = f.DoubleOr("max_descent_rate_m_s", d.max_descent_rate_m_s);
+  d.max_acceleration_m_s2 = f.DoubleOr("max_acceleration_m_s2", d.max_acceleration_m_s2);
+  d.max_jerk_m_s3 = f.DoubleOr("max_jerk_m_s3", d.max_jerk_m_s3);
+  d.max_yaw_rate_deg_s = f.DoubleOr("max_yaw_rate_deg_s", d.max_yaw_rate_deg_s);
+  d.min_gimbal_pitch_deg = f.DoubleOr("min_gimbal_pitch_deg", d.min_gimbal_pitch_deg);
+  d.max_gimbal_pitch_deg = f.DoubleOr("max_gimbal_pitch_deg", d.max_gimbal_pitch_deg);
+  d.max_gimbal_pitch_rate_deg_s = f.DoubleOr("max_gimbal_pitch_rate_deg_s", d.max_gimbal_pitch_rate_deg_s);
+  d.min_altitude_m = f.DoubleOr("min_altitude_m", d.min_altitude_m);
+  d.max_altitude_m = f.DoubleOr("max_altitude_m", d.max_altitude_m);
+  d.min_subject_distance_m = f.DoubleOr("min_subject_distance_m", d.min_subject_distance_m);
+  return d;
+}
+
+std::string CsvNumber(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::ostringstream os;
+  os.imbue(std::locale::classic());
+  os.precision(15);
+  os << v;
+  return os.str();
+}
+
+}  // namespace
+
+Json PlanToJson(const Trajectory& plan) {
+  Json doc = Json::object();
+  doc["schema"] = kPlanSchema;
+  doc["generator"] = std::string("cinepath ") + kVersion;
+  doc["origin"] = plan.origin ? GeodeticJson(*plan.origin) : Json(nullptr);
+  doc["frame_rate_hz"] = plan.frame_rate_hz;
+  doc["camera"] = CameraJson(plan.camera);
+  doc["drone"] = DroneJson(plan.drone);
+
+  Json shots = Json::array();
+  for (const auto& s : plan.shots) {
+    Json j = Json::object();
+    j["name"] = s.name;
+    j["type"] = s.type;
+    j["subject"] = s.subject.empty() ? Json(nullptr) : Json(s.subject);
+    j["transition"] = s.transition;
+    j["start_time_s"] = R(s.start_time_s, kTime);
+    j["end_time_s"] = R(s.end_time_s, kTime);
+    shots.push_back(std::move(j));
+  }
+  doc["shots"] = std::move(shots);
+
+  Json subjects = Json::array();
+  for (const auto& s : plan.subjects) {
+    Json j = Json::object();
+    j["name"] = s.name;
+    j["height_m"] = s.height_m;
+    Json positions = Json::array();
+    for (const auto& p : s.positions_enu_m) positions.push_back(Vec3(p));
+    j["positions_enu_m"] = std::move(positions);
+    subjects.push_back(std::move(j));
+  }
+  doc["subjects"] = std::move(subjects);
+
+  Json keys = Json::array();
+  for (const auto& k : plan.keyframes) {
+    Json j = Json::object();
+    j["shot"] = k.shot;
+    j["time_s"] = R(k.time_s, kTime);
+    j["position_enu_m"] = Vec3(k.position_enu_m);
+    j["world_from_camera"] = Quat(k.world_from_camera);
+    j["focal_length_mm"] = R(k.focal_length_mm, kLens);
+    j["focus_distance_m"] = Focus(k.focus_distance_m);
+    j["f_number"] = R(k.f_number, kLens);
+    keys.push_back(std::move(j));
+  }
+  doc["keyframes"] = std::move(keys);
+
+  Json samples = Json::array();
+  for (const auto& s : plan.samples) {
+    Json j = Json::object();
+    j["time_s"] = R(s.time_s, kTime);
+    j["position_enu_m"] = Vec3(s.position_enu_m);
+    if (plan.origin) {
+      j["lat_deg"] = R(s.geodetic.lat_deg, kLatLon);
+      j["lon_deg"] = R(s.geodetic.lon_deg, kLatLon);
+      j["height_m"] = R(s.geodetic.height_m, kMetres);
+    }
+    j["world_from_camera"] = Quat(s.world_from_camera);
+    j["drone_heading_deg"] = R(s.drone_heading_deg, kDegrees);
+    j["gimbal_pitch_deg"] = R(s.gimbal_pitch_deg, kDegrees);
+    j["gimbal_roll_deg"] = R(s.gimbal_roll_deg, kDegrees);
+    j["gimbal_yaw_deg"] = R(s.gimbal_yaw_deg, kDegrees);
+    j["focal_length_mm"] = R(s.focal_length_mm, kLens);
+    j["focus_distance_m"] = Focus(s.focus_distance_m);
+    j["f_number"] = R(s.f_number, kLens);
+    j["shutter_s"] = R(s.shutter_s, kTime);
+    j["shot"] = s.shot;
+    j["subjects_in_frame"] = s.subjects_in_frame;
+    samples.push_back(std::move(j));
+  }
+  doc["samples"] = std::move(samples);
+
+  Json report = Json::object();
+  report["feasible"] = plan.feasibility.feasible();
+  Json violations = Json::array();
+  for (const auto& v : plan.feasibility.violations) {
+    Json j = Json::object();
+    j["limit"] = v.limit;
+    j["shot"] = v.shot;
+    j["start_time_s"] = R(v.start_time_s, kTime);
+    j["end_time_s"] = R(v.end_time_s, kTime);
+    j["worst_value"] = R(v.worst_value, kLens);
+    j["limit_value"] = R(v.limit_value, kLens);
+    j["unit"] = v.unit;
+    violations.push_back(std::move(j));
+  }
+  report["violations"] = std::move(violations);
+  doc["feasibility"] = std::move(report);
+  return doc;
+}
+
+std::string PlanToText(const Trajectory& plan) { return DumpJson(PlanToJson(plan)); }
+
+Trajectory PlanFromJson(const Json& document, const std::string& source) {
+  const JsonField root(document, source);
+  if (!root.IsObject()) root.Fail("expected a cinepath plan (a JSON object)");
+  const std::string schema = root["schema"].AsString();
+  if (schema != kPlanSchema) {
+    root["schema"].Fail("unsupported plan version \"" + schema + "\" (this cinepath reads \"" + kPlanSchema + "\")");
+  }
+  Trajectory plan;
+  if (auto o = root.Find("origin")) plan.origin = ReadGeodetic(*o);
+  plan.frame_rate_hz = root["frame_rate_hz"].AsPositive();
+  plan.camera = ReadCamera(root["camera"]);
+  if (auto d = root.Find("drone")) plan.drone = ReadDrone(*d);
+
+  for (const auto& f : root["shots"].Elements()) {
+    ShotSpan s;
+    s.name = f["name"].AsString();
+    s.type = f["type"].AsString();
+    if (auto subj = f.Find("subject")) s.subject = subj->AsString();
+    s.transition = f.StringOr("transition", "continuous");
+    s.start_time_s = f["start_time_s"].AsDouble();
+    s.end_time_s = f["end_time_s"].AsDouble();
+    if (s.end_time_s < s.start_time_s) f["end_time_s"].Fail("must be >= start_time_s");
+    plan.shots.push_back(std::move(s));
+  }
+
+  const auto samples = root["samples"].Elements();
+  plan.samples.reserve(samples.size());
+  for (const auto& f : samples) {
+    TrajectorySample s;
+    s.time_s = f["time_s"].AsDouble();
+    if (!plan.samples.empty() && !(s.time_s > plan.samples.back().time_s)) f["time_s"].Fail("times must increase");
+    s.position_enu_m = ReadVec3(f["position_enu_m"]);
+    if (plan.origin) {
+      s.geodetic.lat_deg = f["lat_deg"].AsDouble();
+      s.geodetic.lon_deg = f["lon_deg"].AsDouble();
+      s.geodetic.height_m = f["height_m"].AsDouble();
+    }
+    s.world_from_camera = ReadQuat(f["world_from_camera"]);
+    s.drone_heading_deg = f["drone_heading_deg"].AsDouble();
+    s.gimbal_pitch_deg = f["gimbal_pitch_deg"].AsDouble();
+    s.gimbal_roll_deg = f.DoubleOr("gimbal_roll_deg", 0.0);
+    s.gimbal_yaw_deg = f.DoubleOr("gimbal_yaw_deg", 0.0);
+    s.focal_length_mm = f["focal_length_mm"].AsPositive();
+    s.focus_distance_m = ReadFocus(f, "focus_distance_m");
+    s.f_number = f["f_number"].AsPositive();
+    s.shutter_s = f["shutter_s"].AsPositive();
+    s.shot = f.StringOr("shot", "");
+    if (auto subj = f.Find("subjects_in_frame")) {
+      for (const auto& e : subj->Elements()) s.subjects_in_frame.push_back(e.AsString());
+    }
+    plan.samples.push_back(std::move(s));
+  }
+
+  if (auto subjects = root.Find("subjects")) {
+    for (const auto& f : subjects->Elements()) {
+      SubjectTrack t;
+      t.name = f["name"].AsString();
+      t.height_m = f["height_m"].AsPositive();
+      const auto positions = f["positions_enu_m"];
+      if (positions.size() != plan.samples.size()) {
+        positions.Fail("expected one position per sample (" + std::to_string(plan.samples.size()) + ")");
+      }
+      for (const auto& p : positions.Elements()) t.positions_enu_m.push_back(ReadVec3(p));
+      plan.subjects.push_back(std::move(t));
+    }
+  }
+
+  if (auto keys = root.Find("keyframes")) {
+    for (const auto& f : keys->Elements()) {
+      Keyframe k;
+      k.shot = f.StringOr("shot", "");
+      k.time_s = f["time_s"].AsDouble();
+      k.position_enu_m = ReadVec3(f["position_enu_m"]);
+      k.world_from_camera = ReadQuat(f["world_from_camera"]);
+      k.focal_length_mm = f["focal_length_mm"].AsPositive();
+      k.focus_distance_m = ReadFocus(f, "focus_distance_m");
+      k.f_number = f["f_number"].AsPositive();
+      plan.keyframes.push_back(std::move(k));
+    }
+  }
+
+  if (auto report = root.Find("feasibility")) {
+    for (const auto& f : (*report)["violations"].Elements()) {
+      FeasibilityViolation v;
+      v.limit = f["limit"].AsString();
+      v.shot = f.StringOr("shot", "");
+      v.start_time_s = f["start_time_s"].AsDouble();
+      v.end_time_s = f["end_time_s"].AsDouble();
+      v.worst_value = f["worst_value"].AsDouble();
+      v.limit_value = f["limit_value"].AsDouble();
+      v.unit = f.StringOr("unit", "");
+      plan.feasibility.violations.push_back(std::move(v));
+    }
+  }
+  return plan;
+}
+
+Trajectory ReadPlanFile(const std::filesystem::path& path) {
+  return PlanFromJson(ParseJsonFile(path), path.string());
+}
+
+std::string PlanSamplesToCsv(const Trajectory& plan) {
+  std::string out =
+      "time_s,shot,east_m,north_m,up_m,lat_deg,lon_deg,height_m,qw,qx,qy,qz,drone_heading_deg,"
+      "gimbal_pitch_deg,gimbal_roll_deg,gimbal_yaw_deg,focal_length_mm,focus_distance_m,f_number,shutter_s,"
+      "subjects_in_frame\n";
+  auto num = [](double v, int decimals) { return CsvNumber(std::isinf(v) ? v : RoundToDecimals(v, decimals)); };
+  for (const auto& s : plan.samples) {
+    Eigen::Quaterniond q = s.world_from_camera.normalized();
+    if (q.w() < 0) q.coeffs() = -q.coeffs();
+    std::string subjects;
+    for (size_t i = 0; i < s.subjects_in_frame.size(); ++i) {
+      if (i) subjects += ';';
+      subjects += s.subjects_in_frame[i];
+    }
+    const std::string geo_lat = plan.origin ? num(s.geodetic.lat_deg, kLatLon) : "";
+    const std::string geo_lon = plan.origin ? num(s.geodetic.lon_deg, kLatLon) : "";
+    const std::string geo_h = plan.origin ? num(s.geodetic.height_m, kMetres) : "";
+    out += num(s.time_s, kTime) + "," + s.shot + "," + num(s.position_enu_m.x(), kMetres) + "," +
+           num(s.position_enu_m.y(), kMetres) + "," + num(s.position_enu_m.z(), kMetres) + "," + geo_lat + "," +
+           geo_lon + "," + geo_h + "," + num(q.w(), kQuaternion) + "," + num(q.x(), kQuaternion) + "," +
+           num(q.y(), kQuaternion) + "," + num(q.z(), kQuaternion) + "," + num(s.drone_heading_deg, kDegrees) + "," +
+           num(s.gimbal_pitch_deg, kDegrees) + "," + num(s.gimbal_roll_deg, kDegrees) + "," +
+           num(s.gimbal_yaw_deg, kDegrees) + "," + num(s.focal_length_mm, kLens) + "," +
+           num(s.focus_distance_m, kMetres) + "," + num(s.f_number, kLens) + "," + num(s.shutter_s, kTime) + "," +
+           subjects + "\n";
+  }
+  return out;
+}
+
+}  // namespace cinepath

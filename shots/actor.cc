@@ -1,0 +1,87 @@
+#include "shots/actor.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/angles.h"
+#include "core/error.h"
+#include "core/geoid.h"
+
+namespace cinepath {
+
+Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline path)
+    : name_(std::move(name)), height_m_(height_m), heading_deg_(heading_deg), path_(std::move(path)) {}
+
+Eigen::Vector3d Actor::AimPointAt(double time_s) const {
+  return PositionAt(time_s) + Eigen::Vector3d(0, 0, 0.5 * height_m_);
+}
+
+double Actor::TravelHeadingDegAt(double time_s) const {
+  // Before the first key and after the last the actor holds still: keep its heading of travel there.
+  const double t = std::clamp(time_s, path_.times().front(), path_.times().back());
+  const Eigen::Vector3d v = VelocityAt(t);
+  if (std::hypot(v.x(), v.y()) > 0.05) return HeadingDegFromEnuYaw(std::atan2(v.y(), v.x()));
+  return NormalizeDeg360(heading_deg_);
+}
+
+Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, const char* geo_key,
+                              const EnuFrame* frame) {
+  const bool has_enu = parent.Has(enu_key);
+  const bool has_geo = parent.Has(geo_key);
+  if (has_enu == has_geo) {
+    parent.Fail(std::string("give exactly one of \"") + enu_key + "\" (ENU metres) or \"" + geo_key +
+                "\" (lat/lon/height)");
+  }
+  if (has_enu) {
+    const JsonField f = parent[enu_key];
+    if (!f.IsArray() || f.size() != 3) f.Fail("expected [east_m, north_m, up_m]");
+    return {f.At(0).AsDouble(), f.At(1).AsDouble(), f.At(2).AsDouble()};
+  }
+  const JsonField g = parent[geo_key];
+  g.RejectUnknownKeys({"lat_deg", "lon_deg", "height_m", "amsl_m"});
+  if (!frame) g.Fail("a lat/lon position needs a WGS84 origin (shots.json \"origin\" or --scene)");
+  Geodetic geo;
+  geo.lat_deg = g["lat_deg"].AsDouble();
+  geo.lon_deg = g["lon_deg"].AsDouble();
+  if (geo.lat_deg < -90 || geo.lat_deg > 90) g["lat_deg"].Fail("must be in [-90, 90]");
+  if (geo.lon_deg < -180 || geo.lon_deg > 180) g["lon_deg"].Fail("must be in [-180, 180]");
+  if (g.Has("height_m") == g.Has("amsl_m")) {
+    g.Fail("give exactly one of \"height_m\" (WGS84 ellipsoidal) or \"amsl_m\" (above mean sea level, EGM96)");
+  }
+  geo.height_m = g.Has("height_m") ? g["height_m"].AsDouble()
+                                   : Egm96Geoid::Default().EllipsoidalFromAmslM(geo.lat_deg, geo.lon_deg, g["amsl_m"].AsDouble());
+  return frame->EnuFromGeodetic(geo);
+}
+
+Actor ParseActor(const JsonField& f, const EnuFrame* frame) {
+  f.RejectUnknownKeys({"name", "height_m", "heading_deg", "position_enu_m", "position", "keyframes", "interpolation"});
+  const std::string name = f["name"].AsString();
+  if (name.empty()) f["name"].Fail("must not be empty");
+  const double height_m = f.Has("height_m") ? f["height_m"].AsPositive() : 1.8;
+  const double heading_deg = f.DoubleOr("heading_deg", 0.0);
+  PathInterpolation kind = PathInterpolation::kCatmullRom;
+  if (auto interp = f.Find("interpolation")) {
+    auto k = PathInterpolationFromName(interp->AsString());
+    if (!k) interp->Fail("expected \"linear\", \"catmull_rom\" or \"cubic_bspline\"");
+    kind = *k;
+  }
+  std::vector<double> times;
+  std::vector<Eigen::Vector3d> points;
+  if (auto keys = f.Find("keyframes")) {
+    if (f.Has("position_enu_m") || f.Has("position")) f.Fail("give either a position or keyframes, not both");
+    if (keys->size() == 0) keys->Fail("must hold at least one keyframe");
+    for (const auto& k : keys->Elements()) {
+      k.RejectUnknownKeys({"time_s", "position_enu_m", "position"});
+      const double t = k["time_s"].AsDouble();
+      if (!times.empty() && !(t >= times.back() + 1e-3)) k["time_s"].Fail("keyframe times must increase (by 1 ms or more)");
+      times.push_back(t);
+      points.push_back(ParsePosition(k, "position_enu_m", "position", frame));
+    }
+  } else {
+    times.push_back(0.0);
+    points.push_back(ParsePosition(f, "position_enu_m", "position", frame));
+  }
+  return Actor(name, height_m, heading_deg, PathSpline(std::move(times), std::move(points), kind));
+}
+
+}  // namespace cinepath

@@ -1,0 +1,192 @@
+#include "shots/feasibility.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "core/angles.h"
+#include "core/error.h"
+#include "core/optics.h"
+#include "shots/lens_track.h"
+
+namespace cinepath {
+namespace {
+
+// Collects per-sample values for one limit and merges the broken ones into ranges.
+class LimitTrack {
+ public:
+  LimitTrack(std::string limit, std::string unit, double limit_value, bool is_minimum)
+      : limit_(std::move(limit)), unit_(std::move(unit)), limit_value_(limit_value), is_minimum_(is_minimum) {}
+
+  void Add(const Trajectory& plan, size_t i, double value) {
+    if (std::isnan(value)) return Skip();
+    value = std::clamp(value, -1e300, 1e300);  // an unbounded rate is reported as 1e300
+    const double slack = 1e-9 * std::max(1.0, std::fabs(limit_value_));
+    const bool broken = is_minimum_ ? value < limit_value_ - slack : value > limit_value_ + slack;
+    const auto& s = plan.samples[i];
+    if (!broken) {
+      open_ = false;
+      return;
+    }
+    if (open_ && out_.back().shot == s.shot && last_index_ + 1 == i) {
+      auto& v = out_.back();
+      v.end_time_s = s.time_s;
+      v.worst_value = is_minimum_ ? std::min(v.worst_value, value) : std::max(v.worst_value, value);
+    } else {
+      FeasibilityViolation v;
+      v.limit = limit_;
+      v.shot = s.shot;
+      v.start_time_s = v.end_time_s = s.time_s;
+      v.worst_value = value;
+      v.limit_value = limit_value_;
+      v.unit = unit_;
+      out_.push_back(v);
+      open_ = true;
+    }
+    last_index_ = i;
+  }
+  void Skip() { open_ = false; }
+  const std::vector<FeasibilityViolation>& violations() const { return out_; }
+
+ private:
+  std::string limit_, unit_;
+  double limit_value_;
+  bool is_minimum_;
+  bool open_ = false;
+  size_t last_index_ = 0;
+  std::vector<FeasibilityViolation> out_;
+};
+
+double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double w = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + w * ab)).norm();
+}
+
+}  // namespace
+
+FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<bool>& cut_before,
+                                   const std::vector<LensRequest>& requests) {
+  const auto& S = plan.samples;
+  const size_t n = S.size();
+  CINEPATH_CHECK(cut_before.size() == n);
+  CINEPATH_CHECK(requests.empty() || requests.size() == n);
+  const DroneLimits& d = plan.drone;
+  const CameraSpec& c = plan.camera;
+  const double dt = 1.0 / plan.frame_rate_hz;
+
+  // Segment id per sample: a cut starts a new segment.
+  std::vector<size_t> seg(n, 0);
+  for (size_t i = 1; i < n; ++i) seg[i] = seg[i - 1] + (cut_before[i] ? 1 : 0);
+  auto same = [&](long a, long b) {
+    return a >= 0 && b >= 0 && static_cast<size_t>(a) < n && static_cast<size_t>(b) < n && seg[a] == seg[b];
+  };
+  auto p = [&](long i) -> const Eigen::Vector3d& { return S[i].position_enu_m; };
+
+  std::vector<LimitTrack> tracks;
+  enum {
+    kSpeed, kClimb, kDescent, kAccel, kJerk, kYawRate, kPitchMin, kPitchMax, kPitchRate, kAltMin, kAltMax,
+    kSubject, kFocalMin, kFocalMax, kFocusMin, kFNumberMin, kFNumberMax, kFocalRate, kFocusRate, kApertureRate
+  };
+  tracks.emplace_back("horizontal_speed", "m/s", d.max_horizontal_speed_m_s, false);
+  tracks.emplace_back("climb_rate", "m/s", d.max_climb_rate_m_s, false);
+  tracks.emplace_back("descent_rate", "m/s", d.max_descent_rate_m_s, false);
+  tracks.emplace_back("horizontal_acceleration", "m/s^2", d.max_acceleration_m_s2, false);
+  tracks.emplace_back("jerk", "m/s^3", d.max_jerk_m_s3, false);
+  tracks.emplace_back("yaw_rate", "deg/s", d.max_yaw_rate_deg_s, false);
+  tracks.emplace_back("gimbal_pitch_min", "deg", d.min_gimbal_pitch_deg, true);
+  tracks.emplace_back("gimbal_pitch_max", "deg", d.max_gimbal_pitch_deg, false);
+  tracks.emplace_back("gimbal_pitch_rate", "deg/s", d.max_gimbal_pitch_rate_deg_s, false);
+  tracks.emplace_back("altitude_min", "m", d.min_altitude_m, true);
+  tracks.emplace_back("altitude_max", "m", d.max_altitude_m, false);
+  tracks.emplace_back("subject_distance", "m", d.min_subject_distance_m, true);
+  tracks.emplace_back("focal_length_min", "mm", c.min_focal_length_mm, true);
+  tracks.emplace_back("focal_length_max", "mm", c.max_focal_length_mm, false);
+  tracks.emplace_back("focus_distance_min", "m", c.min_focus_distance_m, true);
+  tracks.emplace_back("f_number_min", "", c.min_f_number, true);
+  tracks.emplace_back("f_number_max", "", c.max_f_number, false);
+  tracks.emplace_back("focal_length_rate", "mm/s", c.max_focal_rate_mm_s, false);
+  tracks.emplace_back("focus_rate", "m/s", c.max_focus_rate_m_s, false);
+  tracks.emplace_back("aperture_rate", "stops/s", c.max_aperture_rate_stops_s, false);
+
+  for (size_t k = 0; k < n; ++k) {
+    const long i = static_cast<long>(k);
+    const auto& s = S[k];
+    // Velocity.
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    bool have_v = true;
+    if (same(i - 1, i + 1)) {
+      v = (p(i + 1) - p(i - 1)) / (2 * dt);
+    } else if (same(i, i + 1)) {
+      v = (p(i + 1) - p(i)) / dt;
+    } else if (same(i - 1, i)) {
+      v = (p(i) - p(i - 1)) / dt;
+    } else {
+      have_v = false;
+    }
+    if (have_v) {
+      tracks[kSpeed].Add(plan, k, std::hypot(v.x(), v.y()));
+      tracks[kClimb].Add(plan, k, v.z());
+      tracks[kDescent].Add(plan, k, -v.z());
+    } else {
+      tracks[kSpeed].Skip(), tracks[kClimb].Skip(), tracks[kDescent].Skip();
+    }
+    if (same(i - 1, i + 1)) {
+      const Eigen::Vector3d a = (p(i + 1) - 2 * p(i) + p(i - 1)) / (dt * dt);
+      tracks[kAccel].Add(plan, k, std::hypot(a.x(), a.y()));
+    } else {
+      tracks[kAccel].Skip();
+    }
+    if (same(i - 1, i + 2)) {
+      const Eigen::Vector3d j = (p(i + 2) - 3 * p(i + 1) + 3 * p(i) - p(i - 1)) / (dt * dt * dt);
+      tracks[kJerk].Add(plan, k, j.norm());
+    } else {
+      tracks[kJerk].Skip();
+    }
+    const bool back = same(i - 1, i);
+    if (back) {
+      const auto& q = S[k - 1];
+      tracks[kYawRate].Add(plan, k, std::fabs(AngleDiffDeg(q.drone_heading_deg, s.drone_heading_deg)) / dt);
+      tracks[kPitchRate].Add(plan, k, std::fabs(s.gimbal_pitch_deg - q.gimbal_pitch_deg) / dt);
+      tracks[kFocalRate].Add(plan, k, std::fabs(s.focal_length_mm - q.focal_length_mm) / dt);
+      // Focus moves beyond the hyperfocal distance change nothing visible: clamp both ends to it.
+      const double coc = c.coc_mm > 0 ? c.coc_mm : DefaultCocMm(c.sensor_width_mm, c.sensor_height_mm);
+      const double h = HyperfocalDistanceM(s.focal_length_mm, s.f_number, coc);
+      const double f0 = std::min(q.focus_distance_m, h), f1 = std::min(s.focus_distance_m, h);
+      tracks[kFocusRate].Add(plan, k, std::fabs(f1 - f0) / dt);
+      tracks[kApertureRate].Add(plan, k, std::fabs(StopsBetween(q.f_number, s.f_number)) / dt);
+    } else {
+      for (int t : {kYawRate, kPitchRate, kFocalRate, kFocusRate, kApertureRate}) tracks[t].Skip();
+    }
+    tracks[kPitchMin].Add(plan, k, s.gimbal_pitch_deg);
+    tracks[kPitchMax].Add(plan, k, s.gimbal_pitch_deg);
+    tracks[kAltMin].Add(plan, k, s.position_enu_m.z());
+    tracks[kAltMax].Add(plan, k, s.position_enu_m.z());
+    if (!plan.subjects.empty()) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const auto& subj : plan.subjects) {
+        const Eigen::Vector3d& base = subj.positions_enu_m[k];
+        nearest = std::min(nearest, DistanceToSegment(s.position_enu_m, base, base + Eigen::Vector3d(0, 0, subj.height_m)));
+      }
+      tracks[kSubject].Add(plan, k, nearest);
+    }
+    const LensRequest r = requests.empty() ? LensRequest{s.focal_length_mm, s.focus_distance_m, s.f_number} : requests[k];
+    tracks[kFocalMin].Add(plan, k, r.focal_length_mm);
+    tracks[kFocalMax].Add(plan, k, r.focal_length_mm);
+    tracks[kFocusMin].Add(plan, k, r.focus_distance_m);
+    tracks[kFNumberMin].Add(plan, k, r.f_number);
+    tracks[kFNumberMax].Add(plan, k, r.f_number);
+  }
+
+  FeasibilityReport report;
+  for (const auto& t : tracks) {
+    report.violations.insert(report.violations.end(), t.violations().begin(), t.violations().end());
+  }
+  std::stable_sort(report.violations.begin(), report.violations.end(),
+                   [](const FeasibilityViolation& a, const FeasibilityViolation& b) { return a.start_time_s < b.start_time_s; });
+  return report;
+}
+
+}  // namespace cinepath

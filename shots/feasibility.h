@@ -1,0 +1,29 @@
+// The feasibility report: every sample of a planned flight checked against the drone's and the
+// lens's limits, broken limits merged into time ranges.
+//
+// Rates come from finite differences on the per-frame samples (dt = 1 / frame rate), never across
+// an explicit cut: speed and vertical rate by central differences, horizontal acceleration by the
+// second difference, jerk (3-D) by the third difference, yaw / gimbal-pitch / lens rates by backward
+// differences; focus distances are clamped to the hyperfocal distance first (moving focus between
+// the hyperfocal distance and infinity changes nothing visible). The climb to the first sample and the stop after the last are not part of the plan.
+#pragma once
+
+#include <vector>
+
+#include "core/trajectory.h"
+
+namespace cinepath {
+
+// What the planner asked of the lens before clamping to the camera's ranges (one per sample).
+struct LensRequest {
+  double focal_length_mm = 0;
+  double focus_distance_m = 0;  // +inf = infinity
+  double f_number = 0;
+};
+
+// `cut_before[i]` is true when sample i starts a shot joined by an explicit cut (no derivative
+// crosses it). `requests` may be empty (lens ranges are then checked on the samples themselves).
+FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<bool>& cut_before,
+                                   const std::vector<LensRequest>& requests);
+
+}  // namespace cinepath

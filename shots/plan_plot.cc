@@ -1,0 +1,222 @@
+#include "shots/plan_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/optics.h"
+
+namespace cinepath {
+namespace {
+
+const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
+
+std::string F(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", std::fabs(v) < 0.005 ? 0.0 : v);
+  return buf;
+}
+
+std::string Escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+// Maps a data box into a pixel box (y up in data, down in pixels), keeping the aspect ratio when asked.
+struct Frame {
+  double x0, y0, w, h;               // pixel box
+  double min_x, max_x, min_y, max_y;  // data box
+  double PX(double x) const { return x0 + (x - min_x) / (max_x - min_x) * w; }
+  double PY(double y) const { return y0 + h - (y - min_y) / (max_y - min_y) * h; }
+};
+
+Frame MakeFrame(double x0, double y0, double w, double h, double min_x, double max_x, double min_y, double max_y,
+                bool equal_aspect) {
+  if (!(max_x > min_x)) min_x -= 1, max_x += 1;
+  if (!(max_y > min_y)) min_y -= 1, max_y += 1;
+  const double pad_x = 0.06 * (max_x - min_x), pad_y = 0.06 * (max_y - min_y);
+  min_x -= pad_x, max_x += pad_x, min_y -= pad_y, max_y += pad_y;
+  if (equal_aspect) {
+    const double sx = (max_x - min_x) / w, sy = (max_y - min_y) / h;
+    if (sx > sy) {
+      const double extra = (sx * h - (max_y - min_y)) / 2;
+      min_y -= extra, max_y += extra;
+    } else {
+      const double extra = (sy * w - (max_x - min_x)) / 2;
+      min_x -= extra, max_x += extra;
+    }
+  }
+  return {x0, y0, w, h, min_x, max_x, min_y, max_y};
+}
+
+void Panel(std::string& svg, const Frame& f, const std::string& title, const std::string& x_label,
+           const std::string& y_label, bool show_y_range = true) {
+  svg += "<rect x=\"" + F(f.x0) + "\" y=\"" + F(f.y0) + "\" width=\"" + F(f.w) + "\" height=\"" + F(f.h) +
+         "\" fill=\"#fafafa\" stroke=\"#999\"/>\n";
+  svg += "<text x=\"" + F(f.x0) + "\" y=\"" + F(f.y0 - 8) + "\" font-weight=\"bold\">" + Escape(title) + "</text>\n";
+  svg += "<text x=\"" + F(f.x0 + f.w) + "\" y=\"" + F(f.y0 + f.h + 16) + "\" text-anchor=\"end\">" + Escape(x_label) +
+         " [" + F(f.min_x) + " .. " + F(f.max_x) + "]</text>\n";
+  svg += "<text x=\"" + F(f.x0 + 4) + "\" y=\"" + F(f.y0 + 14) + "\" fill=\"#555\">" + Escape(y_label) +
+         (show_y_range ? " [" + F(f.min_y) + " .. " + F(f.max_y) + "]" : "") + "</text>\n";
+}
+
+template <typename GetX, typename GetY>
+std::string Polyline(const Frame& f, size_t begin, size_t end, GetX gx, GetY gy, const std::string& style) {
+  std::string pts;
+  const size_t step = std::max<size_t>(1, (end - begin) / 2000);  // at most ~2000 points per line
+  for (size_t i = begin; i < end; i += step) {
+    pts += F(f.PX(gx(i))) + "," + F(f.PY(gy(i))) + " ";
+  }
+  if (end > begin) pts += F(f.PX(gx(end - 1))) + "," + F(f.PY(gy(end - 1)));
+  return "<polyline fill=\"none\" " + style + " points=\"" + pts + "\"/>\n";
+}
+
+}  // namespace
+
+std::string PlanToSvg(const Trajectory& plan) {
+  const auto& S = plan.samples;
+  const double width = 1200, height = 980;
+  std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + F(width) + "\" height=\"" + F(height) +
+         "\" viewBox=\"0 0 " + F(width) + " " + F(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  if (S.empty()) {
+    svg += "<text x=\"20\" y=\"40\">empty plan</text>\n</svg>\n";
+    return svg;
+  }
+  const double t_end = S.back().time_s;
+
+  // Extents over cameras and subjects.
+  double min_e = std::numeric_limits<double>::infinity(), max_e = -min_e, min_n = min_e, max_n = -min_e,
+         min_u = min_e, max_u = -min_e;
+  auto grow = [&](const Eigen::Vector3d& p) {
+    min_e = std::min(min_e, p.x()), max_e = std::max(max_e, p.x());
+    min_n = std::min(min_n, p.y()), max_n = std::max(max_n, p.y());
+    min_u = std::min(min_u, p.z()), max_u = std::max(max_u, p.z());
+  };
+  for (const auto& s : S) grow(s.position_enu_m);
+  for (const auto& subj : plan.subjects) {
+    for (const auto& p : subj.positions_enu_m) {
+      grow(p);
+      grow(p + Eigen::Vector3d(0, 0, subj.height_m));
+    }
+  }
+  const double extent = std::max({max_e - min_e, max_n - min_n, max_u - min_u, 1.0});
+  const double frustum_len = 0.08 * extent;
+
+  const Frame top = MakeFrame(40, 50, 540, 480, min_e, max_e, min_n, max_n, true);
+  const Frame side = MakeFrame(630, 50, 540, 480, min_e, max_e, min_u, max_u, true);
+  Panel(svg, top, "Top-down (north up)", "east m", "north m");
+  Panel(svg, side, "Side (looking north)", "east m", "up m");
+
+  // Shot index of each sample.
+  std::vector<size_t> shot_of(S.size(), 0);
+  for (size_t i = 0; i < S.size(); ++i) {
+    for (size_t k = 0; k < plan.shots.size(); ++k) {
+      if (plan.shots[k].name == S[i].shot) shot_of[i] = k;
+    }
+  }
+  // Subject paths.
+  for (const auto& subj : plan.subjects) {
+    const auto& P = subj.positions_enu_m;
+    svg += Polyline(top, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].y(); },
+                    "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
+    svg += Polyline(side, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].z(); },
+                    "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
+    svg += "<text x=\"" + F(top.PX(P.front().x()) + 5) + "\" y=\"" + F(top.PY(P.front().y()) - 5) + "\" fill=\"#555\">" +
+           Escape(subj.name) + "</text>\n";
+  }
+  // Flights, one polyline per shot.
+  size_t begin = 0;
+  for (size_t i = 1; i <= S.size(); ++i) {
+    if (i == S.size() || shot_of[i] != shot_of[begin]) {
+      const std::string colour = kPalette[shot_of[begin] % 10];
+      const std::string style = "stroke=\"" + colour + "\" stroke-width=\"2\"";
+      svg += Polyline(top, begin, i, [&](size_t k) { return S[k].position_enu_m.x(); },
+                      [&](size_t k) { return S[k].position_enu_m.y(); }, style);
+      svg += Polyline(side, begin, i, [&](size_t k) { return S[k].position_enu_m.x(); },
+                      [&](size_t k) { return S[k].position_enu_m.z(); }, style);
+      begin = i;
+    }
+  }
+  // Frustums every ~2 s (8..60 of them).
+  const size_t count = std::clamp<size_t>(static_cast<size_t>(t_end / 2.0), 8, 60);
+  const size_t stride = std::max<size_t>(1, S.size() / count);
+  for (size_t i = 0; i < S.size(); i += stride) {
+    const auto& s = S[i];
+    const std::string colour = kPalette[shot_of[i] % 10];
+    const double hh = std::tan(FieldOfViewRad(plan.camera.sensor_width_mm, s.focal_length_mm) / 2);
+    const double vh = std::tan(FieldOfViewRad(plan.camera.sensor_height_mm, s.focal_length_mm) / 2);
+    const Eigen::Vector3d c = s.position_enu_m;
+    auto corner = [&](double x, double y) {
+      return Eigen::Vector3d(c + frustum_len * (s.world_from_camera * Eigen::Vector3d(x, y, 1.0)));
+    };
+    const Eigen::Vector3d l = corner(-hh, 0), r = corner(hh, 0), u = corner(0, -vh), d = corner(0, vh);
+    svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.15\" stroke=\"" + colour + "\" points=\"" + F(top.PX(c.x())) +
+           "," + F(top.PY(c.y())) + " " + F(top.PX(l.x())) + "," + F(top.PY(l.y())) + " " + F(top.PX(r.x())) + "," +
+           F(top.PY(r.y())) + "\"/>\n";
+    svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.15\" stroke=\"" + colour + "\" points=\"" + F(side.PX(c.x())) +
+           "," + F(side.PY(c.z())) + " " + F(side.PX(u.x())) + "," + F(side.PY(u.z())) + " " + F(side.PX(d.x())) + "," +
+           F(side.PY(d.z())) + "\"/>\n";
+    for (const auto& subj : plan.subjects) {
+      const Eigen::Vector3d& p = subj.positions_enu_m[i];
+      svg += "<circle cx=\"" + F(top.PX(p.x())) + "\" cy=\"" + F(top.PY(p.y())) + "\" r=\"3\" fill=\"#555\"/>\n";
+      svg += "<line x1=\"" + F(side.PX(p.x())) + "\" y1=\"" + F(side.PY(p.z())) + "\" x2=\"" + F(side.PX(p.x())) +
+             "\" y2=\"" + F(side.PY(p.z() + subj.height_m)) + "\" stroke=\"#555\" stroke-width=\"3\"/>\n";
+    }
+  }
+
+  // Lens curves against time.
+  double f_min = std::numeric_limits<double>::infinity(), f_max = 0, dio_max = 0, n_min = f_min, n_max = 0;
+  for (const auto& s : S) {
+    f_min = std::min(f_min, s.focal_length_mm), f_max = std::max(f_max, s.focal_length_mm);
+    if (std::isfinite(s.focus_distance_m)) dio_max = std::max(dio_max, 1.0 / s.focus_distance_m);
+    n_min = std::min(n_min, s.f_number), n_max = std::max(n_max, s.f_number);
+  }
+  const double t_max = std::max(t_end, 1e-3);
+  const Frame focal = MakeFrame(40, 590, 1130, 100, 0, t_max, std::log(f_min), std::log(f_max), false);
+  const Frame focus = MakeFrame(40, 730, 1130, 90, 0, t_max, 0, std::max(dio_max, 1e-3), false);
+  const Frame fnum = MakeFrame(40, 860, 1130, 80, 0, t_max, n_min, n_max, false);
+  Panel(svg, focal, "Focal length (log scale)", "time s", "focal mm " + F(f_min) + " .. " + F(f_max), false);
+  Panel(svg, focus, "Focus (dioptres; 0 = infinity)", "time s", "1/m");
+  Panel(svg, fnum, "Aperture", "time s", "f-number");
+  for (const Frame* fr : {&focal, &focus, &fnum}) {
+    for (const auto& shot : plan.shots) {
+      svg += "<line x1=\"" + F(fr->PX(shot.start_time_s)) + "\" y1=\"" + F(fr->y0) + "\" x2=\"" + F(fr->PX(shot.start_time_s)) +
+             "\" y2=\"" + F(fr->y0 + fr->h) + "\" stroke=\"#ccc\"/>\n";
+    }
+    for (const auto& v : plan.feasibility.violations) {
+      const double x0 = fr->PX(v.start_time_s), x1 = std::max(fr->PX(v.end_time_s), x0 + 1);
+      svg += "<rect x=\"" + F(x0) + "\" y=\"" + F(fr->y0) + "\" width=\"" + F(x1 - x0) + "\" height=\"" + F(fr->h) +
+             "\" fill=\"red\" fill-opacity=\"0.12\"/>\n";
+    }
+  }
+  svg += Polyline(focal, 0, S.size(), [&](size_t i) { return S[i].time_s; },
+                  [&](size_t i) { return std::log(S[i].focal_length_mm); }, "stroke=\"#1f77b4\" stroke-width=\"2\"");
+  svg += Polyline(focus, 0, S.size(), [&](size_t i) { return S[i].time_s; },
+                  [&](size_t i) { return std::isfinite(S[i].focus_distance_m) ? 1.0 / S[i].focus_distance_m : 0.0; },
+                  "stroke=\"#2ca02c\" stroke-width=\"2\"");
+  svg += Polyline(fnum, 0, S.size(), [&](size_t i) { return S[i].time_s; }, [&](size_t i) { return S[i].f_number; },
+                  "stroke=\"#9467bd\" stroke-width=\"2\"");
+  // Legend.
+  double lx = 40;
+  for (size_t k = 0; k < plan.shots.size(); ++k) {
+    const std::string label = plan.shots[k].name + " (" + plan.shots[k].type + ")";
+    svg += "<rect x=\"" + F(lx) + "\" y=\"" + F(height - 18) + "\" width=\"10\" height=\"10\" fill=\"" + kPalette[k % 10] + "\"/>\n";
+    svg += "<text x=\"" + F(lx + 14) + "\" y=\"" + F(height - 9) + "\">" + Escape(label) + "</text>\n";
+    lx += 24 + 7.0 * static_cast<double>(label.size());
+  }
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace cinepath

@@ -1,0 +1,407 @@
+#include "shots/planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "core/angles.h"
+#include "core/easing.h"
+#include "core/error.h"
+#include "core/rotation.h"
+#include "shots/feasibility.h"
+#include "shots/lens_track.h"
+#include "shots/shot_pose.h"
+
+namespace cinepath {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Precomputed curves of a KEYFRAMES shot.
+struct FreeShot {
+  std::unique_ptr<PathSpline> path;
+  std::vector<Eigen::Quaterniond> q, s;  // aligned keys and SQUAD controls
+  std::vector<ScalarKey> focal, focus, f_number;
+};
+
+struct ShotState {
+  double start_s = 0;
+  Eigen::Vector3d position_offset = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_offset = Eigen::Vector3d::Zero();  // m/s, matched at the join
+  Eigen::Quaterniond rotation_offset = Eigen::Quaterniond::Identity();
+  double log_focal_offset = 0;  // zoom continuity: log(previous end focal / this shot's start focal)
+  double blend_s = 0;  // 0 = no offset
+  FreeShot free;
+};
+
+struct Evaluated {
+  TrajectorySample sample;
+  LensRequest request;
+};
+
+class Planner {
+ public:
+  explicit Planner(const ShotList& list) : list_(list) {}
+
+  Trajectory Run(const PlanOptions& options);
+
+ private:
+  // The pose before the transition offset (position) and before the rotation offset.
+  void Prepare();
+  Evaluated Evaluate(size_t shot_index, double tau, double fallback_heading_deg, bool apply_rotation_offset = true) const;
+
+  const ShotList& list_;
+  std::vector<ShotState> states_;
+};
+
+double Smootherstep(double x) { return Ease(Easing::kSmootherstep, x); }
+
+void Planner::Prepare() {
+  states_.resize(list_.shots.size());
+  double start = 0;
+  for (size_t i = 0; i < list_.shots.size(); ++i) {
+    const ShotSpec& shot = list_.shots[i];
+    ShotState& st = states_[i];
+    st.start_s = start;
+    start += shot.duration_s;
+    if (shot.type == ShotType::kKeyframes) {
+      std::vector<double> times;
+      std::vector<Eigen::Vector3d> points;
+      std::vector<Eigen::Quaterniond> rotations;
+      for (const auto& k : shot.keys) {
+        times.push_back(k.time_s);
+        points.push_back(k.position_enu_m);
+        if (k.world_from_camera) rotations.push_back(*k.world_from_camera);
+        if (k.focal_length_mm) st.free.focal.push_back({k.time_s, *k.focal_length_mm});
+        if (k.focus_distance_m) st.free.focus.push_back({k.time_s, *k.focus_distance_m});
+        if (k.f_number) st.free.f_number.push_back({k.time_s, *k.f_number});
+      }
+      st.free.path = std::make_unique<PathSpline>(times, points, shot.interpolation);
+      if (rotations.size() == shot.keys.size() && !rotations.empty()) {
+        st.free.q = AlignHemispheres(rotations);
+        st.free.s = SquadControlPoints(st.free.q);
+      }
+    }
+  }
+  // Transition offsets, in order: each shot starts where the previous (final) pose ended.
+  double heading = 0;
+  for (size_t i = 1; i < list_.shots.size(); ++i) {
+    const ShotSpec& shot = list_.shots[i];
+    const ShotSpec& prev_shot = list_.shots[i - 1];
+    ShotState& st = states_[i];
+    st.blend_s = std::min(shot.blend_s, shot.duration_s);
+    if (shot.cut || !(st.blend_s > 0)) {
+      st.blend_s = 0;
+      continue;
+    }
+    const Evaluated prev_end = Evaluate(i - 1, prev_shot.duration_s, heading);
+    heading = prev_end.sample.drone_heading_deg;
+    st.position_offset.setZero();
+    st.rotation_offset.setIdentity();
+    // Position first: the raw start evaluated without offsets.
+    const double saved_blend = st.blend_s;
+    st.blend_s = 0;
+    const Evaluated raw_start = Evaluate(i, 0.0, heading);
+    st.position_offset = prev_end.sample.position_enu_m - raw_start.sample.position_enu_m;
+    // Velocities at the join by one-sided differences (a shot shorter than h joins at rest).
+    constexpr double h = 1e-4;
+    Eigen::Vector3d v_prev = Eigen::Vector3d::Zero(), v_raw = Eigen::Vector3d::Zero();
+    if (prev_shot.duration_s >= h) {
+      v_prev = (prev_end.sample.position_enu_m - Evaluate(i - 1, prev_shot.duration_s - h, heading).sample.position_enu_m) / h;
+    }
+    if (shot.duration_s >= h) v_raw = (Evaluate(i, h, heading).sample.position_enu_m - raw_start.sample.position_enu_m) / h;
+    st.velocity_offset = v_prev - v_raw;
+    st.log_focal_offset = std::log(prev_end.request.focal_length_mm / raw_start.request.focal_length_mm);
+    st.blend_s = saved_blend;
+    // Then the rotation: the aim from the shifted start, without a rotation offset.
+    const Evaluated aimed_start = Evaluate(i, 0.0, heading, /*apply_rotation_offset=*/false);
+    st.rotation_offset = (prev_end.sample.world_from_camera * aimed_start.sample.world_from_camera.conjugate()).normalized();
+  }
+}
+
+// A KEYFRAMES shot at local time tau: the spline at the segment-eased time, SLERP/SQUAD between
+// key orientations (or an aim at the subject), and the eased time lens keys are read at.
+ShotPose EvaluateFree(const ShotSpec& shot, const ShotState& st, const Actor* actor, double t, double tau,
+                      double* lens_time) {
+  ShotPose pose;
+  const auto& keys = shot.keys;
+  const double tc = std::clamp(tau, keys.front().time_s, keys.back().time_s);
+  size_t k = 0;
+  while (k + 2 < keys.size() && tc >= keys[k + 1].time_s) ++k;
+  double w = 0, teased = tc;
+  if (keys.size() > 1) {
+    const double h = keys[k + 1].time_s - keys[k].time_s;
+    w = Ease(keys[k].easing, (tc - keys[k].time_s) / h);
+    teased = keys[k].time_s + w * h;
+  }
+  *lens_time = teased;
+  pose.position_enu_m = st.free.path->Position(teased);
+  if (!st.free.q.empty()) {
+    if (keys.size() == 1) {
+      pose.world_from_camera = st.free.q[0];
+    } else if (shot.orientation == OrientationInterpolation::kSquad) {
+      pose.world_from_camera = Squad(st.free.q[k], st.free.q[k + 1], st.free.s[k], st.free.s[k + 1], w);
+    } else {
+      pose.world_from_camera = Slerp(st.free.q[k], st.free.q[k + 1], w);
+    }
+  } else if (actor) {
+    pose.aim_point_enu_m = actor->AimPointAt(t);
+  }
+  pose.eased = shot.duration_s > 0 ? teased / shot.duration_s : 0;
+  return pose;
+}
+
+Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_deg, bool apply_rotation_offset) const {
+  const ShotSpec& shot = list_.shots[index];
+  const ShotState& st = states_[index];
+  const CameraSpec& cam = list_.camera;
+  const double t = st.start_s + tau;
+  const Actor* actor = shot.subject >= 0 ? &list_.actors[shot.subject] : nullptr;
+
+  // Geometry.
+  double lens_time = tau;  // local time that lens keys are read at (eased for free keyframes)
+  const ShotPose pose = shot.type == ShotType::kKeyframes ? EvaluateFree(shot, st, actor, t, tau, &lens_time)
+                                                          : EvaluateShotPose(shot, list_, st.start_s, tau);
+
+  // Transition offset (position).
+  double blend_w = 0;  // weight of the offset still applied
+  double velocity_w = 0;  // quintic h(u) = u - 6u^3 + 8u^4 - 3u^5: h(0) = 0, h'(0) = 1, zero h, h', h'' at 1
+  if (st.blend_s > 0) {
+    const double u = std::clamp(tau / st.blend_s, 0.0, 1.0);
+    blend_w = 1.0 - Smootherstep(u);
+    velocity_w = st.blend_s * u * (1.0 + u * u * (-6.0 + u * (8.0 - 3.0 * u)));
+  }
+  const Eigen::Vector3d position = pose.position_enu_m + blend_w * st.position_offset + velocity_w * st.velocity_offset;
+
+  Evaluated out;
+  TrajectorySample& s = out.sample;
+  s.time_s = t;
+  s.position_enu_m = position;
+  s.shot = shot.name;
+
+  // Focal length (needs only the distance to the subject).
+  const LensSpec& lens = shot.lens;
+  double focal = cam.min_focal_length_mm;
+  const double subject_distance = pose.aim_point_enu_m ? (*pose.aim_point_enu_m - position).norm() : 0.0;
+  if (shot.type == ShotType::kDollyZoom) {
+    double fraction;
+    if (lens.frame_height_fraction) {
+      fraction = *lens.frame_height_fraction;
+    } else {
+      // Keep the image size the start focal length gives at the start distance.
+      const ShotPose start = EvaluateShotPose(shot, list_, st.start_s, 0.0);
+      const double d0 = (*start.aim_point_enu_m - start.position_enu_m).norm();
+      fraction = ImageHeightFraction(cam.sensor_height_mm, *lens.focal_length_mm, actor->height_m(), d0);
+    }
+    focal = FramingFocalLengthMm(cam.sensor_height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
+  } else if (lens.frame_height_fraction && actor) {
+    const double k0 = *lens.frame_height_fraction;
+    const double k1 = lens.frame_height_fraction_end.value_or(k0);
+    const double fraction = std::exp((1 - pose.eased) * std::log(k0) + pose.eased * std::log(k1));
+    focal = FramingFocalLengthMm(cam.sensor_height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
+  } else if (!st.free.focal.empty()) {
+    focal = InterpolateLensKeys(st.free.focal, lens_time, LensQuantity::kFocalLength);
+  } else if (lens.focal_length_mm) {
+    focal = InterpolateFocalLengthMm(*lens.focal_length_mm, lens.focal_length_end_mm.value_or(*lens.focal_length_mm), pose.eased);
+  }
+  focal *= std::exp(blend_w * st.log_focal_offset);
+  out.request.focal_length_mm = focal;
+  s.focal_length_mm = std::clamp(focal, cam.min_focal_length_mm, cam.max_focal_length_mm);
+
+  // Orientation.
+  Eigen::Quaterniond q;
+  if (pose.world_from_camera) {
+    q = *pose.world_from_camera;
+  } else if (pose.aim_point_enu_m) {
+    const Eigen::Vector3d to_subject = *pose.aim_point_enu_m - position;
+    if (to_subject.norm() < 1e-9) {
+      throw InputError(list_.source + ": shot \"" + shot.name + "\": the camera reaches the subject's aim point at t = " +
+                       std::to_string(t) + " s; nothing to look at");
+    }
+    const Eigen::Vector2d sp = lens.screen_position;
+    if (sp.x() == 0.5 && sp.y() == 0.5) {
+      q = LookAt(to_subject, fallback_heading_deg);
+    } else {
+      const Eigen::Vector3d ray((sp.x() - 0.5) * cam.sensor_width_mm, (sp.y() - 0.5) * cam.sensor_height_mm, s.focal_length_mm);
+      q = AimWithScreenOffset(to_subject, ray, fallback_heading_deg);
+    }
+    if (pose.tilt_start_deg) {
+      GimbalAngles g;
+      g.drone_heading_deg = CameraHeadingDeg(q);
+      g.gimbal_pitch_deg = *pose.tilt_start_deg;
+      q = Slerp(WorldFromCameraFromGimbal(g), q, pose.tilt_weight);
+    }
+  } else {
+    GimbalAngles g;
+    g.drone_heading_deg = fallback_heading_deg;
+    q = WorldFromCameraFromGimbal(g);
+  }
+  if (apply_rotation_offset && blend_w > 0) {
+    q = Slerp(st.rotation_offset, Eigen::Quaterniond::Identity(), 1.0 - blend_w) * q;
+  }
+  q.normalize();
+  s.world_from_camera = q;
+  const GimbalAngles g = GimbalFromWorldFromCamera(q);
+  s.drone_heading_deg = g.drone_heading_deg;
+  s.gimbal_pitch_deg = g.gimbal_pitch_deg;
+  s.gimbal_roll_deg = g.gimbal_roll_deg;
+  s.gimbal_yaw_deg = g.gimbal_yaw_deg;
+
+  // Focus.
+  const Eigen::Vector3d forward = q * Eigen::Vector3d::UnitZ();
+  auto axial = [&](const Actor& a) {
+    const Eigen::Vector3d v = a.AimPointAt(t) - position;
+    const double along = v.dot(forward);
+    return along > 1e-9 ? along : v.norm();
+  };
+  double focus = kInf;
+  if (!st.free.focus.empty()) {
+    focus = InterpolateLensKeys(st.free.focus, lens_time, LensQuantity::kFocusDistance);
+  } else if (lens.focus == LensSpec::Focus::kFixed) {
+    focus = lens.focus_distance_m;
+  } else if (lens.focus == LensSpec::Focus::kFollow && actor) {
+    focus = axial(*actor);
+    const Actor* current = actor;
+    for (const auto& r : lens.rack) {
+      const Actor& next = list_.actors[r.actor];
+      if (tau <= r.at_s) break;
+      const double w = Ease(Easing::kSmoothstep, (tau - r.at_s) / r.duration_s);
+      focus = InterpolateFocusDistanceM(axial(*current), axial(next), w);
+      current = &next;
+    }
+  }
+  out.request.focus_distance_m = focus;
+  s.focus_distance_m = std::isinf(focus) ? focus : std::max(focus, cam.min_focus_distance_m);
+
+  // Aperture and shutter.
+  double f_number = std::clamp(4.0, cam.min_f_number, cam.max_f_number);
+  if (!st.free.f_number.empty()) {
+    f_number = InterpolateLensKeys(st.free.f_number, lens_time, LensQuantity::kFNumber);
+  } else if (!lens.f_number.empty()) {
+    f_number = InterpolateLensKeys(lens.f_number, tau, LensQuantity::kFNumber);
+  }
+  out.request.f_number = f_number;
+  s.f_number = std::clamp(f_number, cam.min_f_number, cam.max_f_number);
+  s.shutter_s = lens.shutter_s.empty() ? 1.0 / (2.0 * list_.frame_rate_hz)
+                                       : InterpolateLensKeys(lens.shutter_s, tau, LensQuantity::kShutter);
+
+  // Subjects in frame: the aim point projects inside the image.
+  const Eigen::Quaterniond camera_from_world = q.conjugate();
+  const double half_w = cam.sensor_width_mm / (2.0 * s.focal_length_mm);
+  const double half_h = cam.sensor_height_mm / (2.0 * s.focal_length_mm);
+  for (const auto& a : list_.actors) {
+    const Eigen::Vector3d c = camera_from_world * (a.AimPointAt(t) - position);
+    if (c.z() > 1e-9 && std::fabs(c.x() / c.z()) <= half_w && std::fabs(c.y() / c.z()) <= half_h) {
+      s.subjects_in_frame.push_back(a.name());
+    }
+  }
+  return out;
+}
+
+Trajectory Planner::Run(const PlanOptions& options) {
+  Prepare();
+  Trajectory plan;
+  plan.origin = list_.origin;
+  plan.frame_rate_hz = list_.frame_rate_hz;
+  plan.camera = list_.camera;
+  plan.drone = list_.drone;
+
+  double total = 0;
+  for (const auto& s : list_.shots) total += s.duration_s;
+  const double frames = std::floor(total * list_.frame_rate_hz + 1e-9);
+  if (frames + 1 > static_cast<double>(options.max_samples)) {
+    throw InputError(list_.source + ": " + std::to_string(static_cast<long long>(frames + 1)) +
+                     " samples (duration x frame_rate_hz) exceed the limit of " + std::to_string(options.max_samples) +
+                     "; lower frame_rate_hz");
+  }
+  const size_t n = static_cast<size_t>(frames) + 1;
+
+  for (size_t i = 0; i < list_.shots.size(); ++i) {
+    const ShotSpec& shot = list_.shots[i];
+    ShotSpan span;
+    span.name = shot.name;
+    span.type = std::string(ShotTypeName(shot.type));
+    span.subject = shot.subject >= 0 ? list_.actors[shot.subject].name() : "";
+    span.transition = shot.cut ? "cut" : "continuous";
+    span.start_time_s = states_[i].start_s;
+    span.end_time_s = states_[i].start_s + shot.duration_s;
+    plan.shots.push_back(span);
+  }
+
+  // Which shot owns sample k: the last shot with start <= t and (t < end or it is the last shot
+  // with a positive duration).
+  std::vector<bool> cut_before(n, false);
+  std::vector<LensRequest> requests(n);
+  plan.samples.resize(n);
+  std::optional<EnuFrame> frame;
+  if (plan.origin) frame.emplace(*plan.origin);
+  double heading = 0;
+  size_t shot = 0;
+  size_t last_positive = 0;
+  for (size_t i = 0; i < list_.shots.size(); ++i) {
+    if (list_.shots[i].duration_s > 0) last_positive = i;
+  }
+  size_t prev_shot = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / list_.frame_rate_hz;
+    while (shot < last_positive && t >= states_[shot].start_s + list_.shots[shot].duration_s - 1e-12) ++shot;
+    if (list_.shots[shot].duration_s == 0 && shot < last_positive) ++shot;
+    const double tau = std::clamp(t - states_[shot].start_s, 0.0, list_.shots[shot].duration_s);
+    Evaluated e = Evaluate(shot, tau, heading);
+    e.sample.time_s = t;
+    heading = e.sample.drone_heading_deg;
+    if (k > 0 && shot != prev_shot) {
+      for (size_t j = prev_shot + 1; j <= shot; ++j) cut_before[k] = cut_before[k] || list_.shots[j].cut;
+    }
+    prev_shot = shot;
+    if (frame) e.sample.geodetic = frame->GeodeticFromEnu(e.sample.position_enu_m);
+    plan.samples[k] = std::move(e.sample);
+    requests[k] = e.request;
+  }
+
+  // Subject tracks.
+  for (const auto& a : list_.actors) {
+    SubjectTrack track;
+    track.name = a.name();
+    track.height_m = a.height_m();
+    track.positions_enu_m.reserve(n);
+    for (const auto& s : plan.samples) track.positions_enu_m.push_back(a.PositionAt(s.time_s));
+    plan.subjects.push_back(std::move(track));
+  }
+
+  // Keyframes: each shot's start and end (and every free key), final poses.
+  heading = 0;
+  for (size_t i = 0; i < list_.shots.size(); ++i) {
+    const ShotSpec& shot_spec = list_.shots[i];
+    std::vector<double> taus = {0.0};
+    if (shot_spec.type == ShotType::kKeyframes) {
+      for (const auto& k : shot_spec.keys) {
+        if (k.time_s > 0) taus.push_back(k.time_s);
+      }
+    }
+    if (shot_spec.duration_s > taus.back()) taus.push_back(shot_spec.duration_s);
+    for (double tau : taus) {
+      const Evaluated e = Evaluate(i, tau, heading);
+      heading = e.sample.drone_heading_deg;
+      Keyframe key;
+      key.shot = shot_spec.name;
+      key.time_s = states_[i].start_s + tau;
+      key.position_enu_m = e.sample.position_enu_m;
+      key.world_from_camera = e.sample.world_from_camera;
+      key.focal_length_mm = e.sample.focal_length_mm;
+      key.focus_distance_m = e.sample.focus_distance_m;
+      key.f_number = e.sample.f_number;
+      plan.keyframes.push_back(key);
+    }
+  }
+
+  plan.feasibility = CheckFeasibility(plan, cut_before, requests);
+  return plan;
+}
+
+}  // namespace
+
+Trajectory PlanShots(const ShotList& list, const PlanOptions& options) { return Planner(list).Run(options); }
+
+}  // namespace cinepath

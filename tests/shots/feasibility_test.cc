@@ -1,0 +1,69 @@
+#include "shots/feasibility.h"
+
+#include <gtest/gtest.h>
+
+#include "shots/drone_profiles.h"
+
+namespace cinepath {
+namespace {
+
+// A straight climb at a constant rate, sampled at 10 Hz.
+Trajectory Climb(double rate_m_s, size_t n) {
+  Trajectory plan;
+  plan.frame_rate_hz = 10;
+  plan.drone = Px4DefaultQuadLimits();
+  plan.camera.min_focal_length_mm = 24;
+  plan.camera.max_focal_length_mm = 24;
+  for (size_t i = 0; i < n; ++i) {
+    TrajectorySample s;
+    s.time_s = i / 10.0;
+    s.position_enu_m = Eigen::Vector3d(0, 0, 10 + rate_m_s * s.time_s);
+    s.focal_length_mm = 24;
+    s.f_number = 4;
+    s.focus_distance_m = 10;
+    s.shot = i < n / 2 ? "a" : "b";
+    plan.samples.push_back(s);
+  }
+  return plan;
+}
+
+TEST(Feasibility, ClimbRateRangesSplitByShot) {
+  const Trajectory plan = Climb(4.0, 21);  // PX4 climb limit 3 m/s
+  const auto report = CheckFeasibility(plan, std::vector<bool>(21, false), {});
+  ASSERT_EQ(report.violations.size(), 2u);
+  EXPECT_EQ(report.violations[0].limit, "climb_rate");
+  EXPECT_EQ(report.violations[0].shot, "a");
+  EXPECT_NEAR(report.violations[0].start_time_s, 0.0, 1e-12);
+  EXPECT_NEAR(report.violations[0].end_time_s, 0.9, 1e-12);
+  EXPECT_NEAR(report.violations[0].worst_value, 4.0, 1e-9);
+  EXPECT_EQ(report.violations[1].shot, "b");
+  EXPECT_NEAR(report.violations[1].end_time_s, 2.0, 1e-12);
+  EXPECT_TRUE(CheckFeasibility(Climb(2.9, 21), std::vector<bool>(21, false), {}).feasible());
+}
+
+TEST(Feasibility, NothingIsDifferentiatedAcrossACut) {
+  Trajectory plan = Climb(1.0, 20);
+  for (size_t i = 10; i < 20; ++i) plan.samples[i].position_enu_m.x() += 500;  // a jump
+  std::vector<bool> cut(20, false);
+  EXPECT_FALSE(CheckFeasibility(plan, cut, {}).feasible());
+  cut[10] = true;
+  EXPECT_TRUE(CheckFeasibility(plan, cut, {}).feasible());
+}
+
+TEST(Feasibility, AltitudeAndLensRequests) {
+  Trajectory plan = Climb(0.0, 5);
+  plan.samples[2].position_enu_m.z() = 0.5;  // below the 1 m floor
+  std::vector<LensRequest> requests(5, LensRequest{24, 10, 4});
+  requests[3].focal_length_mm = 30;  // the framing wanted more than the lens has
+  const auto report = CheckFeasibility(plan, std::vector<bool>(5, false), requests);
+  bool altitude = false, focal = false;
+  for (const auto& v : report.violations) {
+    altitude = altitude || (v.limit == "altitude_min" && v.worst_value == 0.5);
+    focal = focal || (v.limit == "focal_length_max" && v.worst_value == 30);
+  }
+  EXPECT_TRUE(altitude);
+  EXPECT_TRUE(focal);
+}
+
+}  // namespace
+}  // namespace cinepath
