@@ -1,0 +1,98 @@
+// cinepath export: plan.json -> drone missions (docs/export.md).
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/command.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/json.h"
+#include "core/plan_file.h"
+#include "export/exporter.h"
+
+namespace cinepath::cli {
+namespace {
+
+using exporter::AltitudeRef;
+
+class ExportCommand : public Command {
+ public:
+  void Setup(CLI::App& app) override {
+    app.add_option("plan", plan_path_, "plan.json from `cinepath plan` / `cinepath optimize`")->required();
+    app.add_option("--scene", scene_path_, "scene.json whose WGS84 origin is used when the plan has none");
+    app.add_option("--format", format_names_,
+                   "Output format (repeatable): qgc-plan, qgc-wpl, mavlink-bin, dji-wpml, dji-msdk-json, "
+                   "litchi-csv")
+        ->required();
+    app.add_option("--firmware", firmware_name_, "MAVLink target firmware: px4 (default) or ardupilot");
+    app.add_option("--drone", drone_name_,
+                   "Drone profile for the limits: px4-multirotor, ardupilot-copter, dji-m30, dji-mini4pro "
+                   "(default: the firmware's)");
+    app.add_option("--altitude-ref", altitude_ref_name_, "relative (default, to home), amsl (EGM96) or ellipsoid");
+    app.add_option("--home", home_text_, "Home / take-off point LAT,LON,ALT (ALT metres AMSL); default: the origin");
+    app.add_option("--max-deviation-m", max_deviation_m_, "Largest distance of the flown legs from the plan (0.5)");
+    app.add_option("--max-angle-deg", max_angle_deg_, "Largest heading / gimbal error along a leg (3)");
+    app.add_flag("--force", force_, "Write the mission even when it breaks a platform limit (still reported)");
+    app.add_flag("--json", json_, "Print the report as JSON instead of text");
+    app.add_option("-o,--output", output_dir_, "Output folder")->required();
+  }
+
+  int Run() override {
+    exporter::ExportOptions options;
+    for (const auto& name : format_names_) options.formats.push_back(exporter::ParseFormat(name));
+    options.firmware = exporter::ParseFirmware(firmware_name_);
+    options.drone_profile = drone_name_;
+    if (altitude_ref_name_ == "relative") {
+      options.altitude_ref = AltitudeRef::kRelative;
+    } else if (altitude_ref_name_ == "amsl") {
+      options.altitude_ref = AltitudeRef::kAmsl;
+    } else if (altitude_ref_name_ == "ellipsoid") {
+      options.altitude_ref = AltitudeRef::kEllipsoid;
+    } else {
+      throw InputError("--altitude-ref: unknown reference '" + altitude_ref_name_ +
+                       "' (known: relative, amsl, ellipsoid)");
+    }
+    options.force = force_;
+    options.build.plan_name = plan_path_;
+    options.build.selection.max_deviation_m = max_deviation_m_;
+    options.build.selection.max_angle_deg = max_angle_deg_;
+    if (!home_text_.empty()) options.build.home = exporter::ParseHomeSpec(home_text_, "--home");
+    options.Check();  // option errors before any file is read
+
+    const Trajectory plan = ReadPlanFile(plan_path_);
+    if (!scene_path_.empty()) options.build.scene_origin = exporter::ReadSceneOriginFile(scene_path_);
+    const exporter::ExportResult result = exporter::ExportMission(plan, options);
+
+    const Json report = exporter::ReportJson(result, options);
+    EnsureDirectory(output_dir_);
+    AtomicOutputs outputs;
+    for (const auto& file : result.files) outputs.Add(std::filesystem::path(output_dir_) / file.file_name, file.contents);
+    outputs.Add(std::filesystem::path(output_dir_) / "export_report.json", DumpJson(report));
+    outputs.Commit();
+    std::cout << (json_ ? DumpJson(report) : exporter::ReportText(result, options));
+    return 0;
+  }
+
+ private:
+  std::string plan_path_;
+  std::string scene_path_;
+  std::vector<std::string> format_names_;
+  std::string firmware_name_ = "px4";
+  std::string drone_name_;
+  std::string altitude_ref_name_ = "relative";
+  std::string home_text_;
+  double max_deviation_m_ = 0.5;
+  double max_angle_deg_ = 3.0;
+  bool force_ = false;
+  bool json_ = false;
+  std::string output_dir_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> MakeExportCommand() { return std::make_unique<ExportCommand>(); }
+
+}  // namespace cinepath::cli

@@ -1,0 +1,45 @@
+// cinepath info: inspect a cinepath file or a mission and print a summary or JSON (docs/export.md,
+// "cinepath info"). Understands QGC .plan and "QGC WPL 110" missions; other kinds of files are
+// added by the stages that write them.
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/command.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/json.h"
+#include "export/mission_reader.h"
+
+namespace cinepath::cli {
+namespace {
+
+class InfoCommand : public Command {
+ public:
+  void Setup(CLI::App& app) override {
+    app.add_option("file", path_, "File to inspect (.plan, .waypoints)")->required();
+    app.add_flag("--json", json_, "Print JSON instead of text");
+  }
+
+  int Run() override {
+    const std::string text = ReadFileToString(path_);
+    if (!exporter::LooksLikeMission(text)) {
+      throw InputError(path_ + ": not a file kind `cinepath info` understands (QGC .plan, QGC WPL 110)");
+    }
+    const exporter::ReadMission mission = text.rfind("QGC WPL", 0) == 0 ? exporter::ParseQgcWpl(text, path_)
+                                                                        : exporter::ParseQgcPlan(text, path_);
+    std::cout << (json_ ? DumpJson(exporter::MissionSummaryJson(mission)) : exporter::MissionSummaryText(mission));
+    return 0;
+  }
+
+ private:
+  std::string path_;
+  bool json_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> MakeInfoCommand() { return std::make_unique<InfoCommand>(); }
+
+}  // namespace cinepath::cli

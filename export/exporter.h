@@ -1,0 +1,57 @@
+// `cinepath export` as a library call: plan trajectory in, mission files (bytes) and a report out.
+// Nothing is written here; the CLI stages the files with AtomicOutputs.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/json.h"
+#include "core/trajectory.h"
+#include "export/mission.h"
+#include "export/mission_builder.h"
+#include "export/platform.h"
+#include "export/validation.h"
+
+namespace cinepath::exporter {
+
+struct ExportOptions {
+  std::vector<Format> formats;
+  Firmware firmware = Firmware::kPx4;
+  std::string drone_profile;  // empty: the firmware's default profile
+  AltitudeRef altitude_ref = AltitudeRef::kRelative;
+  bool force = false;         // write even when a limit is broken (still reported)
+  MissionBuildOptions build;  // origin/home/selection
+  void Check() const;         // InputError: no format, duplicate format, a format that cannot hold altitude_ref
+};
+
+struct ExportFile {
+  std::string file_name;  // relative to the output folder
+  std::string contents;
+};
+
+struct FormatReport {
+  Format format;
+  std::string file_name;
+  int mission_items = 0;  // MAVLink items (0 for DJI/Litchi)
+  std::vector<std::string> notes;
+  std::vector<Violation> violations;
+};
+
+struct ExportResult {
+  Mission mission;
+  std::vector<ExportFile> files;
+  std::vector<FormatReport> reports;
+  bool has_violations() const;
+};
+
+// Throws InputError for bad input, InfeasibleError (naming the waypoint and limit of the first
+// violations) when a limit is broken and !force.
+ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& options);
+
+// The report as JSON (report.json / --json) and as the human summary printed by the CLI.
+Json ReportJson(const ExportResult& result, const ExportOptions& options);
+std::string ReportText(const ExportResult& result, const ExportOptions& options);
+
+}  // namespace cinepath::exporter

@@ -1,0 +1,145 @@
+#include "export/mavlink_mission.h"
+
+#include <cmath>
+
+#include "core/angles.h"
+#include "core/error.h"
+
+namespace cinepath::exporter {
+
+namespace {
+
+MavItem DoItem(int command, std::array<double, 7> params, int waypoint) {
+  MavItem item;
+  item.command = command;
+  item.frame = mav::kFrameMission;
+  item.params = params;
+  item.waypoint = waypoint;
+  return item;
+}
+
+bool Changed(double a, double b, double tolerance) { return std::abs(a - b) > tolerance; }
+
+}  // namespace
+
+MavItem HomeItem(const Mission& mission) {
+  MavItem home;
+  home.command = mav::kNavWaypoint;
+  home.frame = mav::kFrameGlobal;
+  home.params = {0, 0, 0, 0, mission.home.lat_deg, mission.home.lon_deg, mission.home.amsl_m};
+  return home;
+}
+
+MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRef ref) {
+  if (ref == AltitudeRef::kEllipsoid) {
+    throw InputError("--altitude-ref ellipsoid: MAVLink missions carry altitudes relative to home (frame 3) or "
+                     "AMSL (frame 0), not ellipsoidal heights");
+  }
+  CINEPATH_CHECK(!mission.waypoints.empty());
+  const bool px4 = firmware == Firmware::kPx4;
+  const int nav_frame = ref == AltitudeRef::kRelative ? mav::kFrameGlobalRelativeAlt : mav::kFrameGlobal;
+  MavMission out;
+  const auto& wps = mission.waypoints;
+  const MissionWaypoint& first = wps.front();
+
+  MavItem takeoff;
+  takeoff.command = mav::kNavTakeoff;
+  takeoff.frame = nav_frame;
+  takeoff.params = {0, 0, 0, px4 ? NormalizeDeg360(first.heading_deg) : 0.0, mission.home.lat_deg,
+                    mission.home.lon_deg, AltitudeIn(first, ref)};
+  out.items.push_back(takeoff);
+
+  const bool has_zoom = mission.max_focal_length_mm > mission.min_focal_length_mm;
+  for (size_t w = 0; w < wps.size(); ++w) {
+    const MissionWaypoint& wp = wps[w];
+    const MissionWaypoint* prev = w > 0 ? &wps[w - 1] : nullptr;
+    const int wi = static_cast<int>(w);
+    const double heading = NormalizeDeg360(wp.heading_deg);
+
+    MavItem nav;
+    nav.command = mav::kNavWaypoint;
+    nav.frame = nav_frame;
+    nav.params = {0, 0, 0, px4 ? heading : 0.0, wp.lat_deg, wp.lon_deg, AltitudeIn(wp, ref)};
+    nav.waypoint = wi;
+    out.items.push_back(nav);
+
+    if (!px4) {
+      // ArduCopter drops NAV_WAYPOINT param4: absolute yaw, default rate, shortest way.
+      out.items.push_back(DoItem(mav::kConditionYaw, {heading, 0, 0, 0, 0, 0, 0}, wi));
+    }
+    // Gimbal: both angles (ArduPilot needs both), yaw relative to the vehicle (flags 0 = follow).
+    out.items.push_back(DoItem(mav::kDoGimbalManagerPitchYaw,
+                               {wp.gimbal_pitch_deg, NormalizeDeg180(wp.gimbal_yaw_deg), 0, 0, 0, 0, 0}, wi));
+    if (!prev || Changed(prev->focal_length_mm, wp.focal_length_mm, 0.05)) {
+      if (px4) {
+        out.items.push_back(
+            DoItem(mav::kSetCameraZoom, {mav::kZoomTypeFocalLength, wp.focal_length_mm, 0, 0, 0, 0, 0}, wi));
+      } else if (has_zoom || !prev) {
+        out.items.push_back(DoItem(mav::kSetCameraZoom,
+                                   {mav::kZoomTypeRange, ZoomPercent(mission, wp.focal_length_mm), 0, 0, 0, 0, 0},
+                                   wi));
+      }
+    }
+    const bool focus_changed =
+        !prev || (std::isinf(prev->focus_distance_m) != std::isinf(wp.focus_distance_m)) ||
+        (!std::isinf(wp.focus_distance_m) && Changed(prev->focus_distance_m, wp.focus_distance_m, 0.01));
+    if (px4 && focus_changed) {
+      if (std::isinf(wp.focus_distance_m)) {
+        // No "infinity" in METERS: the far end of the focus range.
+        out.items.push_back(DoItem(mav::kSetCameraFocus, {mav::kFocusTypeRange, 100, 0, 0, 0, 0, 0}, wi));
+      } else {
+        out.items.push_back(
+            DoItem(mav::kSetCameraFocus, {mav::kFocusTypeMeters, wp.focus_distance_m, 0, 0, 0, 0, 0}, wi));
+      }
+    }
+    if (!px4 && (!prev || Changed(prev->f_number, wp.f_number, 0.01))) {
+      out.items.push_back(DoItem(mav::kDoDigicamConfigure, {0, 0, wp.f_number, 0, 0, 0, 0}, wi));
+    }
+    // Recording. PX4 runs DO items once the waypoint before them is reached: start/stop right after
+    // the waypoint that carries the flag. ArduPilot runs them while flying to the NAV item before
+    // them: a flag of waypoint w−1 goes into waypoint w's block (the final stop follows RTL).
+    if (px4) {
+      if (wp.record_start) out.items.push_back(DoItem(mav::kVideoStartCapture, {0, 0, 0, 0, 0, 0, 0}, wi));
+      if (wp.record_stop && w + 1 < wps.size()) {
+        out.items.push_back(DoItem(mav::kVideoStopCapture, {0, 0, 0, 0, 0, 0, 0}, wi));
+      }
+    } else if (prev) {
+      if (prev->record_start) out.items.push_back(DoItem(mav::kVideoStartCapture, {0, 0, 0, 0, 0, 0, 0}, wi));
+      if (prev->record_stop) out.items.push_back(DoItem(mav::kVideoStopCapture, {0, 0, 0, 0, 0, 0, 0}, wi));
+    }
+    // Speed of a leg: PX4 runs DO items once the waypoint before them is reached, so the leg w→w+1 gets
+    // its speed in waypoint w's block; ArduPilot runs DO items while flying towards the NAV item before
+    // them, so the leg w−1→w gets its speed in waypoint w's block.
+    if (px4 && w + 1 < wps.size() && (!prev || Changed(prev->speed_mps, wp.speed_mps, 0.01))) {
+      out.items.push_back(DoItem(mav::kDoChangeSpeed, {mav::kSpeedTypeGround, wp.speed_mps, -1, 0, 0, 0, 0}, wi));
+    }
+    if (!px4 && prev) {
+      const MissionWaypoint* before = w >= 2 ? &wps[w - 2] : nullptr;
+      if (!before || Changed(before->speed_mps, prev->speed_mps, 0.01)) {
+        out.items.push_back(
+            DoItem(mav::kDoChangeSpeed, {mav::kSpeedTypeGround, prev->speed_mps, -1, 0, 0, 0, 0}, wi));
+      }
+    }
+  }
+  const int last = static_cast<int>(wps.size()) - 1;
+  if (px4) {
+    out.items.push_back(DoItem(mav::kVideoStopCapture, {0, 0, 0, 0, 0, 0, 0}, last));
+    out.items.push_back(DoItem(mav::kNavReturnToLaunch, {0, 0, 0, 0, 0, 0, 0}, -1));
+  } else {
+    out.items.push_back(DoItem(mav::kNavReturnToLaunch, {0, 0, 0, 0, 0, 0, 0}, -1));
+    if (wps.back().record_start) out.items.push_back(DoItem(mav::kVideoStartCapture, {0, 0, 0, 0, 0, 0, 0}, last));
+    out.items.push_back(DoItem(mav::kVideoStopCapture, {0, 0, 0, 0, 0, 0, 0}, last));
+  }
+
+  if (px4) {
+    out.notes.push_back("aperture (f-number) not carried: PX4 rejects DO_DIGICAM_CONFIGURE in missions");
+  } else {
+    out.notes.push_back("focus distance not carried: ArduPilot's SET_CAMERA_FOCUS takes no metres");
+    if (!has_zoom) {
+      out.notes.push_back("zoom: the plan's camera is a prime lens (min = max focal length); zoom set to 0 %");
+    }
+  }
+  return out;
+}
+
+}  // namespace cinepath::exporter

@@ -1,0 +1,185 @@
+#include "export/mission_builder.h"
+
+#include <charconv>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/json.h"
+#include "core/geoid.h"
+
+namespace cinepath::exporter {
+
+namespace {
+
+double ParseNumber(const std::string& token, const std::string& option) {
+  double value = 0;
+  const char* begin = token.data();
+  const char* end = token.data() + token.size();
+  while (begin < end && *begin == ' ') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) {
+    throw InputError(Located(option, "'" + token + "' is not a number"));
+  }
+  return value;
+}
+
+void RequireFinite(double value, const std::string& plan, size_t index, const char* field) {
+  if (!std::isfinite(value)) {
+    throw InputError(Located(plan, "samples[" + std::to_string(index) + "]." + field + ": not a finite number"));
+  }
+}
+
+}  // namespace
+
+Geodetic ReadSceneOriginFile(const std::filesystem::path& scene_json) {
+  const std::string source = scene_json.string();
+  const Json doc = ParseJsonText(ReadFileToString(scene_json), source);
+  const JsonField root(doc, source);
+  const JsonField o = root["origin"];
+  Geodetic g{o["lat_deg"].AsDouble(), o["lon_deg"].AsDouble(), o["height_m"].AsDouble()};
+  if (g.lat_deg < -90 || g.lat_deg > 90) o["lat_deg"].Fail("must be in [-90, 90]");
+  return g;
+}
+
+HomeSpec ParseHomeSpec(const std::string& text, const std::string& option) {
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, ',')) parts.push_back(part);
+  if (parts.size() != 3) throw InputError(Located(option, "expected LAT,LON,ALT, got '" + text + "'"));
+  HomeSpec home{ParseNumber(parts[0], option), ParseNumber(parts[1], option), ParseNumber(parts[2], option)};
+  if (home.lat_deg < -90 || home.lat_deg > 90) throw InputError(Located(option, "latitude outside [-90, 90]"));
+  if (home.lon_deg < -180 || home.lon_deg > 180) throw InputError(Located(option, "longitude outside [-180, 180]"));
+  return home;
+}
+
+Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& options) {
+  const std::string& plan = options.plan_name;
+  const auto& samples = trajectory.samples;
+  if (samples.empty()) throw InputError(Located(plan, "samples: the plan has no samples"));
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const TrajectorySample& s = samples[i];
+    RequireFinite(s.time_s, plan, i, "time_s");
+    for (int c = 0; c < 3; ++c) RequireFinite(s.position_enu_m[c], plan, i, "position_enu_m");
+    RequireFinite(s.drone_heading_deg, plan, i, "drone_heading_deg");
+    RequireFinite(s.gimbal_pitch_deg, plan, i, "gimbal_pitch_deg");
+    RequireFinite(s.gimbal_yaw_deg, plan, i, "gimbal_yaw_deg");
+    RequireFinite(s.focal_length_mm, plan, i, "focal_length_mm");
+    RequireFinite(s.f_number, plan, i, "f_number");
+    if (std::isnan(s.focus_distance_m)) RequireFinite(s.focus_distance_m, plan, i, "focus_distance_m");
+    if (i > 0 && !(s.time_s > samples[i - 1].time_s)) {
+      throw InputError(Located(plan, "samples[" + std::to_string(i) + "].time_s: times must increase"));
+    }
+  }
+
+  const Egm96Geoid& geoid = Egm96Geoid::Default();
+  Mission mission;
+  std::optional<Geodetic> origin = trajectory.origin ? trajectory.origin : options.scene_origin;
+  if (!origin) {
+    if (options.absolute_altitudes) {
+      throw InputError(Located(plan, "origin: the plan has no WGS84 origin (none in the plan, no --scene); "
+                                     "absolute altitudes (amsl/ellipsoid) need one"));
+    }
+    if (!options.home) {
+      throw InputError(Located(plan, "origin: the plan has no WGS84 origin; pass --scene scene.json, or "
+                                     "--home LAT,LON,ALT to place the scene origin at home"));
+    }
+    origin = Geodetic{options.home->lat_deg, options.home->lon_deg,
+                      geoid.EllipsoidalFromAmslM(options.home->lat_deg, options.home->lon_deg,
+                                                 options.home->amsl_m)};
+  }
+  ValidateGeodetic(*origin, "origin");
+  mission.origin = *origin;
+  if (options.home) {
+    mission.home.lat_deg = options.home->lat_deg;
+    mission.home.lon_deg = options.home->lon_deg;
+    mission.home.amsl_m = options.home->amsl_m;
+    mission.home.ellipsoidal_height_m =
+        geoid.EllipsoidalFromAmslM(options.home->lat_deg, options.home->lon_deg, options.home->amsl_m);
+  } else {
+    mission.home.lat_deg = origin->lat_deg;
+    mission.home.lon_deg = origin->lon_deg;
+    mission.home.ellipsoidal_height_m = origin->height_m;
+    mission.home.amsl_m = geoid.AmslFromEllipsoidalM(origin->lat_deg, origin->lon_deg, origin->height_m);
+  }
+
+  const CameraSpec& camera = trajectory.camera;
+  mission.min_focal_length_mm = camera.min_focal_length_mm;
+  mission.max_focal_length_mm = camera.max_focal_length_mm;
+  mission.sensor_diagonal_mm = std::hypot(camera.sensor_width_mm, camera.sensor_height_mm);
+  mission.plan_sample_count = static_cast<int>(samples.size());
+  mission.fence_min_up_m = trajectory.drone.min_altitude_m;
+  mission.fence_max_up_m = trajectory.drone.max_altitude_m;
+  mission.plan_max_horizontal_speed_mps = trajectory.drone.max_horizontal_speed_m_s;
+  mission.plan_drone_name = trajectory.drone.name;
+
+  // Continuous runs of samples, split where a shot with transition "cut" begins.
+  std::vector<std::pair<int, int>> runs;  // [first, last] sample indices
+  int run_start = 0;
+  for (size_t i = 1; i < samples.size(); ++i) {
+    if (samples[i].shot == samples[i - 1].shot) continue;
+    bool cut = false;
+    for (const ShotSpan& shot : trajectory.shots) cut |= shot.name == samples[i].shot && shot.transition == "cut";
+    if (!cut) continue;
+    runs.emplace_back(run_start, static_cast<int>(i) - 1);
+    run_start = static_cast<int>(i);
+  }
+  runs.emplace_back(run_start, static_cast<int>(samples.size()) - 1);
+
+  std::vector<int> idx;
+  std::vector<bool> starts, stops, transits;
+  for (const auto& [first, last] : runs) {
+    const std::vector<TrajectorySample> run(samples.begin() + first, samples.begin() + last + 1);
+    const Selection selection = SelectWaypoints(run, options.selection);
+    mission.max_deviation_reached_m = std::max(mission.max_deviation_reached_m, selection.max_deviation_m);
+    mission.max_angle_error_reached_deg =
+        std::max(mission.max_angle_error_reached_deg, selection.max_angle_error_deg);
+    for (size_t k = 0; k < selection.sample_indices.size(); ++k) {
+      idx.push_back(first + selection.sample_indices[k]);
+      starts.push_back(k == 0);
+      stops.push_back(k + 1 == selection.sample_indices.size());
+      transits.push_back(k + 1 == selection.sample_indices.size() && last + 1 < static_cast<int>(samples.size()));
+    }
+  }
+  mission.cut_count = static_cast<int>(runs.size()) - 1;
+  mission.transit_speed_mps = options.transit_speed_mps;
+
+  const EnuFrame frame(*origin);
+  for (size_t w = 0; w < idx.size(); ++w) {
+    const TrajectorySample& s = samples[idx[w]];
+    MissionWaypoint wp;
+    wp.sample_index = idx[w];
+    wp.time_s = s.time_s;
+    wp.position_enu_m = s.position_enu_m;
+    const Geodetic g = frame.GeodeticFromEnu(s.position_enu_m);
+    wp.lat_deg = g.lat_deg;
+    wp.lon_deg = g.lon_deg;
+    wp.ellipsoidal_height_m = g.height_m;
+    wp.amsl_m = geoid.AmslFromEllipsoidalM(g.lat_deg, g.lon_deg, g.height_m);
+    wp.relative_alt_m = wp.amsl_m - mission.home.amsl_m;
+    wp.heading_deg = s.drone_heading_deg;
+    wp.gimbal_pitch_deg = s.gimbal_pitch_deg;
+    wp.gimbal_yaw_deg = s.gimbal_yaw_deg;
+    wp.focal_length_mm = s.focal_length_mm;
+    wp.focus_distance_m = s.focus_distance_m;
+    wp.f_number = s.f_number;
+    wp.record_start = starts[w];
+    wp.record_stop = stops[w];
+    wp.transit_after = transits[w];
+    mission.waypoints.push_back(wp);
+  }
+  // Speed of the leg leaving each waypoint; the last keeps the previous leg's speed.
+  auto& wps = mission.waypoints;
+  for (size_t w = 0; w + 1 < wps.size(); ++w) {
+    const double length_m = (wps[w + 1].position_enu_m - wps[w].position_enu_m).norm();
+    wps[w].speed_mps = wps[w].transit_after ? options.transit_speed_mps
+                                             : length_m / (wps[w + 1].time_s - wps[w].time_s);
+  }
+  if (wps.size() >= 2) wps.back().speed_mps = wps[wps.size() - 2].speed_mps;
+  return mission;
+}
+
+}  // namespace cinepath::exporter
