@@ -7,13 +7,15 @@
 #   photogrammetry_test --gtest_filter='GeoreferenceModel.BrightonBeach*'
 set -euo pipefail
 BUILD=${1:-build}
-DATA=${2:-../shared/data/brighton_beach}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+DATA=${2:-$ROOT/data/brighton_beach}
 CINEPATH=$BUILD/cli/cinepath
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
 now() { date +%s.%N; }
 for model in sparse_default sparse_exif_focal; do
+  [[ -d "$DATA/colmap/$model" ]] || { echo "== $model: not in $DATA (skipped)"; continue; }
   echo "== $model"
   mkdir -p "$WORK/$model/aligned"
   t0=$(now)
