@@ -35,6 +35,7 @@ class ExportCommand : public Command {
     app.add_option("--home", home_text_, "Home / take-off point LAT,LON,ALT (ALT metres AMSL); default: the origin");
     app.add_option("--max-deviation-m", max_deviation_m_, "Largest distance of the flown legs from the plan (0.5)");
     app.add_option("--max-angle-deg", max_angle_deg_, "Largest heading / gimbal error along a leg (3)");
+    app.add_option("--roi", roi_name_, "Points of interest: auto (default: detect and let the target aim) or off");
     app.add_flag("--force", force_, "Write the mission even when it breaks a platform limit (still reported)");
     app.add_flag("--json", json_, "Print the report as JSON instead of text");
     app.add_option("-o,--output", output_dir_, "Output folder")->required();
@@ -54,6 +55,13 @@ class ExportCommand : public Command {
     } else {
       throw InputError("--altitude-ref: unknown reference '" + altitude_ref_name_ +
                        "' (known: relative, amsl, ellipsoid)");
+    }
+    if (roi_name_ == "auto") {
+      options.roi = exporter::RoiMode::kAuto;
+    } else if (roi_name_ == "off") {
+      options.roi = exporter::RoiMode::kOff;
+    } else {
+      throw InputError("--roi: unknown mode '" + roi_name_ + "' (known: auto, off)");
     }
     options.force = force_;
     options.build.plan_name = plan_path_;
@@ -86,6 +94,7 @@ class ExportCommand : public Command {
   std::string home_text_;
   double max_deviation_m_ = 0.5;
   double max_angle_deg_ = 3.0;
+  std::string roi_name_ = "auto";
   bool force_ = false;
   bool json_ = false;
   std::string output_dir_;

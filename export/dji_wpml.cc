@@ -85,19 +85,39 @@ void MissionConfig(Xml& x, const Mission& mission, const DroneProfile& profile, 
   x.Close("wpml:missionConfig");
 }
 
-void HeadingParam(Xml& x, const MissionWaypoint& wp) {
+// The point of interest governing the leg that leaves waypoint w (nullptr: none).
+const MissionRoi* LegRoi(const Mission& mission, size_t w) {
+  const MissionWaypoint& wp = mission.waypoints[w];
+  if (mission.roi_tracking == RoiTracking::kNone || wp.roi < 0) return nullptr;
+  const MissionRoi& roi = mission.rois[wp.roi];
+  return static_cast<int>(w) < roi.last_waypoint ? &roi : nullptr;
+}
+
+// Heading of the leg leaving the waypoint: towards the point of interest inside a stretch (DJI turns
+// the nose only, "Z not supported"), else smoothTransition to the next waypoint's heading.
+void HeadingParam(Xml& x, const Mission& mission, size_t w, bool relative) {
+  const MissionWaypoint& wp = mission.waypoints[w];
+  const MissionRoi* roi = LegRoi(mission, w);
   x.Open("wpml:waypointHeadingParam");
-  x.Leaf("wpml:waypointHeadingMode", "smoothTransition");
+  x.Leaf("wpml:waypointHeadingMode", roi ? "towardPOI" : "smoothTransition");
   x.Leaf("wpml:waypointHeadingAngle", Num(NormalizeDeg180(wp.heading_deg), 2));
-  x.Leaf("wpml:waypointPoiPoint", "0.000000,0.000000,0.000000");
+  x.Leaf("wpml:waypointPoiPoint",
+         roi ? Num(roi->lat_deg, 9) + "," + Num(roi->lon_deg, 9) + "," +
+                   Num(relative ? roi->relative_alt_m : roi->ellipsoidal_height_m, 3)
+             : "0.000000,0.000000,0.000000");
   x.Leaf("wpml:waypointHeadingPathMode", "followBadArc");
   x.Close("wpml:waypointHeadingParam");
 }
 
-void TurnParam(Xml& x) {
+// Coordinated turn with the fitted damping distance (dji_turns.h), or stop at the waypoint.
+void TurnParam(Xml& x, const MissionWaypoint& wp) {
   x.Open("wpml:waypointTurnParam");
-  x.Leaf("wpml:waypointTurnMode", "toPointAndPassWithContinuityCurvature");
-  x.Leaf("wpml:waypointTurnDampingDist", "0");
+  if (wp.turn_damping_m > 0) {
+    x.Leaf("wpml:waypointTurnMode", "coordinateTurn");
+    x.Leaf("wpml:waypointTurnDampingDist", Num(wp.turn_damping_m, 2));
+  } else {
+    x.Leaf("wpml:waypointTurnMode", "toPointAndStopWithDiscontinuityCurvature");
+  }
   x.Close("wpml:waypointTurnParam");
 }
 
@@ -207,8 +227,8 @@ WpmlDocuments WriteWpmlDocuments(const Mission& mission, const DroneProfile& pro
     x.Leaf("wpml:waypointPoiPoint", "0.000000,0.000000,0.000000");
     x.Leaf("wpml:waypointHeadingPathMode", "followBadArc");
     x.Close("wpml:globalWaypointHeadingParam");
-    x.Leaf("wpml:globalWaypointTurnMode", "toPointAndPassWithContinuityCurvature");
-    x.Leaf("wpml:globalUseStraightLine", "0");
+    x.Leaf("wpml:globalWaypointTurnMode", "toPointAndStopWithDiscontinuityCurvature");
+    x.Leaf("wpml:globalUseStraightLine", "1");
     int group_id = 0;
     for (size_t w = 0; w < wps.size(); ++w) {
       const MissionWaypoint& wp = wps[w];
@@ -223,10 +243,10 @@ WpmlDocuments WriteWpmlDocuments(const Mission& mission, const DroneProfile& pro
       x.Leaf("wpml:useGlobalSpeed", "0");
       x.Leaf("wpml:waypointSpeed", Num(ClampSpeed(wp.speed_mps), 2));
       x.Leaf("wpml:useGlobalHeadingParam", "0");
-      HeadingParam(x, wp);
+      HeadingParam(x, mission, w, relative);
       x.Leaf("wpml:useGlobalTurnParam", "0");
-      TurnParam(x);
-      x.Leaf("wpml:useStraightLine", "0");
+      TurnParam(x, wp);
+      x.Leaf("wpml:useStraightLine", "1");
       x.Leaf("wpml:gimbalPitchAngle", Num(wp.gimbal_pitch_deg, 2));
       x.Leaf("wpml:isRisky", "0");
       WaypointActions(x, mission, w, group_id);
@@ -259,9 +279,9 @@ WpmlDocuments WriteWpmlDocuments(const Mission& mission, const DroneProfile& pro
       x.Leaf("wpml:index", Int(static_cast<int>(w)));
       x.Leaf("wpml:executeHeight", Num(relative ? wp.relative_alt_m : wp.ellipsoidal_height_m, 3));
       x.Leaf("wpml:waypointSpeed", Num(ClampSpeed(wp.speed_mps), 2));
-      HeadingParam(x, wp);
-      TurnParam(x);
-      x.Leaf("wpml:useStraightLine", "0");
+      HeadingParam(x, mission, w, relative);
+      TurnParam(x, wp);
+      x.Leaf("wpml:useStraightLine", "1");
       WaypointActions(x, mission, w, group_id);
       x.Close("Placemark");
     }
@@ -274,6 +294,24 @@ WpmlDocuments WriteWpmlDocuments(const Mission& mission, const DroneProfile& pro
   docs.notes.push_back("focus distance not carried: WPML's focus action has no distance field");
   docs.notes.push_back("aperture (f-number) not carried: WPML has no aperture action");
   docs.notes.push_back("zoom written as the 35 mm-equivalent focal length (DJI's focalLength reference is UNVERIFIED)");
+  int turns = 0;
+  double min_d = 0, max_d = 0;
+  for (const auto& wp : wps) {
+    if (wp.turn_damping_m <= 0) continue;
+    min_d = turns == 0 ? wp.turn_damping_m : std::min(min_d, wp.turn_damping_m);
+    max_d = std::max(max_d, wp.turn_damping_m);
+    ++turns;
+  }
+  docs.notes.push_back(fmt::format(
+      "coordinated turns at {} of {} waypoints (damping {:.2f}-{:.2f} m), the others stop; modelled path deviation "
+      "{:.3f} m ({:.3f} m as straight legs)",
+      turns, wps.size(), min_d, max_d, mission.max_deviation_reached_m, mission.straight_deviation_reached_m));
+  if (!mission.rois.empty() && mission.roi_tracking != RoiTracking::kNone) {
+    docs.notes.push_back(fmt::format(
+        "{} point(s) of interest: heading towardPOI on their legs (DJI turns the nose only; gimbal pitch still "
+        "interpolated per leg)",
+        mission.rois.size()));
+  }
   int slow_legs = 0;
   double hover_total_s = 0;
   for (size_t w = 1; w < wps.size(); ++w) {

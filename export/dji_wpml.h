@@ -6,7 +6,10 @@
 // the take-off point = home); amsl or ellipsoid → template heightMode EGM96 (height = AMSL) and
 // waylines executeHeightMode WGS84 (executeHeight = ellipsoidal), as DJI's conversion guidance says.
 // Every template placemark carries both `height` and `ellipsoidHeight`.
-// Heading: smoothTransition to each waypoint's heading (shortest way). Gimbal: gimbalRotate at the
+// Turns: coordinateTurn with the waypoint's fitted waypointTurnDampingDist (dji_turns.h), or
+// toPointAndStopWithDiscontinuityCurvature where it is 0; useStraightLine 1.
+// Heading: smoothTransition to each waypoint's heading (shortest way); on the legs of a point of
+// interest (Mission::rois, roi_tracking kHeading) towardPOI with waypointPoiPoint. Gimbal: gimbalRotate at the
 // first waypoint (pitch and yaw, north-based), then gimbalEvenlyRotate on every leg. Zoom: the
 // `zoom` action with the 35 mm-equivalent focal length whenever it changes. Recording: startRecord at
 // the first waypoint, stopRecord at the last. Speeds are clamped into [1, 15] m/s (validation reports

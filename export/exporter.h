@@ -16,12 +16,17 @@
 
 namespace cinepath::exporter {
 
+// Points of interest (roi.h): kAuto detects them and hands the pointing to the target where the
+// format can (MAVLink ROI, DJI towardPOI, Litchi POI); kOff always lists headings and gimbal angles.
+enum class RoiMode { kAuto, kOff };
+
 struct ExportOptions {
   std::vector<Format> formats;
   Firmware firmware = Firmware::kPx4;
   std::string drone_profile;  // empty: the firmware's default profile
   AltitudeRef altitude_ref = AltitudeRef::kRelative;
   bool force = false;         // write even when a limit is broken (still reported)
+  RoiMode roi = RoiMode::kAuto;
   MissionBuildOptions build;  // origin/home/selection
   void Check() const;         // InputError: no format, duplicate format, a format that cannot hold altitude_ref
 };
@@ -35,12 +40,17 @@ struct FormatReport {
   Format format;
   std::string file_name;
   int mission_items = 0;  // MAVLink items (0 for DJI/Litchi)
+  int mission = 0;        // index into ExportResult::missions (the waypoints this format carries)
   std::vector<std::string> notes;
   std::vector<Violation> violations;
 };
 
+// Waypoints are chosen per flight model: MAVLink and Litchi fly straight legs and track points of
+// interest with the camera; DJI WPML flies coordinated turns and turns its nose to the point; MSDK v4
+// flies straight legs with explicit headings. Formats with the same model share one Mission.
 struct ExportResult {
-  Mission mission;
+  Mission mission;                // the first format's (= missions[reports[0].mission])
+  std::vector<Mission> missions;
   std::vector<ExportFile> files;
   std::vector<FormatReport> reports;
   bool has_violations() const;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "core/angles.h"
 #include "core/error.h"
 
@@ -55,6 +57,21 @@ MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRe
     const MissionWaypoint* prev = w > 0 ? &wps[w - 1] : nullptr;
     const int wi = static_cast<int>(w);
     const double heading = NormalizeDeg360(wp.heading_deg);
+    // Point of interest. PX4 runs this block after reaching wp: the ROI governs the legs that leave
+    // waypoints first..last−1. ArduPilot runs it while flying to wp: it governs the leg prev→wp.
+    const MissionRoi* roi = wp.roi >= 0 ? &mission.rois[wp.roi] : nullptr;
+    const MissionRoi* prev_roi = prev && prev->roi >= 0 ? &mission.rois[prev->roi] : nullptr;
+    bool roi_starts, roi_ends, roi_governs;
+    if (px4) {
+      roi_starts = roi && wi == roi->first_waypoint;
+      roi_ends = roi && wi == roi->last_waypoint;
+      roi_governs = roi && wi < roi->last_waypoint;
+    } else {
+      roi_starts = prev_roi && static_cast<int>(w) - 1 == prev_roi->first_waypoint;
+      roi_ends = prev_roi && static_cast<int>(w) - 1 == prev_roi->last_waypoint;
+      roi_governs = prev_roi && static_cast<int>(w) - 1 < prev_roi->last_waypoint;
+    }
+    const MissionRoi* governing = px4 ? roi : prev_roi;
 
     MavItem nav;
     nav.command = mav::kNavWaypoint;
@@ -63,13 +80,25 @@ MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRe
     nav.waypoint = wi;
     out.items.push_back(nav);
 
-    if (!px4) {
-      // ArduCopter drops NAV_WAYPOINT param4: absolute yaw, default rate, shortest way.
-      out.items.push_back(DoItem(mav::kConditionYaw, {heading, 0, 0, 0, 0, 0, 0}, wi));
+    if (roi_ends) out.items.push_back(DoItem(mav::kDoSetRoiNone, {0, 0, 0, 0, 0, 0, 0}, wi));
+    if (roi_starts) {
+      MavItem set_roi;
+      set_roi.command = mav::kDoSetRoiLocation;
+      set_roi.frame = nav_frame;
+      set_roi.params = {0, 0, 0, 0, governing->lat_deg, governing->lon_deg,
+                        ref == AltitudeRef::kRelative ? governing->relative_alt_m : governing->amsl_m};
+      set_roi.waypoint = wi;
+      out.items.push_back(set_roi);
     }
-    // Gimbal: both angles (ArduPilot needs both), yaw relative to the vehicle (flags 0 = follow).
-    out.items.push_back(DoItem(mav::kDoGimbalManagerPitchYaw,
-                               {wp.gimbal_pitch_deg, NormalizeDeg180(wp.gimbal_yaw_deg), 0, 0, 0, 0, 0}, wi));
+    if (!roi_governs) {
+      if (!px4) {
+        // ArduCopter drops NAV_WAYPOINT param4: absolute yaw, default rate, shortest way.
+        out.items.push_back(DoItem(mav::kConditionYaw, {heading, 0, 0, 0, 0, 0, 0}, wi));
+      }
+      // Gimbal: both angles (ArduPilot needs both), yaw relative to the vehicle (flags 0 = follow).
+      out.items.push_back(DoItem(mav::kDoGimbalManagerPitchYaw,
+                                 {wp.gimbal_pitch_deg, NormalizeDeg180(wp.gimbal_yaw_deg), 0, 0, 0, 0, 0}, wi));
+    }
     if (!prev || Changed(prev->focal_length_mm, wp.focal_length_mm, 0.05)) {
       if (px4) {
         out.items.push_back(
@@ -127,10 +156,22 @@ MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRe
     out.items.push_back(DoItem(mav::kNavReturnToLaunch, {0, 0, 0, 0, 0, 0, 0}, -1));
   } else {
     out.items.push_back(DoItem(mav::kNavReturnToLaunch, {0, 0, 0, 0, 0, 0, 0}, -1));
+    // A stretch that ends at the last waypoint: its ROI_NONE runs when RTL starts.
+    if (wps.back().roi >= 0 && mission.rois[wps.back().roi].last_waypoint == last) {
+      out.items.push_back(DoItem(mav::kDoSetRoiNone, {0, 0, 0, 0, 0, 0, 0}, last));
+    }
     if (wps.back().record_start) out.items.push_back(DoItem(mav::kVideoStartCapture, {0, 0, 0, 0, 0, 0, 0}, last));
     out.items.push_back(DoItem(mav::kVideoStopCapture, {0, 0, 0, 0, 0, 0, 0}, last));
   }
 
+  if (!mission.rois.empty()) {
+    out.notes.push_back(fmt::format(
+        "{} point(s) of interest: DO_SET_ROI_LOCATION / DO_SET_ROI_NONE; inside them the firmware points the camera "
+        "({}), per-waypoint {}gimbal items left out",
+        mission.rois.size(), px4 ? "PX4: nose and gimbal to the ROI" : "ArduPilot: mount to the ROI, vehicle yaws if "
+                                                                         "the mount cannot pan",
+        px4 ? "" : "CONDITION_YAW and "));
+  }
   if (px4) {
     out.notes.push_back("aperture (f-number) not carried: PX4 rejects DO_DIGICAM_CONFIGURE in missions");
   } else {

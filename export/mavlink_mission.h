@@ -9,6 +9,17 @@
 // The mission opens with NAV_TAKEOFF at home to the first waypoint's altitude and VIDEO_START_CAPTURE
 // at the first waypoint, and closes with VIDEO_STOP_CAPTURE and RETURN_TO_LAUNCH (frame 2).
 // No NaN is ever written: reserved params are 0, which both firmwares accept.
+//
+// Points of interest (Mission::rois): DO_SET_ROI_LOCATION (global frame, like the NAV items) where a
+// stretch begins and DO_SET_ROI_NONE (frame 2) where it ends. While a ROI is active the firmware
+// points the camera itself — PX4's navigator turns the nose to the ROI (overriding NAV_WAYPOINT
+// param4) and its gimbal tracks it; ArduCopter sends the ROI to the mount and yaws the vehicle when
+// the mount cannot pan — and a CONDITION_YAW or DO_GIMBAL_MANAGER_PITCHYAW would take that control
+// back. So inside a stretch the per-waypoint CONDITION_YAW (ArduPilot) and gimbal items are left out;
+// PX4's param4 keeps the plan heading (ignored while the ROI is active, harmless). Placement follows
+// each firmware's DO-item timing (see recording): PX4 puts ROI in the first waypoint's block and
+// ROI_NONE in the last one's (then the gimbal item of that waypoint); ArduPilot puts ROI in the block
+// of the waypoint after the first and ROI_NONE in the block after the last (after RTL at the end).
 #pragma once
 
 #include <array>
@@ -28,6 +39,8 @@ constexpr int kNavReturnToLaunch = 20;
 constexpr int kNavTakeoff = 22;
 constexpr int kConditionYaw = 115;
 constexpr int kDoChangeSpeed = 178;
+constexpr int kDoSetRoiLocation = 195;
+constexpr int kDoSetRoiNone = 197;
 constexpr int kDoDigicamConfigure = 202;
 constexpr int kSetCameraZoom = 531;
 constexpr int kSetCameraFocus = 532;

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "core/geodesy.h"
+#include "export/waypoint_selection.h"
 
 namespace cinepath::exporter {
 
@@ -45,7 +46,30 @@ struct MissionWaypoint {
   bool transit_after = false;
   // Hover here this long before leaving (set where close waypoints were merged; MSDK STAY actions).
   double hold_s = 0;
+  // Point-of-interest stretch this waypoint belongs to (index into Mission::rois; −1: none). The
+  // stretch's legs are those between its first and last waypoint.
+  int roi = -1;
+  // DJI coordinated turn (dji_turns.h): damping distance in metres; 0 = stop at the waypoint.
+  double turn_damping_m = 0;
 };
+
+// A point the camera keeps centred over a stretch of waypoints (roi.h), georeferenced.
+struct MissionRoi {
+  int first_waypoint = 0;
+  int last_waypoint = 0;
+  double start_time_s = 0;
+  double end_time_s = 0;
+  Eigen::Vector3d point_enu_m = Eigen::Vector3d::Zero();
+  double lat_deg = 0;
+  double lon_deg = 0;
+  double ellipsoidal_height_m = 0;
+  double amsl_m = 0;
+  double relative_alt_m = 0;  // amsl_m − home amsl
+  double fit_angle_deg = 0;   // largest angle between a plan axis and the point
+};
+
+// What the waypoints were chosen for: how the target flies between them.
+enum class TurnModel { kStraight, kDjiCoordinatedTurn };
 
 struct Home {
   double lat_deg = 0;
@@ -63,8 +87,14 @@ struct Mission {
   double max_focal_length_mm = 24;
   double sensor_diagonal_mm = 43.27;
   std::vector<MissionWaypoint> waypoints;
-  // How closely the straight legs follow the per-frame plan (the selection's result).
+  std::vector<MissionRoi> rois;
+  TurnModel turn_model = TurnModel::kStraight;
+  RoiTracking roi_tracking = RoiTracking::kNone;  // how the target points at the rois
+  // How closely the flown path follows the per-frame plan (the selection's result; for
+  // kDjiCoordinatedTurn the modelled turns included). straight_deviation_reached_m: the same waypoints
+  // joined by straight legs.
   double max_deviation_reached_m = 0;
+  double straight_deviation_reached_m = 0;
   double max_angle_error_reached_deg = 0;
   int plan_sample_count = 0;
   int cut_count = 0;            // transits inserted at "cut" transitions

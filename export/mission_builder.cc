@@ -5,10 +5,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/angles.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
 #include "core/geoid.h"
+#include "export/dji_turns.h"
+#include "export/roi.h"
 
 namespace cinepath::exporter {
 
@@ -30,6 +33,19 @@ void RequireFinite(double value, const std::string& plan, size_t index, const ch
   if (!std::isfinite(value)) {
     throw InputError(Located(plan, "samples[" + std::to_string(index) + "]." + field + ": not a finite number"));
   }
+}
+
+// Latitude, longitude and the three altitudes of a local ENU point (a waypoint or a point of
+// interest: both carry the same fields).
+template <typename Located>
+void SetGeoPosition(const EnuFrame& frame, const Egm96Geoid& geoid, double home_amsl_m,
+                    const Eigen::Vector3d& enu_m, Located* out) {
+  const Geodetic g = frame.GeodeticFromEnu(enu_m);
+  out->lat_deg = g.lat_deg;
+  out->lon_deg = g.lon_deg;
+  out->ellipsoidal_height_m = g.height_m;
+  out->amsl_m = geoid.AmslFromEllipsoidalM(g.lat_deg, g.lon_deg, g.height_m);
+  out->relative_alt_m = out->amsl_m - home_amsl_m;
 }
 
 }  // namespace
@@ -131,19 +147,67 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
 
   std::vector<int> idx;
   std::vector<bool> starts, stops, transits;
+  std::vector<double> damping;
+  std::vector<RoiStretch> roi_stretches;
   for (const auto& [first, last] : runs) {
     const std::vector<TrajectorySample> run(samples.begin() + first, samples.begin() + last + 1);
-    const Selection selection = SelectWaypoints(run, options.selection);
-    mission.max_deviation_reached_m = std::max(mission.max_deviation_reached_m, selection.max_deviation_m);
-    mission.max_angle_error_reached_deg =
-        std::max(mission.max_angle_error_reached_deg, selection.max_angle_error_deg);
+    SelectionOptions selection_options = options.selection;
+    selection_options.rois.clear();
+    if (selection_options.roi_tracking != RoiTracking::kNone) {
+      selection_options.rois =
+          DetectRoiStretches(run, RoiOptions{selection_options.max_angle_deg, options.roi_min_duration_s});
+    }
+    if (selection_options.roi_tracking == RoiTracking::kHeading) {
+      // The target turns its nose to the point: only where the plan's nose already points at it (a
+      // gimbal panned off the nose would be turned away).
+      std::erase_if(selection_options.rois, [&](const RoiStretch& r) {
+        for (int k = r.first_sample; k <= r.last_sample; ++k) {
+          const Eigen::Vector3d to = r.point_enu_m - run[k].position_enu_m;
+          if (to.head<2>().norm() < 1e-6) return true;
+          const double bearing = HeadingDegFromEnuYaw(std::atan2(to.y(), to.x()));
+          if (std::abs(AngleDiffDeg(bearing, run[k].drone_heading_deg)) > selection_options.max_angle_deg) return true;
+        }
+        return false;
+      });
+    }
+    const Selection selection = SelectWaypoints(run, selection_options);
+    double deviation_m = selection.max_deviation_m;
+    mission.straight_deviation_reached_m = std::max(mission.straight_deviation_reached_m, deviation_m);
+    std::vector<double> run_damping(selection.sample_indices.size(), 0.0);
+    if (options.turn_model == TurnModel::kDjiCoordinatedTurn) {
+      std::vector<bool> must_stop(selection.sample_indices.size(), false);
+      must_stop.front() = must_stop.back() = true;
+      for (size_t k = 1; k < selection.sample_indices.size(); ++k) {
+        const TrajectorySample& a = run[selection.sample_indices[k - 1]];
+        const TrajectorySample& b = run[selection.sample_indices[k]];
+        const double speed = (b.position_enu_m - a.position_enu_m).norm() / (b.time_s - a.time_s);
+        if (speed < options.min_turn_speed_mps) must_stop[k] = true;
+      }
+      const TurnFit fit =
+          FitCoordinatedTurns(run, selection.sample_indices, must_stop, options.selection.max_deviation_m);
+      run_damping = fit.damping_m;
+      deviation_m = std::max(deviation_m, fit.max_deviation_m);
+    }
+    mission.max_deviation_reached_m = std::max(mission.max_deviation_reached_m, deviation_m);
+    double angle_deg = selection.max_angle_error_deg;
+    for (const RoiStretch& r : selection_options.rois) {
+      angle_deg = std::max(angle_deg, r.max_angle_deg);
+      RoiStretch global = r;
+      global.first_sample += first;
+      global.last_sample += first;
+      roi_stretches.push_back(global);
+    }
+    mission.max_angle_error_reached_deg = std::max(mission.max_angle_error_reached_deg, angle_deg);
     for (size_t k = 0; k < selection.sample_indices.size(); ++k) {
       idx.push_back(first + selection.sample_indices[k]);
       starts.push_back(k == 0);
       stops.push_back(k + 1 == selection.sample_indices.size());
       transits.push_back(k + 1 == selection.sample_indices.size() && last + 1 < static_cast<int>(samples.size()));
+      damping.push_back(run_damping[k]);
     }
   }
+  mission.turn_model = options.turn_model;
+  mission.roi_tracking = options.selection.roi_tracking;
   mission.cut_count = static_cast<int>(runs.size()) - 1;
   mission.transit_speed_mps = options.transit_speed_mps;
 
@@ -154,12 +218,7 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
     wp.sample_index = idx[w];
     wp.time_s = s.time_s;
     wp.position_enu_m = s.position_enu_m;
-    const Geodetic g = frame.GeodeticFromEnu(s.position_enu_m);
-    wp.lat_deg = g.lat_deg;
-    wp.lon_deg = g.lon_deg;
-    wp.ellipsoidal_height_m = g.height_m;
-    wp.amsl_m = geoid.AmslFromEllipsoidalM(g.lat_deg, g.lon_deg, g.height_m);
-    wp.relative_alt_m = wp.amsl_m - mission.home.amsl_m;
+    SetGeoPosition(frame, geoid, mission.home.amsl_m, s.position_enu_m, &wp);
     wp.heading_deg = s.drone_heading_deg;
     wp.gimbal_pitch_deg = s.gimbal_pitch_deg;
     wp.gimbal_yaw_deg = s.gimbal_yaw_deg;
@@ -169,7 +228,24 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
     wp.record_start = starts[w];
     wp.record_stop = stops[w];
     wp.transit_after = transits[w];
+    wp.turn_damping_m = damping[w];
     mission.waypoints.push_back(wp);
+  }
+  // Points of interest: georeferenced, and tied to the waypoints at their ends.
+  for (const RoiStretch& r : roi_stretches) {
+    MissionRoi roi;
+    roi.first_waypoint = static_cast<int>(std::find(idx.begin(), idx.end(), r.first_sample) - idx.begin());
+    roi.last_waypoint = static_cast<int>(std::find(idx.begin(), idx.end(), r.last_sample) - idx.begin());
+    CINEPATH_CHECK(roi.first_waypoint < roi.last_waypoint && roi.last_waypoint < static_cast<int>(idx.size()));
+    roi.start_time_s = samples[r.first_sample].time_s;
+    roi.end_time_s = samples[r.last_sample].time_s;
+    roi.point_enu_m = r.point_enu_m;
+    SetGeoPosition(frame, geoid, mission.home.amsl_m, r.point_enu_m, &roi);
+    roi.fit_angle_deg = r.max_angle_deg;
+    for (int w = roi.first_waypoint; w <= roi.last_waypoint; ++w) {
+      mission.waypoints[w].roi = static_cast<int>(mission.rois.size());
+    }
+    mission.rois.push_back(roi);
   }
   // Speed of the leg leaving each waypoint; the last keeps the previous leg's speed.
   auto& wps = mission.waypoints;

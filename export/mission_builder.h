@@ -31,10 +31,20 @@ struct MissionBuildOptions {
   std::optional<Geodetic> scene_origin;       // from --scene, used when the plan has none
   std::optional<HomeSpec> home;               // default: the origin
   bool absolute_altitudes = false;            // some requested output needs AMSL/ellipsoidal heights
-  SelectionOptions selection;
+  SelectionOptions selection;    // tolerances and roi_tracking (its `rois` are filled here)
   double transit_speed_mps = 5;  // legs across a "cut" between shots (recording off)
+  // Detect point-of-interest stretches (roi.h) when selection.roi_tracking != kNone.
+  double roi_min_duration_s = 2.0;
+  TurnModel turn_model = TurnModel::kStraight;
+  // kDjiCoordinatedTurn: the aircraft stops at a waypoint whose incoming leg is slower than this
+  // (WPML's speed minimum: the slow leg is flown fast, then hovers; dji_wpml.h).
+  double min_turn_speed_mps = 1.0;
 };
 
+// Points of interest (selection.roi_tracking != kNone) are detected per run (roi.h); with kHeading
+// only stretches whose plan heading points at the point within max_angle_deg are kept. kDjiCoordinatedTurn
+// then fits each waypoint's damping distance (dji_turns.h); max_deviation_reached_m is that of the
+// modelled path, straight_deviation_reached_m that of straight legs.
 // Waypoints are selected per continuous run of samples: a shot whose transition is "cut" starts a
 // new run (its first sample and the previous shot's last sample both become waypoints, joined by a
 // transit leg at `transit_speed_mps` with recording off).

@@ -21,6 +21,8 @@ const char* CommandName(int command) {
     case mav::kNavTakeoff: return "NAV_TAKEOFF";
     case mav::kConditionYaw: return "CONDITION_YAW";
     case mav::kDoChangeSpeed: return "DO_CHANGE_SPEED";
+    case mav::kDoSetRoiLocation: return "DO_SET_ROI_LOCATION";
+    case mav::kDoSetRoiNone: return "DO_SET_ROI_NONE";
     case mav::kDoDigicamConfigure: return "DO_DIGICAM_CONFIGURE";
     case mav::kSetCameraZoom: return "SET_CAMERA_ZOOM";
     case mav::kSetCameraFocus: return "SET_CAMERA_FOCUS";

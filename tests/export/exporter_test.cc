@@ -15,6 +15,34 @@ ExportOptions AllFormats() {
   return o;
 }
 
+TEST(Exporter, RoiAutoAndOffAndOneMissionPerFlightModel) {
+  const Trajectory t = testing::FlybyPlan();
+  ExportOptions options = AllFormats();
+  const ExportResult on = ExportMission(t, options);
+  // MAVLink + Litchi share one mission, WPML and MSDK have their own.
+  ASSERT_EQ(on.missions.size(), 3u);
+  EXPECT_EQ(on.reports[0].mission, on.reports[1].mission);
+  EXPECT_EQ(on.reports[0].mission, on.reports[5].mission);
+  EXPECT_NE(on.reports[0].mission, on.reports[3].mission);
+  EXPECT_NE(on.reports[0].mission, on.reports[4].mission);
+  EXPECT_EQ(on.missions[on.reports[0].mission].rois.size(), 1u);
+  EXPECT_EQ(on.missions[on.reports[3].mission].rois.size(), 1u);
+  EXPECT_TRUE(on.missions[on.reports[4].mission].rois.empty());
+  EXPECT_NE(on.files[0].contents.find("\"command\": 195"), std::string::npos);
+  EXPECT_NE(on.files[3].contents.find("towardPOI"), std::string::npos);
+  EXPECT_NE(on.files[5].contents.find(",1,"), std::string::npos);
+  const Json report = ReportJson(on, options);
+  EXPECT_EQ(report["points_of_interest"].size(), 1u);
+  EXPECT_EQ(report["outputs"][0]["waypoints"].get<int>(), 2);
+
+  options.roi = RoiMode::kOff;
+  const ExportResult off = ExportMission(t, options);
+  for (const Mission& m : off.missions) EXPECT_TRUE(m.rois.empty());
+  EXPECT_EQ(off.files[0].contents.find("\"command\": 195"), std::string::npos);
+  EXPECT_EQ(off.files[3].contents.find("towardPOI"), std::string::npos);
+  EXPECT_GT(off.missions[off.reports[0].mission].waypoints.size(), 2u);
+}
+
 TEST(Exporter, EveryFormatDeterministic) {
   const Trajectory t = testing::OrbitPlan();
   const ExportResult a = ExportMission(t, AllFormats());

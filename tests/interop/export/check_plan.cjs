@@ -19,6 +19,7 @@ for (const key of ['mission', 'geoFence', 'rallyPoints']) {
   if (typeof plan[key] !== 'object' || plan[key] === null || Array.isArray(plan[key])) errors.push(`${key} missing`)
 }
 const nav = new Set([16, 22])
+const positional = new Set([16, 22, 195])  // DO_SET_ROI_LOCATION carries a location: global frame
 plan.mission.items.forEach((item, i) => {
   const where = `items[${i}]`
   if (!Array.isArray(item.params) || item.params.length !== 7) errors.push(`${where}: params length`)
@@ -29,7 +30,8 @@ plan.mission.items.forEach((item, i) => {
     errors.push(`${where}: Altitude/AltitudeMode not numeric`)
   }
   if (![0, 2, 3].includes(item.frame)) errors.push(`${where}: frame ${item.frame} (emit 0/2/3 only)`)
-  if (!nav.has(item.command) && item.command !== 20 && item.frame !== 2) errors.push(`${where}: DO item not in frame 2`)
+  if (!positional.has(item.command) && item.command !== 20 && item.frame !== 2) errors.push(`${where}: DO item not in frame 2`)
+  if (item.command === 195 && ![0, 3].includes(item.frame)) errors.push(`${where}: DO_SET_ROI_LOCATION not in frame 0/3`)
   if (nav.has(item.command) && altKeys !== 3) errors.push(`${where}: NAV item without altitude keys`)
   if (altKeys === 3 && item.Altitude !== item.params[6]) errors.push(`${where}: Altitude != params[6]`)
   item.params.forEach((p, k) => { if (p === null) errors.push(`${where}: params[${k}] is null (NaN)`) })
