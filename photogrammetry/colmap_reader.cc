@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/text_tokens.h"
 #include "photogrammetry/camera_models.h"
 
 namespace cinepath::photogrammetry {
@@ -97,16 +98,9 @@ class TextLine {
  public:
   TextLine(std::string_view line, const std::string& source, size_t line_number)
       : source_(source), line_number_(line_number) {
-    size_t i = 0;
-    while (i < line.size()) {
-      while (i < line.size() && IsSpace(line[i])) ++i;
-      const size_t start = i;
-      while (i < line.size() && !IsSpace(line[i])) ++i;
-      if (i > start) tokens_.push_back(line.substr(start, i - start));
-    }
+    tokens_ = WhitespaceTokens(line);
     line_ = line;
   }
-  static bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
   size_t size() const { return tokens_.size(); }
   std::string_view token(size_t i) const { return tokens_[i]; }
@@ -146,7 +140,7 @@ class TextLine {
     Require(index, what);
     const size_t start = tokens_[index].data() - line_.data();
     std::string_view rest = line_.substr(start);
-    while (!rest.empty() && IsSpace(rest.back())) rest.remove_suffix(1);
+    while (!rest.empty() && IsTokenSpace(rest.back())) rest.remove_suffix(1);
     return std::string(rest);
   }
 
@@ -179,7 +173,7 @@ class LineReader {
 
 bool IsBlankOrComment(std::string_view line) {
   for (char c : line) {
-    if (TextLine::IsSpace(c)) continue;
+    if (IsTokenSpace(c)) continue;
     return c == '#';
   }
   return true;

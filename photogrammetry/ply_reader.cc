@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/text_tokens.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -54,19 +55,6 @@ struct Element {
   std::vector<Property> properties;
 };
 
-std::vector<std::string_view> Split(std::string_view line) {
-  std::vector<std::string_view> out;
-  size_t i = 0;
-  auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
-  while (i < line.size()) {
-    while (i < line.size() && space(line[i])) ++i;
-    const size_t s = i;
-    while (i < line.size() && !space(line[i])) ++i;
-    if (i > s) out.push_back(line.substr(s, i - s));
-  }
-  return out;
-}
-
 // Reads values one at a time, from ASCII tokens or binary bytes, knowing where it is.
 class ValueReader {
  public:
@@ -91,7 +79,7 @@ class ValueReader {
       const std::string_view line = body_.substr(pos_, end - pos_);
       pos_ = end + 1;
       ++line_;
-      tokens_ = Split(line);
+      tokens_ = WhitespaceTokens(line);
       if (!tokens_.empty()) break;  // tolerate blank lines
     }
   }
@@ -142,7 +130,7 @@ class ValueReader {
       while (pos_ < body_.size()) {
         size_t end = body_.find('\n', pos_);
         if (end == std::string_view::npos) end = body_.size();
-        const auto tokens = Split(body_.substr(pos_, end - pos_));
+        const auto tokens = WhitespaceTokens(body_.substr(pos_, end - pos_));
         pos_ = end + 1;
         ++line_;
         if (!tokens.empty()) Fail("unexpected data after the last element");
@@ -189,14 +177,14 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
     throw InputError(Located(source + ": line " + std::to_string(line_number), what));
   };
   std::string_view line;
-  if (!next_line(&line) || Split(line) != std::vector<std::string_view>{"ply"}) {
+  if (!next_line(&line) || WhitespaceTokens(line) != std::vector<std::string_view>{"ply"}) {
     throw InputError(Located(source + ": line 1", "not a PLY file (no 'ply' magic line)"));
   }
   std::optional<Format> format;
   std::vector<Element> elements;
   bool ended = false;
   while (next_line(&line)) {
-    const auto t = Split(line);
+    const auto t = WhitespaceTokens(line);
     if (t.empty()) continue;
     if (t[0] == "comment" || t[0] == "obj_info") continue;
     if (t[0] == "format") {

@@ -7,26 +7,9 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/text_tokens.h"
 
 namespace cinepath::photogrammetry {
-namespace {
-
-bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-std::vector<std::string_view> Tokens(std::string_view line) {
-  std::vector<std::string_view> tokens;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && IsSpace(line[i])) ++i;
-    const size_t start = i;
-    while (i < line.size() && !IsSpace(line[i])) ++i;
-    if (i > start) tokens.push_back(line.substr(start, i - start));
-  }
-  return tokens;
-}
-
-}  // namespace
-
 std::vector<ImageReference> ParseReferences(std::string_view text, const std::string& source) {
   std::vector<ImageReference> refs;
   std::map<std::string, std::string> seen;
@@ -37,7 +20,7 @@ std::vector<ImageReference> ParseReferences(std::string_view text, const std::st
     const std::string_view line = text.substr(pos, end - pos);
     pos = end + 1;
     ++line_number;
-    const auto tokens = Tokens(line);
+    const auto tokens = WhitespaceTokens(line);
     if (tokens.empty() || tokens[0].front() == '#') {
       if (end == text.size()) break;
       continue;
