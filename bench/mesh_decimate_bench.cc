@@ -7,6 +7,13 @@
 //
 //   mesh_decimate_bench [--faces N] [--ratio R] [--samples S] [--methods a,b,...]
 //                       [--presets] [--export-raw FILE] [--import-raw FILE --label NAME]
+//                       [--end-to-end] [--defects] [--threads T]
+//
+// --end-to-end: clean → decimate (the first of --methods) → Hausdorff, as `cinepath mesh` runs
+// them, each step and the totals in wall and CPU seconds, with input faces per second.
+// --defects: punch holes, add floating blobs, duplicate vertices/faces and degenerate faces into
+// the terrain, so that cleaning has work to do. --threads: cap TBB's threads (results are the same
+// at any count; the JSON output can be compared).
 //
 // The mesh: 2.5D Delaunay (surface_height_field) of jittered points over fractal rolling terrain
 // with rectangular "buildings" and 2 cm measurement noise — irregular triangles and sharp walls
@@ -15,13 +22,18 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <ctime>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_invoke.h>
 
 #include "core/json.h"
 #include "photogrammetry/mesh_clean.h"
@@ -105,6 +117,94 @@ pg::TriangleMesh MakeTerrainMesh(int64_t target_faces) {
   return pg::HeightFieldSurface(cloud, options, nullptr);
 }
 
+// Defects a photogrammetry mesh has: small holes (faces dropped in 1–2 m discs), floating blobs,
+// duplicated vertices and faces, zero-area faces. Deterministic.
+void AddDefects(pg::TriangleMesh& mesh) {
+  std::mt19937_64 rng(7);
+  Eigen::Vector3d lo = mesh.vertices_m.front(), hi = lo;
+  for (const auto& v : mesh.vertices_m) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  // Holes: 1 per 400 m² (in the interior), radius 0.6–1.2 m.
+  const double area = (hi.x() - lo.x()) * (hi.y() - lo.y());
+  const int holes = static_cast<int>(area / 400.0);
+  std::uniform_real_distribution<double> ux(lo.x() + 5, hi.x() - 5), uy(lo.y() + 5, hi.y() - 5);
+  std::uniform_real_distribution<double> ur(0.6, 1.2);
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> radii;
+  for (int h = 0; h < holes; ++h) {
+    centres.emplace_back(ux(rng), uy(rng), 0);
+    radii.push_back(ur(rng));
+  }
+  const double cell = 20.0;
+  const int gx = static_cast<int>((hi.x() - lo.x()) / cell) + 1;
+  std::vector<std::vector<int>> grid(static_cast<size_t>(gx) * (static_cast<int>((hi.y() - lo.y()) / cell) + 1));
+  for (int h = 0; h < holes; ++h) {
+    grid[static_cast<int>((centres[h].y() - lo.y()) / cell) * gx +
+         static_cast<int>((centres[h].x() - lo.x()) / cell)].push_back(h);
+  }
+  std::vector<std::array<uint32_t, 3>> kept;
+  kept.reserve(mesh.faces.size());
+  for (const auto& f : mesh.faces) {
+    const Eigen::Vector3d c = (mesh.vertices_m[f[0]] + mesh.vertices_m[f[1]] + mesh.vertices_m[f[2]]) / 3.0;
+    const int cx = static_cast<int>((c.x() - lo.x()) / cell), cy = static_cast<int>((c.y() - lo.y()) / cell);
+    bool in_hole = false;
+    for (int dy = -1; dy <= 1 && !in_hole; ++dy) {
+      for (int dx = -1; dx <= 1 && !in_hole; ++dx) {
+        const int x = cx + dx, y = cy + dy;
+        if (x < 0 || y < 0 || x >= gx || static_cast<size_t>(y * gx + x) >= grid.size()) continue;
+        for (int h : grid[y * gx + x]) {
+          if ((c.head<2>() - centres[h].head<2>()).norm() < radii[h]) in_hole = true;
+        }
+      }
+    }
+    if (!in_hole) kept.push_back(f);
+  }
+  mesh.faces.swap(kept);
+  // Floating blobs: 1 per 2,000 m², 3×3-vertex patches 5–15 m above the ground.
+  const int blobs = static_cast<int>(area / 2000.0);
+  std::uniform_real_distribution<double> uz(5, 15);
+  for (int b = 0; b < blobs; ++b) {
+    const double x0 = ux(rng), y0 = uy(rng), z0 = uz(rng) + TerrainM(x0, y0);
+    const uint32_t base = static_cast<uint32_t>(mesh.vertices_m.size());
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        mesh.vertices_m.emplace_back(x0 + 0.3 * i, y0 + 0.3 * j, z0 + 0.05 * i * j);
+        if (mesh.has_colors()) mesh.colors_rgb.push_back({200, 200, 200});
+      }
+    }
+    for (uint32_t j = 0; j < 2; ++j) {
+      for (uint32_t i = 0; i < 2; ++i) {
+        const uint32_t a = base + j * 3 + i;
+        mesh.faces.push_back({a, a + 1, a + 4});
+        mesh.faces.push_back({a, a + 4, a + 3});
+      }
+    }
+  }
+  // Duplicates: every 1,000th face repeated (reversed), every 1,000th vertex copied and used by
+  // one of its faces; a zero-area face every 5,000 faces.
+  const size_t faces = mesh.faces.size();
+  std::vector<int64_t> copy_of(mesh.vertices_m.size(), -1);
+  for (size_t i = 0; i < faces; i += 1000) {
+    const auto f = mesh.faces[i];
+    mesh.faces.push_back({f[0], f[2], f[1]});
+  }
+  for (size_t i = 500; i < faces; i += 1000) {
+    auto& f = mesh.faces[i];
+    if (copy_of[f[0]] < 0) {
+      copy_of[f[0]] = static_cast<int64_t>(mesh.vertices_m.size());
+      mesh.vertices_m.push_back(mesh.vertices_m[f[0]]);
+      if (mesh.has_colors()) mesh.colors_rgb.push_back(mesh.colors_rgb[f[0]]);
+    }
+    f[0] = static_cast<uint32_t>(copy_of[f[0]]);
+  }
+  for (size_t i = 250; i < faces; i += 5000) {
+    const auto f = mesh.faces[i];
+    mesh.faces.push_back({f[0], f[1], f[0]});
+  }
+}
+
 void WriteRaw(const pg::TriangleMesh& mesh, const std::string& path) {
   std::ofstream out(path, std::ios::binary);
   const uint64_t nv = mesh.num_vertices(), nf = mesh.num_faces();
@@ -131,6 +231,20 @@ pg::TriangleMesh ReadRaw(const std::string& path) {
   return mesh;
 }
 
+// FNV-1a over the vertex bits and the faces: equal digests = byte-identical meshes.
+std::string Digest(const pg::TriangleMesh& mesh) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  auto add = [&](const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+  };
+  for (const auto& v : mesh.vertices_m) add(v.data(), 24);
+  for (const auto& f : mesh.faces) add(f.data(), 12);
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
 std::vector<std::string> Split(const std::string& text) {
   std::vector<std::string> parts;
   std::stringstream stream(text);
@@ -146,7 +260,8 @@ int main(int argc, char** argv) {
   int64_t samples = 1000000;
   std::string methods = "meshoptimizer,meshoptimizer_partitioned,cgal_garland_heckbert_probabilistic,"
                         "cgal_garland_heckbert,openmesh_quadric";
-  bool presets = false;
+  bool presets = false, end_to_end = false, defects = false;
+  int threads = 0;
   std::string export_raw, import_raw, label = "external";
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -156,6 +271,9 @@ int main(int argc, char** argv) {
     else if (arg == "--samples") samples = std::stoll(next());
     else if (arg == "--methods") methods = next();
     else if (arg == "--presets") presets = true;
+    else if (arg == "--end-to-end") end_to_end = true;
+    else if (arg == "--defects") defects = true;
+    else if (arg == "--threads") threads = std::stoi(next());
     else if (arg == "--export-raw") export_raw = next();
     else if (arg == "--import-raw") import_raw = next();
     else if (arg == "--label") label = next();
@@ -165,10 +283,21 @@ int main(int argc, char** argv) {
     }
   }
 
+  std::unique_ptr<tbb::global_control> thread_cap;
+  if (threads > 0) {
+    thread_cap = std::make_unique<tbb::global_control>(
+        tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  }
   Json result;
   auto start = std::chrono::steady_clock::now();
-  const pg::TriangleMesh input = MakeTerrainMesh(faces);
+  const pg::TriangleMesh input = [&] {
+    pg::TriangleMesh mesh = MakeTerrainMesh(faces);
+    if (defects) AddDefects(mesh);
+    return mesh;
+  }();
   result["input"] = {{"faces", input.num_faces()},
+                     {"defects", defects},
+                     {"threads_cap", threads},
                      {"vertices", input.num_vertices()},
                      {"generate_s", Seconds(start)}};
   std::fprintf(stderr, "input: %zu faces, %zu vertices\n", input.num_faces(),
@@ -196,6 +325,81 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  if (end_to_end) {
+    const std::vector<std::string> names = Split(methods);
+    pg::DecimateOptions options;
+    options.method = pg::ParseDecimationMethod(
+        names.empty() ? std::string("meshoptimizer_partitioned") : names.front(), "--methods");
+    options.target_faces = target;
+    Json e2e;
+    start = std::chrono::steady_clock::now();
+    double cpu0 = CpuSeconds();
+    pg::MeshCleanReport report;
+    const pg::TriangleMesh cleaned = pg::CleanMesh(input, pg::MeshCleanOptions{}, &report);
+    const double clean_s = Seconds(start), clean_cpu = CpuSeconds() - cpu0;
+    start = std::chrono::steady_clock::now();
+    cpu0 = CpuSeconds();
+    const pg::TriangleMesh out = pg::DecimateMesh(cleaned, options);
+    const double decimate_s = Seconds(start), decimate_cpu = CpuSeconds() - cpu0;
+    start = std::chrono::steady_clock::now();
+    cpu0 = CpuSeconds();
+    std::unique_ptr<pg::MeshDistanceIndex> cleaned_index_ptr, out_index_ptr;
+    tbb::parallel_invoke(
+        [&] { cleaned_index_ptr = std::make_unique<pg::MeshDistanceIndex>(cleaned, "cleaned"); },
+        [&] { out_index_ptr = std::make_unique<pg::MeshDistanceIndex>(out, "decimated"); });
+    const pg::MeshDistanceIndex& cleaned_index = *cleaned_index_ptr;
+    const pg::MeshDistanceIndex& out_index = *out_index_ptr;
+    const double index_s = Seconds(start), index_cpu = CpuSeconds() - cpu0;
+    auto phase = std::chrono::steady_clock::now();
+    double phase_cpu = CpuSeconds();
+    pg::HausdorffDistance d;
+    d.a_to_b_m = cleaned_index.MaxDistanceTo(out_index, hausdorff, &d.samples_a);
+    const double in_to_out_s = Seconds(phase), in_to_out_cpu = CpuSeconds() - phase_cpu;
+    phase = std::chrono::steady_clock::now();
+    phase_cpu = CpuSeconds();
+    d.b_to_a_m = out_index.MaxDistanceTo(cleaned_index, hausdorff, &d.samples_b);
+    const double out_to_in_s = Seconds(phase), out_to_in_cpu = CpuSeconds() - phase_cpu;
+    d.symmetric_m = std::max(d.a_to_b_m, d.b_to_a_m);
+    const double hausdorff_s = Seconds(start), hausdorff_cpu = CpuSeconds() - cpu0;
+    std::fprintf(stderr,
+                 "hausdorff phases: trees %.2f s (cpu %.2f), input->output %.2f s (cpu %.2f), "
+                 "output->input %.2f s (cpu %.2f)\n",
+                 index_s, index_cpu, in_to_out_s, in_to_out_cpu, out_to_in_s, out_to_in_cpu);
+    const double n = static_cast<double>(input.num_faces());
+    e2e["method"] = pg::DecimationMethodName(options.method);
+    e2e["clean"] = {{"seconds", clean_s}, {"cpu_seconds", clean_cpu}, {"report", report.ToJson()},
+                    {"digest", Digest(cleaned)}};
+    e2e["decimate"] = {{"seconds", decimate_s}, {"cpu_seconds", decimate_cpu},
+                       {"faces_out", out.num_faces()}, {"digest", Digest(out)}};
+    e2e["hausdorff"] = {{"seconds", hausdorff_s},
+                        {"cpu_seconds", hausdorff_cpu},
+                        {"hausdorff_m", d.symmetric_m},
+                        {"in_to_out_m", d.a_to_b_m},
+                        {"out_to_in_m", d.b_to_a_m},
+                        {"points_measured", d.samples_a + d.samples_b},
+                        {"trees_seconds", index_s},
+                        {"trees_cpu_seconds", index_cpu},
+                        {"in_to_out_cpu_seconds", in_to_out_cpu},
+                        {"out_to_in_cpu_seconds", out_to_in_cpu}};
+    const double cd = clean_s + decimate_s, cd_cpu = clean_cpu + decimate_cpu;
+    e2e["clean_decimate"] = {{"seconds", cd},
+                             {"cpu_seconds", cd_cpu},
+                             {"input_faces_per_s", n / cd}};
+    e2e["clean_decimate_hausdorff"] = {{"seconds", cd + hausdorff_s},
+                                       {"cpu_seconds", cd_cpu + hausdorff_cpu},
+                                       {"input_faces_per_s", n / (cd + hausdorff_s)}};
+    std::fprintf(stderr,
+                 "end-to-end %s: clean %.2f s (cpu %.2f)  decimate %.2f s (cpu %.2f) -> %zu faces  "
+                 "hausdorff %.4f m %.2f s (cpu %.2f)  clean+decimate %.2f M faces/s, with hausdorff "
+                 "%.2f M faces/s\n",
+                 e2e["method"].get<std::string>().c_str(), clean_s, clean_cpu, decimate_s,
+                 decimate_cpu, out.num_faces(), d.symmetric_m, hausdorff_s, hausdorff_cpu,
+                 n / cd / 1e6, n / (cd + hausdorff_s) / 1e6);
+    result["end_to_end"] = e2e;
+    std::printf("%s", cinepath::DumpJson(result).c_str());
+    return 0;
+  }
+
   {
     start = std::chrono::steady_clock::now();
     const double cpu0 = CpuSeconds();
@@ -210,6 +414,7 @@ int main(int argc, char** argv) {
   }
 
   Json rows = Json::array();
+  std::unique_ptr<pg::MeshDistanceIndex> input_index;  // built once, for every method
   for (const std::string& name : Split(methods)) {
     pg::DecimateOptions options;
     options.method = pg::ParseDecimationMethod(name, "--methods");
@@ -220,7 +425,9 @@ int main(int argc, char** argv) {
     const double s = Seconds(start);
     const double cpu = CpuSeconds() - cpu0;
     start = std::chrono::steady_clock::now();
-    const pg::HausdorffDistance d = pg::ApproximateHausdorff(input, out, hausdorff);
+    if (!input_index) input_index = std::make_unique<pg::MeshDistanceIndex>(input, "input");
+    const pg::HausdorffDistance d =
+        pg::ApproximateHausdorff(*input_index, pg::MeshDistanceIndex(out, "output"), hausdorff);
     const double hs = Seconds(start);
     std::fprintf(stderr, "%-36s %8.2f s (cpu %.2f s) %9zu faces  hausdorff %.4f m (%.1f s)\n",
                  name.c_str(), s, cpu, out.num_faces(), d.symmetric_m, hs);

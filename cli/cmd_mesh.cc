@@ -1,6 +1,6 @@
 // cinepath mesh: COLMAP reconstruction (+ GPS references) -> cleaned, georeferenced mesh.
 //   reads   COLMAP sparse model (text or binary), optional dense PLY points or a PLY mesh in the same
-//           frame, references (file or EXIF), EXIF focal lengths
+//           frame, references (file or EXIF), ground control points (--gcp), EXIF focal lengths
 //   writes  OUTDIR/scene.glb and OUTDIR/scene.json (origin, enu_from_colmap, georeferencing report,
 //           surface report), both or neither.
 #include <algorithm>
@@ -24,6 +24,7 @@
 #include "photogrammetry/colmap_reader.h"
 #include "photogrammetry/colmap_runner.h"
 #include "photogrammetry/exif_gps.h"
+#include "photogrammetry/gcp_file.h"
 #include "photogrammetry/georeference_model.h"
 #include "photogrammetry/ply_reader.h"
 #include "photogrammetry/refs_file.h"
@@ -56,6 +57,14 @@ class MeshCommand : public Command {
                    "Where COLMAP runs for photos-only input (default OUTDIR/colmap; reused when it holds a model)");
     app.add_option("--refs", refs_path_,
                    "References: 'image_name lat lon alt' per line (COLMAP model_aligner format; '#' comments)");
+    app.add_option("--gcp", gcp_path_,
+                   "Ground control points, OpenDroneMap gcp_list.txt format (see docs/mesh.md); alone or with "
+                   "camera references");
+    app.add_option("--gcp-altitude-datum", gcp_altitude_datum_,
+                   "GCP heights are WGS84 ellipsoidal (default) or above mean sea level (EGM96)")
+        ->check(CLI::IsMember({"ellipsoidal", "amsl"}));
+    app.add_option("--gcp-sigma-m", gcp_sigma_m_, "Bundle adjustment: GCP position sigma (m)")
+        ->check(CLI::PositiveNumber);
     app.add_option("--images", images_dir_,
                    "Photos folder: EXIF GPS (when no --refs) and EXIF focal length (prior for the bundle "
                    "adjustment). Default: an images/ folder next to or above the model, when there is one");
@@ -83,6 +92,7 @@ class MeshCommand : public Command {
     app.add_option("--surface", surface_, "auto | height-field | poisson");
     app.add_option("--target-faces", target_faces_, "Simplify to at most N faces")->check(CLI::PositiveNumber);
     app.add_option("--max-error-m", max_error_m_, "Simplify within this Hausdorff error (m)")->check(CLI::PositiveNumber);
+    app.add_option("--remesh-edge-m", remesh_edge_m_, "After simplifying, remesh isotropically to edges of about L m")->check(CLI::PositiveNumber);
     app.add_flag("--draco", draco_, "Compress the GLB with KHR_draco_mesh_compression");
     app.add_flag("--no-timestamp", no_timestamp_, "Leave wall-clock times out of scene.json (byte-identical runs)");
     app.add_option("-o,--output", output_dir_, "Output folder (scene.glb, scene.json)")->required();
@@ -113,13 +123,23 @@ class MeshCommand : public Command {
     if (!origin_.empty()) options.origin = ParseOrigin(origin_);
     options.bundle_adjust = !no_bundle_adjust_;
     if (gps_sigma_m_) options.ba.gps_sigma_horizontal_m = options.ba.gps_sigma_vertical_m = *gps_sigma_m_;
+    options.gcp_altitude_datum = gcp_altitude_datum_ == "amsl" ? AltitudeDatum::kAmslEgm96 : AltitudeDatum::kEllipsoidal;
+    options.gcp_sigma_horizontal_m = options.gcp_sigma_vertical_m = gcp_sigma_m_;
+    std::optional<GcpFile> gcps;
+    if (!gcp_path_.empty()) {
+      gcps = ReadGcpFile(gcp_path_);
+      inputs.push_back(gcp_path_);
+    }
 
     // Images: given, or discovered next to the model (COLMAP workspaces keep images/ at their root).
     std::string images_dir = images_dir_;
     std::string images_note = images_dir_.empty() ? "" : "given (--images)";
     if (images_dir.empty()) {
-      const fs::path m = fs::absolute(colmap_dir_);
-      for (const fs::path& candidate : {m / "images", m.parent_path() / "images", m.parent_path().parent_path() / "images"}) {
+      // Paths stay as the user gave them (relative ones too), so that messages and scene.json do not
+      // depend on where the command ran.
+      const fs::path m = fs::path(colmap_dir_).lexically_normal();
+      for (const fs::path& candidate : {(m / "images").lexically_normal(), (m / ".." / "images").lexically_normal(),
+                                        (m / ".." / ".." / "images").lexically_normal()}) {
         if (fs::is_directory(candidate)) {
           images_dir = candidate.string();
           images_note = "found next to the model";
@@ -145,8 +165,8 @@ class MeshCommand : public Command {
       refs = ReferencesFromExif(images_dir, exif);
       refs_source = "EXIF GPS of " + images_dir;
     }
-    if (refs.empty()) {
-      throw InputError("no references to georeference with: give --refs FILE, or --images DIR with GPS EXIF" +
+    if (refs.empty() && !gcps) {
+      throw InputError("no references to georeference with: give --refs FILE, --images DIR with GPS EXIF, or --gcp FILE" +
                        std::string(images_dir.empty() ? "" : " (" + images_dir + " has no GPS EXIF)"));
     }
 
@@ -169,7 +189,7 @@ class MeshCommand : public Command {
       }
     }
 
-    const ModelGeoreference geo = GeoreferenceModel(model, refs, options);
+    const ModelGeoreference geo = GeoreferenceModel(model, refs, gcps ? &*gcps : nullptr, options);
     for (const std::string& w : geo.warnings) std::cerr << "cinepath mesh: warning: " << w << "\n";
 
     // Surface.
@@ -178,6 +198,7 @@ class MeshCommand : public Command {
     surface.method = ParseSurfaceMethod(surface_);
     surface.target_faces = target_faces_;
     surface.max_error_m = max_error_m_;
+    surface.remesh_edge_m = remesh_edge_m_;
     surface.draco = draco_;
     surface.report_times = !no_timestamp_;
     Json extras = Json::object();
@@ -224,7 +245,8 @@ class MeshCommand : public Command {
     scene["frame"] = "ENU metres about origin; scene.glb stores (e, n, u) as glTF (e, u, -n)";
     Json geo_json = GeoreferenceJson(geo, options, !no_timestamp_);
     for (auto it = geo_json.begin(); it != geo_json.end(); ++it) scene[it.key()] = it.value();
-    scene["georeferencing"]["references_source"] = refs_source;
+    scene["georeferencing"]["references_source"] = refs_source.empty() ? Json(nullptr) : Json(refs_source);
+    if (gcps) scene["georeferencing"]["gcp_source"] = gcp_path_;
     scene["georeferencing"]["images"] = images_dir.empty() ? Json(nullptr) : Json(images_dir + " (" + images_note + ")");
     scene["input"] = {{"colmap", colmap_dir_},
                       {"colmap_format", format == ColmapFormat::kBinary ? "binary" : "text"},
@@ -247,6 +269,8 @@ class MeshCommand : public Command {
 
  private:
   std::string colmap_dir_, workspace_, refs_path_, images_dir_, points_path_, mesh_path_;
+  std::string gcp_path_, gcp_altitude_datum_ = "ellipsoidal";
+  double gcp_sigma_m_ = 0.05;
   std::string altitude_datum_ = "ellipsoidal";
   std::string origin_;
   RobustFitOptions fit_;
@@ -255,6 +279,7 @@ class MeshCommand : public Command {
   std::string quality_ = "standard", surface_ = "auto";
   std::optional<int64_t> target_faces_;
   std::optional<double> max_error_m_;
+  std::optional<double> remesh_edge_m_;
   bool draco_ = false, no_timestamp_ = false;
   std::string output_dir_;
   CommonOptions common_;

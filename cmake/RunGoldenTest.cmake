@@ -18,8 +18,19 @@ if(EXISTS ${CASE_DIR}/exit_code)
   string(STRIP "${expected_rc}" expected_rc)
 endif()
 
+# Optional `workdir` file: the working directory (tokens as in args; default the output folder). With
+# @SRC@ there, a case gives its inputs relative to the repository root, as a user would type them, and
+# messages and outputs that name those paths do not depend on where the tree is checked out.
+set(workdir ${OUT_DIR})
+if(EXISTS ${CASE_DIR}/workdir)
+  file(STRINGS ${CASE_DIR}/workdir workdir LIMIT_COUNT 1)
+  string(REPLACE "@OUT@" "${OUT_DIR}" workdir "${workdir}")
+  string(REPLACE "@IN@" "${CASE_DIR}" workdir "${workdir}")
+  string(REPLACE "@SRC@" "${CMAKE_CURRENT_LIST_DIR}/.." workdir "${workdir}")
+endif()
+
 execute_process(COMMAND ${CINEPATH} ${args}
-  WORKING_DIRECTORY ${OUT_DIR}
+  WORKING_DIRECTORY ${workdir}
   RESULT_VARIABLE rc
   OUTPUT_FILE ${OUT_DIR}/.stdout
   ERROR_FILE ${OUT_DIR}/.stderr)

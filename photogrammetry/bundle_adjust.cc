@@ -49,7 +49,8 @@ struct ReprojectionError {
   Eigen::Vector2d observed;
 };
 
-// GPS prior on a camera centre: ((c - c_gps).x / sh, (c - c_gps).y / sh, (c - c_gps).z / sv).
+// Position prior on a camera centre (GPS) or a control point (survey):
+// ((c - c_gps).x / sh, (c - c_gps).y / sh, (c - c_gps).z / sv).
 struct CenterPriorError {
   template <typename T>
   bool operator()(const T* c, T* residual) const {
@@ -97,6 +98,9 @@ struct State {
   std::vector<uint64_t> point_ids;
   std::vector<std::array<double, 3>> points;
   std::vector<Observation> observations;
+  // Control points: points[control_first + k] has the prior control[k].
+  size_t control_first = 0;
+  std::vector<ControlPointPrior> control;
 };
 
 enum class FocalMode { kPrior, kFixed };
@@ -138,6 +142,11 @@ SolveResult Solve(State& s, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m
           CenterPriorError::Create(it->second, options.gps_sigma_horizontal_m, options.gps_sigma_vertical_m),
           nullptr, s.centers[i].data());
     }
+  }
+  for (size_t k = 0; k < s.control.size(); ++k) {
+    const ControlPointPrior& c = s.control[k];
+    problem.AddResidualBlock(CenterPriorError::Create(c.target_enu_m, c.sigma_horizontal_m, c.sigma_vertical_m),
+                             nullptr, s.points[s.control_first + k].data());
   }
   for (size_t cam = 0; cam < s.camera_ids.size(); ++cam) {
     double* k = s.intrinsics[cam].data();
@@ -204,7 +213,7 @@ double RmsReprojection(const State& s) {
   return s.observations.empty() ? 0 : std::sqrt(sum / static_cast<double>(s.observations.size()));
 }
 
-State StateFromModel(const ColmapModel& model) {
+State StateFromModel(const ColmapModel& model, const std::vector<ControlPointPrior>& control = {}) {
   State s;
   std::map<uint32_t, size_t> cam_index, image_index;
   for (const auto& [id, cam] : model.cameras) {
@@ -239,6 +248,13 @@ State StateFromModel(const ColmapModel& model) {
     s.point_ids.push_back(id);
     s.points.push_back({point.xyz.x(), point.xyz.y(), point.xyz.z()});
     s.observations.insert(s.observations.end(), obs.begin(), obs.end());
+  }
+  s.control_first = s.points.size();
+  for (const ControlPointPrior& c : control) {
+    const size_t pi = s.points.size();
+    s.points.push_back({c.initial_enu_m.x(), c.initial_enu_m.y(), c.initial_enu_m.z()});
+    for (const auto& [image_id, pixel] : c.observations) s.observations.push_back({image_index.at(image_id), pi, pixel});
+    s.control.push_back(c);
   }
   return s;
 }
@@ -290,7 +306,9 @@ double RmsReprojectionErrorPx(const ColmapModel& model) { return RmsReprojection
 
 BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
                                    const std::map<uint32_t, double>& focal_prior_px,
-                                   const BundleAdjustOptions& options) {
+                                   const BundleAdjustOptions& options,
+                                   const std::vector<ControlPointPrior>& control_points,
+                                   std::vector<Eigen::Vector3d>* control_points_enu_m) {
   const auto start = std::chrono::steady_clock::now();
   const bool verbose = std::getenv("CINEPATH_BA_VERBOSE") != nullptr;
   auto log = [&](const char* what, const SolveResult& r) {
@@ -299,13 +317,14 @@ BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), r.reprojection_cost);
     }
   };
-  State state = StateFromModel(model_enu);
+  State state = StateFromModel(model_enu, control_points);
   if (state.observations.empty()) {
     throw InfeasibleError("bundle adjustment: no 3D point is seen by two images in front of them");
   }
   BundleAdjustReport report;
   report.num_images = static_cast<int>(state.image_ids.size());
-  report.num_points = static_cast<int>(state.points.size());
+  report.num_points = static_cast<int>(state.control_first);
+  report.num_control_points = static_cast<int>(state.control.size());
   report.num_observations = static_cast<int>(state.observations.size());
   for (uint32_t id : state.image_ids) report.num_gps_priors += gps_enu_m.contains(id) ? 1 : 0;
   report.rms_reprojection_before_px = RmsReprojection(state);
@@ -422,6 +441,13 @@ BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32
     report.focal.push_back(f);
   }
   StateToModel(state, model_enu);
+  if (control_points_enu_m) {
+    control_points_enu_m->clear();
+    for (size_t k = 0; k < state.control.size(); ++k) {
+      const auto& p = state.points[state.control_first + k];
+      control_points_enu_m->push_back({p[0], p[1], p[2]});
+    }
+  }
   report.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

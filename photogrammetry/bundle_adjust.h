@@ -3,7 +3,10 @@
 //     through the camera's own COLMAP model (camera_models.h);
 //   * GPS camera centres: (C - C_gps) / sigma, horizontal and vertical sigmas in metres;
 //   * focal length: (f - f_prior) / (ratio * f_prior) where a prior is given (EXIF FocalLength and the
-//     sensor width, see exif_gps.h).
+//     sensor width, see exif_gps.h);
+//   * ground control points (gcp_file.h): each is an extra point with its pixel observations
+//     (reprojection residuals like any point) and a position prior (X - X_surveyed) / sigma, horizontal
+//     and vertical sigmas in metres. With >= 3 of them they fix the gauge on their own (no GPS needed).
 // Unknowns: each image's rotation (cam_from_enu, unit quaternion) and centre C (ENU m), each point, each
 // camera's focal length(s) and distortion terms (the principal point stays fixed).
 //
@@ -34,6 +37,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -68,6 +72,16 @@ struct BundleAdjustOptions {
   bool profile_focal = true;
 };
 
+// A ground control point for the adjustment: observations (COLMAP pixel convention), a start position
+// and the surveyed position, both in ENU metres.
+struct ControlPointPrior {
+  std::vector<std::pair<uint32_t, Eigen::Vector2d>> observations;  // (image id, pixel)
+  Eigen::Vector3d initial_enu_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d target_enu_m = Eigen::Vector3d::Zero();
+  double sigma_horizontal_m = 0.05;
+  double sigma_vertical_m = 0.05;
+};
+
 struct FocalReport {
   uint32_t camera_id = 0;
   double before_px = 0;  // mean of fx, fy
@@ -90,6 +104,7 @@ struct BundleAdjustReport {
   int num_points = 0;
   int num_observations = 0;
   int num_gps_priors = 0;
+  int num_control_points = 0;
   int iterations = 0;
   bool converged = false;
   double rms_reprojection_before_px = 0;
@@ -99,11 +114,14 @@ struct BundleAdjustReport {
 };
 
 // Adjusts `model_enu` in place (poses, points, intrinsics). `gps_enu_m` maps image ids to their
-// reference centres in ENU; `focal_prior_px` maps camera ids to prior focal lengths.
+// reference centres in ENU; `focal_prior_px` maps camera ids to prior focal lengths. Control points
+// (optional) join the problem; their adjusted positions go to `control_points_enu_m` when given.
 // InfeasibleError when the problem has no observations.
 BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
                                    const std::map<uint32_t, double>& focal_prior_px,
-                                   const BundleAdjustOptions& options);
+                                   const BundleAdjustOptions& options,
+                                   const std::vector<ControlPointPrior>& control_points = {},
+                                   std::vector<Eigen::Vector3d>* control_points_enu_m = nullptr);
 
 // RMS reprojection error over every track observation (pixels), through each camera's model.
 double RmsReprojectionErrorPx(const ColmapModel& model);

@@ -14,6 +14,21 @@
 //      known, a warning says so (and by how much the heights may be off).
 //   5. Refit: the similarity from the adjusted camera centres to the references (normally close to the
 //      identity) is applied; its residuals are the final report.
+//
+// Ground control points (gcp_file.h), alone or with camera references:
+//   * each GCP is triangulated in the COLMAP frame from its pixel observations (triangulation.h); one
+//     with fewer than 2 usable observations, a weak triangulation angle or no elevation is reported
+//     and skipped;
+//   * the similarity (step 3) is fitted to the GCPs alone when 3 or more are usable (survey points are
+//     centimetre-accurate, camera GPS metre-accurate: mixing them unweighted would let a biased GPS win
+//     the RANSAC vote); with 1 or 2 usable GCPs they join the camera references as extra pairs. Camera
+//     references are still matched and their residuals against the result reported;
+//   * in the bundle adjustment (step 4) every usable GCP is a point with its observations and a
+//     position prior (gcp_sigma_*); camera GPS priors are kept only for references within the inlier
+//     threshold of the GCP-defined frame;
+//   * the refit (step 5) uses the same pairs as step 3; each GCP is then re-triangulated in the final
+//     model and its residual against the surveyed position reported (a check independent of its prior).
+// The origin defaults to the mean of the matched camera references, or of the usable GCPs without them.
 #pragma once
 
 #include <map>
@@ -25,9 +40,11 @@
 #include "core/json.h"
 #include "photogrammetry/bundle_adjust.h"
 #include "photogrammetry/colmap_model.h"
+#include "photogrammetry/gcp_file.h"
 #include "photogrammetry/georeference.h"
 #include "photogrammetry/point_cloud.h"
 #include "photogrammetry/refs_file.h"
+#include "photogrammetry/triangulation.h"
 
 namespace cinepath::photogrammetry {
 
@@ -45,6 +62,25 @@ struct ModelGeoreferenceOptions {
   BundleAdjustOptions ba;
   std::map<uint32_t, double> focal_prior_px;  // camera id -> prior focal length (px)
   std::string focal_prior_source;             // e.g. "EXIF FocalLength 3.61 mm, sensor 6.317 mm"
+  // Ground control points.
+  AltitudeDatum gcp_altitude_datum = AltitudeDatum::kEllipsoidal;
+  TriangulationOptions triangulation;
+  double gcp_sigma_horizontal_m = 0.05;  // position prior in the bundle adjustment
+  double gcp_sigma_vertical_m = 0.05;
+};
+
+struct GcpUse {
+  GroundControlPoint gcp;
+  std::vector<std::optional<uint32_t>> image_ids;  // per observation; unset: no registered image of that name
+  double height_ellipsoidal_m = 0;
+  Eigen::Vector3d enu_m = Eigen::Vector3d::Zero();  // surveyed position
+  Triangulation triangulation;                      // in the input (COLMAP) frame
+  std::vector<ObservationResult> observation_results;  // per file observation (gcp.observations)
+  bool usable = false;
+  std::string skipped_reason;                       // when not usable
+  std::optional<size_t> pair_index;                 // in the fits' pair lists
+  std::optional<Triangulation> final_triangulation; // in the final ENU model
+  std::optional<Eigen::Vector3d> final_residual_enu_m;  // re-triangulated minus surveyed
 };
 
 struct ReferenceUse {
@@ -66,12 +102,27 @@ struct ModelGeoreference {
   RobustFit final_fit;   // adjusted camera centres vs references, after the refit
   ColmapModel model_enu; // final model in ENU metres
   std::vector<ReferenceUse> references;
+  std::vector<GcpUse> gcps;
+  std::optional<GcpCoordinateSystem> gcp_crs;
+  // What the fits' pairs are: "cameras", "gcps" or "cameras+gcps"; pair i is a camera reference
+  // (pair_is_gcp[i] false, pair_label = image name) or a GCP (label = its name).
+  std::string fit_references;
+  std::vector<bool> pair_is_gcp;
+  std::vector<std::string> pair_labels;
+  std::vector<Eigen::Vector3d> pair_targets_enu_m;
+  std::vector<Eigen::Vector3d> pair_final_enu_m;  // the pairs' sources in the final model
+  // Camera references against the final model (also when they were not fit pairs): |C - ref| (m).
+  std::map<size_t, double> camera_residuals_m;  // index into references
+  double gcp_check_rmse_m = 0;  // over the re-triangulated usable GCPs
   std::vector<std::string> warnings;
 };
 
-// InputError when no reference names a registered image; InfeasibleError from the fits.
+// InfeasibleError when no reference names a registered image and no GCP is usable; InfeasibleError
+// from the fits.
 ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<ImageReference>& references,
                                     const ModelGeoreferenceOptions& options);
+ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<ImageReference>& references,
+                                    const GcpFile* gcps, const ModelGeoreferenceOptions& options);
 
 // The model's 3D points (tracks of length >= 2) as a PointCloud: ENU positions, colours, reprojection
 // errors, camera centres and the observers of each point.

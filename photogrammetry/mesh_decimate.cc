@@ -8,6 +8,8 @@
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <meshoptimizer.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
@@ -59,6 +61,31 @@ std::vector<uint32_t> MeshoptSimplify(const MeshoptInput& in, const std::vector<
   out.resize(count);
   if (error_m) *error_m = static_cast<double>(result_error) * scale;
   return out;
+}
+
+// MeshoptSimplify on a compact vertex buffer (the vertices `indices` uses, in global order):
+// meshoptimizer's work is proportional to the vertex count it is given, so handing a tile (or the
+// merged tiles) the whole buffer would cost tiles × vertices. `scratch` (one per thread, one entry
+// per global vertex) maps global → local indices. Returns global indices.
+std::vector<uint32_t> SimplifyCompact(const MeshoptInput& in, const std::vector<uint32_t>& indices,
+                                      int64_t target_faces, double max_error_m, float scale,
+                                      double* error_m, std::vector<uint32_t>& scratch) {
+  std::vector<uint32_t> global(indices);
+  std::sort(global.begin(), global.end());
+  global.erase(std::unique(global.begin(), global.end()), global.end());
+  MeshoptInput local;
+  local.positions.resize(3 * global.size());
+  for (size_t k = 0; k < global.size(); ++k) {
+    scratch[global[k]] = static_cast<uint32_t>(k);
+    std::copy_n(in.positions.begin() + 3 * static_cast<size_t>(global[k]), 3,
+                local.positions.begin() + 3 * k);
+  }
+  local.indices.resize(indices.size());
+  for (size_t k = 0; k < indices.size(); ++k) local.indices[k] = scratch[indices[k]];
+  std::vector<uint32_t> kept =
+      MeshoptSimplify(local, local.indices, target_faces, max_error_m, scale, error_m);
+  for (uint32_t& i : kept) i = global[i];
+  return kept;
 }
 
 TriangleMesh FromKeptIndices(const TriangleMesh& mesh, const std::vector<uint32_t>& indices) {
@@ -122,36 +149,26 @@ TriangleMesh DecimateMeshoptPartitioned(const TriangleMesh& mesh, const Decimate
       options.target_faces > 0
           ? static_cast<double>(options.target_faces) / std::max<size_t>(1, mesh.num_faces())
           : 0.0;
+  // Per-thread scratch: global → local vertex index (only entries written for the current tile
+  // are read, so it is never cleared).
+  tbb::enumerable_thread_specific<std::vector<uint32_t>> scratch(
+      [&] { return std::vector<uint32_t>(mesh.num_vertices()); });
   std::vector<std::vector<uint32_t>> simplified(tiles.size());
-  tbb::parallel_for(size_t{0}, tiles.size(), [&](size_t t) {
-    if (tiles[t].empty()) return;
-    const int64_t tile_target =
-        static_cast<int64_t>(std::llround(keep_ratio * static_cast<double>(tiles[t].size() / 3)));
-    // A compact vertex buffer per tile: meshoptimizer's work is proportional to the vertex count
-    // it is given, so handing every tile the whole buffer would cost tiles × vertices.
-    std::vector<uint32_t> global(tiles[t]);
-    std::sort(global.begin(), global.end());
-    global.erase(std::unique(global.begin(), global.end()), global.end());
-    MeshoptInput local;
-    local.positions.reserve(3 * global.size());
-    for (uint32_t g : global) {
-      local.positions.insert(local.positions.end(), in.positions.begin() + 3 * g,
-                             in.positions.begin() + 3 * g + 3);
-    }
-    local.indices.reserve(tiles[t].size());
-    for (uint32_t g : tiles[t]) {
-      local.indices.push_back(static_cast<uint32_t>(
-          std::lower_bound(global.begin(), global.end(), g) - global.begin()));
-    }
-    std::vector<uint32_t> kept = MeshoptSimplify(local, local.indices, tile_target,
-                                                 options.max_error_m, scale, nullptr);
-    for (uint32_t& i : kept) i = global[i];
-    simplified[t] = std::move(kept);
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t t = range.begin(); t != range.end(); ++t) {
+          if (tiles[t].empty()) continue;
+          const int64_t tile_target = static_cast<int64_t>(
+              std::llround(keep_ratio * static_cast<double>(tiles[t].size() / 3)));
+          simplified[t] = SimplifyCompact(in, tiles[t], tile_target, options.max_error_m, scale,
+                                          nullptr, scratch.local());
+        }
+      });
   std::vector<uint32_t> merged;
   for (const auto& s : simplified) merged.insert(merged.end(), s.begin(), s.end());
-  const std::vector<uint32_t> kept =
-      MeshoptSimplify(in, merged, options.target_faces, options.max_error_m, scale, error_m);
+  const std::vector<uint32_t> kept = SimplifyCompact(in, merged, options.target_faces,
+                                                     options.max_error_m, scale, error_m,
+                                                     scratch.local());
   return FromKeptIndices(mesh, kept);
 }
 

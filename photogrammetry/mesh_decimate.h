@@ -1,8 +1,8 @@
 // Mesh decimation to a face budget (or an error bound), with the simplifiers measured in
-// bench/mesh_decimate_bench.cc: meshoptimizer, a partitioned parallel meshoptimizer (the default:
-// within 2x of plain meshoptimizer's time and ~30x faster than CGAL, with a lower Hausdorff error
-// than plain meshoptimizer on terrain), CGAL Garland–Heckbert (plane and probabilistic plane
-// policies) and OpenMesh's quadric Decimater. The outer border of an open (terrain) mesh is kept in place by every method.
+// bench/mesh_decimate_bench.cc: meshoptimizer, a partitioned parallel meshoptimizer (draft and
+// standard presets: the fastest, ~30× faster than CGAL), CGAL Garland–Heckbert (plane — the final
+// preset: the most accurate at moderate budgets — and probabilistic plane policies) and OpenMesh's
+// quadric Decimater. The outer border of an open (terrain) mesh is kept in place by every method.
 #pragma once
 
 #include <cstdint>

@@ -1,28 +1,64 @@
-// Distances between meshes: CGAL's approximate (symmetric) Hausdorff distance with an explicit
-// sample count and seed (photogrammetry.md §4.1: CGAL's default sampling density explodes on
-// slivers), so every run reports the same number for the same meshes.
+// Distances between meshes: an approximate symmetric Hausdorff distance with an explicit sample
+// count and seed (photogrammetry.md §4.1: CGAL's default sampling density explodes on slivers), so
+// every run reports the same number for the same meshes, at any thread count.
+//
+// Samples on a mesh: optionally its vertices, plus `samples_per_mesh` points on its faces, spread
+// by area. The faces are cut into fixed chunks (by face index, never by thread); each chunk gets its
+// share of the samples in proportion to its area and draws them with its own seed (derived from
+// `seed` and the chunk index). Each sample's distance to the other mesh is an exact closest-point
+// query in a CGAL AABB tree; the maximum over the samples is the one-sided distance. Chunks run in
+// parallel (TBB); the result does not depend on the scheduling. Within a chunk, a sample whose
+// distance to the triangle nearest the previous sample is already within the chunk's maximum is
+// not queried (it cannot raise the maximum): the result is the same, most queries are skipped.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "photogrammetry/triangle_mesh.h"
 
 namespace cinepath::photogrammetry {
 
 struct HausdorffOptions {
-  int64_t samples_per_mesh = 200000;  // random points on the faces of each mesh (plus its vertices)
+  int64_t samples_per_mesh = 200000;  // random points on the faces of each mesh
+  bool sample_vertices = true;        // also every vertex of each mesh
   uint32_t seed = 1;
 };
 
 struct HausdorffDistance {
-  double a_to_b_m = 0;   // max over samples of A of the distance to B
+  double a_to_b_m = 0;   // max over the samples of A of the distance to B
   double b_to_a_m = 0;
   double symmetric_m = 0;  // max of the two
+  int64_t samples_a = 0;   // how many samples were measured on A (vertices + face samples)
+  int64_t samples_b = 0;
 };
 
-// Meshes need not be manifold: both are turned into CGAL Surface_meshes through an oriented polygon
-// soup (which duplicates non-manifold points, leaving the geometry unchanged). Faces with a repeated
-// corner are ignored. Throws InputError if either mesh has no valid face.
+// A mesh with its AABB tree, built once and reused for several measurements (the pipeline measures
+// every decimation candidate against the same input). Keeps a reference to `mesh`: the mesh must
+// outlive the index. Faces with a repeated corner or an index out of range are ignored; the mesh
+// need not be manifold or oriented. Throws InputError when no valid face is left.
+class MeshDistanceIndex {
+ public:
+  explicit MeshDistanceIndex(const TriangleMesh& mesh, const char* name = "A");
+  ~MeshDistanceIndex();
+  MeshDistanceIndex(const MeshDistanceIndex&) = delete;
+  MeshDistanceIndex& operator=(const MeshDistanceIndex&) = delete;
+
+  // Max over the samples of `this` mesh of the distance to `other` (one-sided).
+  double MaxDistanceTo(const MeshDistanceIndex& other, const HausdorffOptions& options,
+                       int64_t* samples = nullptr) const;
+  // Distance from a point to the mesh.
+  double DistanceM(const Eigen::Vector3d& point) const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+HausdorffDistance ApproximateHausdorff(const MeshDistanceIndex& a, const MeshDistanceIndex& b,
+                                       const HausdorffOptions& options);
+// Convenience: builds both indexes. Throws InputError if either mesh has no valid face.
 HausdorffDistance ApproximateHausdorff(const TriangleMesh& a, const TriangleMesh& b,
                                        const HausdorffOptions& options);
 

@@ -4,7 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <utility>
+
+#include <tbb/parallel_invoke.h>
 
 #include "core/error.h"
 #include "photogrammetry/gltf_writer.h"
@@ -12,6 +15,7 @@
 #include "photogrammetry/mesh_colors.h"
 #include "photogrammetry/mesh_decimate.h"
 #include "photogrammetry/mesh_distance.h"
+#include "photogrammetry/mesh_remesh.h"
 #include "photogrammetry/surface_height_field.h"
 #include "photogrammetry/surface_points.h"
 #include "photogrammetry/surface_poisson.h"
@@ -19,21 +23,29 @@
 namespace cinepath::photogrammetry {
 namespace {
 
-// The --quality presets (docs/mesh.md; figures in bench/RESULTS.md).
+// The --quality presets (docs/mesh.md; figures in bench/RESULTS.md): a speed/accuracy ladder.
+// draft and standard: tiled meshoptimizer (the fastest: ~1.5 M input faces/s on 2 cores) with
+// 20 k / 200 k Hausdorff samples; final: CGAL Garland–Heckbert plane policies (the most accurate
+// at moderate budgets — on the 2.5 M-face bench terrain at 50 %: 0.042 m vs 0.142 m — and ~15×
+// slower) with 1 M samples. Every preset also measures every vertex of both meshes.
 struct QualityDefaults {
   int64_t face_budget;           // default decimation target
-  int64_t hausdorff_samples;     // per mesh, for the reported error
+  DecimationMethod method;       // simplifier
+  int64_t hausdorff_samples;     // face samples per mesh, for the reported error
   int64_t height_field_points;   // grid thinning above this many points
   double poisson_spacing_factor; // > 1: coarser, faster Poisson
 };
 
 QualityDefaults DefaultsFor(Quality quality) {
   switch (quality) {
-    case Quality::kDraft: return {200000, 20000, 250000, 2.0};
-    case Quality::kStandard: return {1000000, 100000, 1000000, 1.0};
-    case Quality::kFinal: return {3000000, 400000, 4000000, 1.0};
+    case Quality::kDraft:
+      return {200000, DecimationMethod::kMeshoptimizerPartitioned, 20000, 250000, 2.0};
+    case Quality::kStandard:
+      return {1000000, DecimationMethod::kMeshoptimizerPartitioned, 200000, 1000000, 1.0};
+    case Quality::kFinal:
+      return {2000000, DecimationMethod::kCgalGarlandHeckbert, 1000000, 4000000, 1.0};
   }
-  return {1000000, 100000, 1000000, 1.0};
+  return {1000000, DecimationMethod::kMeshoptimizerPartitioned, 200000, 1000000, 1.0};
 }
 
 class StepTimer {
@@ -87,16 +99,38 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
   }
 
   double hausdorff_m = 0;
+  // The cleaned mesh's AABB tree, built once for every Hausdorff measurement against it.
+  std::unique_ptr<MeshDistanceIndex> input_index;
+  TriangleMesh cleaned;
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = defaults.hausdorff_samples;
+  hausdorff.sample_vertices = true;
+  hausdorff.seed = 1;
+  auto measure = [&](const TriangleMesh& candidate, Json& step) {
+    std::unique_ptr<MeshDistanceIndex> candidate_index;
+    if (!input_index) {  // the first measurement builds both trees at once
+      tbb::parallel_invoke(
+          [&] { input_index = std::make_unique<MeshDistanceIndex>(cleaned, "input"); },
+          [&] { candidate_index = std::make_unique<MeshDistanceIndex>(candidate, "output"); });
+    } else {
+      candidate_index = std::make_unique<MeshDistanceIndex>(candidate, "output");
+    }
+    const HausdorffDistance d = ApproximateHausdorff(*input_index, *candidate_index, hausdorff);
+    step["hausdorff_in_to_out_m"] = d.a_to_b_m;
+    step["hausdorff_out_to_in_m"] = d.b_to_a_m;
+    step["hausdorff_points_measured"] = d.samples_a + d.samples_b;
+    return d.symmetric_m;
+  };
+  auto record_sampling = [&](Json& step) {
+    step["hausdorff_samples"] = hausdorff.samples_per_mesh;  // face samples per mesh
+    step["hausdorff_vertex_samples"] = hausdorff.sample_vertices;
+    step["hausdorff_seed"] = hausdorff.seed;
+  };
   {
     StepTimer timer;
     DecimateOptions decimate;
-    // The default simplifier (bench/mesh_decimate_bench.cc, figures in bench/RESULTS.md): on a
-    // 2.5 M-face terrain, tiled meshoptimizer is ~40x faster than CGAL Garland-Heckbert at a
-    // similar or lower Hausdorff error, and lower than whole-mesh meshoptimizer.
-    decimate.method = DecimationMethod::kMeshoptimizerPartitioned;
-    HausdorffOptions hausdorff;
-    hausdorff.samples_per_mesh = defaults.hausdorff_samples;
-    hausdorff.seed = 1;
+    // The simplifier of the preset (bench/mesh_decimate_bench.cc, figures in bench/RESULTS.md).
+    decimate.method = options.decimation_method ? *options.decimation_method : defaults.method;
     Json step;
     step["step"] = "decimate";
     step["method"] = DecimationMethodName(decimate.method);
@@ -104,22 +138,31 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     TriangleMesh simplified;
     DecimateStats stats;
     int attempts = 0;
+    Json measured = Json::object();
     if (options.max_error_m) {
       // Error bound: meshoptimizer's own estimate is not a Hausdorff distance, so tighten it until
       // the measured symmetric Hausdorff distance is within the bound (at most 8 halvings; the
-      // undecimated mesh always meets it).
+      // undecimated mesh always meets it). Every attempt is measured against the same input tree.
       step["goal"] = "max_error_m";
       step["max_error_m"] = *options.max_error_m;
+      if (decimate.method != DecimationMethod::kMeshoptimizer &&
+          decimate.method != DecimationMethod::kMeshoptimizerPartitioned) {
+        decimate.method = DecimationMethod::kMeshoptimizerPartitioned;  // error goals need meshopt
+        step["method"] = DecimationMethodName(decimate.method);
+      }
       decimate.max_error_m = *options.max_error_m;
-      simplified = mesh;
+      cleaned = std::move(mesh);
+      simplified = cleaned;
       for (; attempts < 8; ++attempts) {
-        TriangleMesh candidate = DecimateMesh(mesh, decimate, &stats);
-        const double d = candidate.num_faces() < mesh.num_faces() && candidate.num_faces() > 0
-                             ? ApproximateHausdorff(mesh, candidate, hausdorff).symmetric_m
+        TriangleMesh candidate = DecimateMesh(cleaned, decimate, &stats);
+        Json attempt;
+        const double d = candidate.num_faces() < cleaned.num_faces() && candidate.num_faces() > 0
+                             ? measure(candidate, attempt)
                              : 0.0;
         if (candidate.num_faces() > 0 && d <= *options.max_error_m) {
           simplified = std::move(candidate);
           hausdorff_m = d;
+          measured = std::move(attempt);
           break;
         }
         decimate.max_error_m *= 0.5;
@@ -131,7 +174,8 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
       step["target_faces"] = decimate.target_faces;
       simplified = DecimateMesh(mesh, decimate, &stats);
       if (simplified.num_faces() < mesh.num_faces() && simplified.num_faces() > 0) {
-        hausdorff_m = ApproximateHausdorff(mesh, simplified, hausdorff).symmetric_m;
+        cleaned = std::move(mesh);
+        hausdorff_m = measure(simplified, measured);
       }
     }
     if (simplified.num_faces() == 0) {
@@ -140,10 +184,35 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     step["faces_out"] = static_cast<int64_t>(simplified.num_faces());
     step["vertices_out"] = static_cast<int64_t>(simplified.num_vertices());
     step["hausdorff_m"] = hausdorff_m;
-    step["hausdorff_samples"] = defaults.hausdorff_samples;
+    record_sampling(step);
+    step.update(measured);
     AddTime(step, timer, options);
     steps.push_back(std::move(step));
     mesh = std::move(simplified);
+  }
+
+  if (options.remesh_edge_m) {
+    StepTimer timer;
+    Json step;
+    step["step"] = "remesh";
+    step["target_edge_m"] = *options.remesh_edge_m;
+    step["faces_in"] = static_cast<int64_t>(mesh.num_faces());
+    RemeshOptions remesh;
+    remesh.target_edge_m = *options.remesh_edge_m;
+    RemeshReport remesh_report;
+    TriangleMesh remeshed = RemeshIsotropic(mesh, remesh, &remesh_report);
+    if (remeshed.num_faces() == 0) throw InfeasibleError("mesh: remeshing left no face");
+    step.update(remesh_report.ToJson());
+    // The error of the final mesh against the cleaned input (before decimation).
+    if (cleaned.num_faces() == 0) cleaned = mesh;
+    Json measured = Json::object();
+    hausdorff_m = measure(remeshed, measured);
+    step["hausdorff_m"] = hausdorff_m;
+    record_sampling(step);
+    step.update(measured);
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
+    mesh = std::move(remeshed);
   }
 
   {
@@ -237,6 +306,9 @@ void SurfacePipelineOptions::Check() const {
   if (target_faces && *target_faces <= 0) throw InputError("--target-faces: must be > 0");
   if (max_error_m && !(*max_error_m > 0 && std::isfinite(*max_error_m))) {
     throw InputError("--max-error-m: must be a finite number > 0");
+  }
+  if (remesh_edge_m && !(*remesh_edge_m > 0 && std::isfinite(*remesh_edge_m))) {
+    throw InputError("--remesh-edge-m: must be a finite number > 0");
   }
   if (!gltf_extras.is_null() && !gltf_extras.is_object()) {
     throw InputError("gltf extras: must be a JSON object");

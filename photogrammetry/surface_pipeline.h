@@ -14,13 +14,14 @@
 #include <string>
 
 #include "core/json.h"
+#include "photogrammetry/mesh_decimate.h"
 #include "photogrammetry/point_cloud.h"
 #include "photogrammetry/triangle_mesh.h"
 
 namespace cinepath::photogrammetry {
 
 // --quality draft|standard|final: the speed/accuracy knob of every expensive step (Poisson depth,
-// height-field density, default face budget, Hausdorff sample count). The table is in
+// height-field density, default face budget, simplifier, Hausdorff sample count). The table is in
 // surface_pipeline.cc (QualityDefaults) and in docs/mesh.md.
 enum class Quality { kDraft, kStandard, kFinal };
 // Parses "draft" | "standard" | "final"; throws InputError naming `where` otherwise.
@@ -42,6 +43,12 @@ struct SurfacePipelineOptions {
   // Simplification goal: at most one of the two (both unset → the quality preset's face budget).
   std::optional<int64_t> target_faces;  // --target-faces N   (> 0)
   std::optional<double> max_error_m;    // --max-error-m E    (> 0, symmetric Hausdorff bound)
+  // Simplifier; unset → the quality preset's. An error goal always uses tiled meshoptimizer.
+  std::optional<DecimationMethod> decimation_method;
+
+  // --remesh-edge-m L: after simplification, CGAL isotropic remeshing toward edges of L metres
+  // (mesh_remesh.h); the reported Hausdorff error is then the remeshed mesh's. Unset: no remeshing.
+  std::optional<double> remesh_edge_m;
 
   bool draco = false;  // --draco: KHR_draco_mesh_compression in the GLB
 
@@ -66,7 +73,10 @@ struct SurfacePipelineResult {
   //    "non_manifold_vertices_split", "small_components_removed", "faces_in_small_components",
   //    "holes_filled", "isolated_vertices_removed", "faces_in", "faces_out", "time_s"},
   //   {"step": "decimate", "method", "faces_in", "faces_out", "hausdorff_m",
-  //    "hausdorff_samples", "time_s"}, {"step": "colors", ...}, {"step": "glb", "bytes", "draco"}],
+  //    "hausdorff_samples" (face samples per mesh), "hausdorff_vertex_samples", "hausdorff_seed",
+  //    "hausdorff_in_to_out_m", "hausdorff_out_to_in_m", "hausdorff_points_measured", "time_s"},
+  //   {"step": "remesh", ...} (with --remesh-edge-m), {"step": "colors", ...},
+  //   {"step": "glb", "bytes", "draco"}],
   //  "output": {"vertices", "faces", "hausdorff_m", "bbox_min_m", "bbox_max_m"}}
   Json report;
   std::string glb;  // scene.glb bytes

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "photogrammetry/camera_models.h"
+#include "photogrammetry/georeference.h"
 #include "synthetic_colmap.h"
 
 namespace cinepath::photogrammetry {
@@ -83,6 +84,53 @@ TEST(BundleAdjust, ObliqueViewsOfReliefAreRecognizedAsResolvingTheFocalLength) {
   EXPECT_GT(r.view_axis_spread_deg, 14.0);
   EXPECT_NEAR(r.focal[0].after_px, 900, 9);
   ASSERT_TRUE(r.focal[0].images_sigma_ratio);
+}
+
+TEST(BundleAdjust, ControlPointsAloneHoldTheSceneWhereTheSurveySaysIt) {
+  testing::SyntheticOptions o;
+  o.pixel_noise_px = 0.3;
+  const testing::SyntheticScene scene = testing::MakeSyntheticScene(o);
+  // The model starts 1.5 m east, 0.8 m north and 0.6 m up of the truth, slightly rotated.
+  Similarity3 offset;
+  offset.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()));
+  offset.translation = {1.5, 0.8, 0.6};
+  ColmapModel model = scene.model_enu;
+  for (auto& [id, image] : model.images) {
+    const Eigen::Vector3d c = offset(image.ProjectionCenter());
+    image.cam_from_world_rotation = (image.cam_from_world_rotation * offset.rotation.conjugate()).normalized();
+    image.cam_from_world_translation = -(image.cam_from_world_rotation * c);
+  }
+  for (auto& [id, p] : model.points3d) p.xyz = offset(p.xyz);
+  // Four surveyed ground points with exact pixels in every image that sees them; no GPS at all.
+  std::vector<ControlPointPrior> control;
+  for (const Eigen::Vector2d en : {Eigen::Vector2d(-30, -10), Eigen::Vector2d(30, -10), Eigen::Vector2d(-25, 12),
+                                   Eigen::Vector2d(28, 11)}) {
+    ControlPointPrior c;
+    c.target_enu_m = {en.x(), en.y(), testing::SyntheticGroundHeight(en.x(), en.y(), o.terrain_relief_m)};
+    c.initial_enu_m = offset(c.target_enu_m);
+    for (const auto& [id, image] : scene.model_enu.images) {
+      const ColmapCamera& cam = scene.model_enu.cameras.at(1);
+      const Eigen::Vector3d x = image.cam_from_world_rotation * c.target_enu_m + image.cam_from_world_translation;
+      double px, py;
+      ProjectNormalizedToPixel(cam.model_id, cam.params.data(), x.x() / x.z(), x.y() / x.z(), &px, &py);
+      if (px > 0 && py > 0 && px < cam.width_px && py < cam.height_px) c.observations.push_back({id, {px, py}});
+    }
+    ASSERT_GE(c.observations.size(), 2u);
+    control.push_back(c);
+  }
+  BundleAdjustOptions options;
+  options.profile_focal = false;
+  std::vector<Eigen::Vector3d> adjusted;
+  const BundleAdjustReport report = BundleAdjustEnu(model, {}, {{1, 900.0}}, options, control, &adjusted);
+  EXPECT_EQ(report.num_control_points, 4);
+  EXPECT_EQ(report.num_gps_priors, 0);
+  ASSERT_EQ(adjusted.size(), 4u);
+  for (size_t k = 0; k < 4; ++k) EXPECT_LT((adjusted[k] - control[k].target_enu_m).norm(), 0.03) << k;
+  double worst = 0;
+  for (const auto& [id, image] : model.images) {
+    worst = std::max(worst, (image.ProjectionCenter() - scene.camera_centers_enu_m[id - 1]).norm());
+  }
+  EXPECT_LT(worst, 0.1);  // from 1.7 m off
 }
 
 }  // namespace

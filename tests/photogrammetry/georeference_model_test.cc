@@ -13,6 +13,8 @@
 #include "core/error.h"
 #include "core/geoid.h"
 #include "photogrammetry/colmap_reader.h"
+#include "photogrammetry/camera_models.h"
+#include "photogrammetry/gcp_file.h"
 #include "synthetic_colmap.h"
 #include "test_paths.h"
 
@@ -247,6 +249,242 @@ TEST(GeoreferenceModel, BrightonBeachWithoutFocalPriorSaysItCannotResolveTheAmbi
   // Without a prior nothing can put the ground back: it stays where a similarity puts it.
   size_t n = 0;
   EXPECT_LT(MedianVerticalOffset(r, &n), -9.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ground control points: a synthetic survey with surveyed ground targets, their pixels measured with
+// noise, written as an OpenDroneMap gcp_list.txt in UTM.
+
+struct GcpSurvey {
+  testing::SyntheticScene scene;
+  Geodetic origin{46.84, -91.99, 160.0};
+  std::vector<Eigen::Vector3d> gcp_enu_m;
+  std::string gcp_text;
+};
+
+// GCP targets on the ground of the synthetic terrain (the survey covers about 75 m x 30 m).
+GcpSurvey MakeGcpSurvey(double pixel_noise_px, uint64_t seed) {
+  GcpSurvey s;
+  testing::SyntheticOptions o;
+  o.enu_from_colmap = testing::DefaultColmapFrame();
+  s.scene = testing::MakeSyntheticScene(o);
+  const double en[][2] = {{-30, -12}, {30, -12}, {-30, 12}, {30, 12}, {0, 0}, {-12, 6}};
+  for (const auto& p : en) {
+    s.gcp_enu_m.push_back({p[0], p[1], testing::SyntheticGroundHeight(p[0], p[1], o.terrain_relief_m)});
+  }
+  const EnuFrame frame(s.origin);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0, pixel_noise_px);
+  std::ostringstream text;
+  text.precision(12);
+  text << "WGS84 UTM 15N\n";
+  for (size_t g = 0; g < s.gcp_enu_m.size(); ++g) {
+    const Geodetic geo = frame.GeodeticFromEnu(s.gcp_enu_m[g]);
+    int zone;
+    bool north;
+    double x, y;
+    GeographicLib::UTMUPS::Forward(geo.lat_deg, geo.lon_deg, zone, north, x, y, 15);
+    for (const auto& [id, image] : s.scene.model_enu.images) {
+      const ColmapCamera& cam = s.scene.model_enu.cameras.at(image.camera_id);
+      const Eigen::Vector3d c = image.cam_from_world_rotation * s.gcp_enu_m[g] + image.cam_from_world_translation;
+      double px, py;
+      ProjectNormalizedToPixel(cam.model_id, cam.params.data(), c.x() / c.z(), c.y() / c.z(), &px, &py);
+      if (px < 20 || py < 20 || px > cam.width_px - 20 || py > cam.height_px - 20) continue;
+      // gcp_list.txt pixels: centre of the top-left pixel at (0, 0).
+      text << x << " " << y << " " << geo.height_m << " " << px - 0.5 + noise(rng) << " " << py - 0.5 + noise(rng)
+           << " " << image.name << " GCP" << g + 1 << "\n";
+    }
+  }
+  s.gcp_text = text.str();
+  return s;
+}
+
+double MedianPointErrorM(const ColmapModel& estimate, const ColmapModel& truth) {
+  std::vector<double> err;
+  for (const auto& [id, p] : estimate.points3d) err.push_back((p.xyz - truth.points3d.at(id).xyz).norm());
+  std::sort(err.begin(), err.end());
+  return err[err.size() / 2];
+}
+
+double WorstCameraErrorM(const ColmapModel& estimate, const testing::SyntheticScene& scene) {
+  double worst = 0;
+  for (const auto& [id, image] : estimate.images) {
+    worst = std::max(worst, (image.ProjectionCenter() - scene.camera_centers_enu_m[id - 1]).norm());
+  }
+  return worst;
+}
+
+TEST(GeoreferenceModelGcp, GcpsAloneRecoverTheTransform) {
+  const GcpSurvey s = MakeGcpSurvey(0.5, 11);
+  const GcpFile gcps = ParseGcpFile(s.gcp_text, "gcp_list.txt");
+  ModelGeoreferenceOptions options;
+  options.origin = s.origin;
+  options.bundle_adjust = false;
+  const ModelGeoreference r = GeoreferenceModel(s.scene.model, {}, &gcps, options);
+  EXPECT_EQ(r.fit_references, "gcps");
+  EXPECT_EQ(r.final_fit.num_inliers, 6);
+  const Similarity3 truth = testing::DefaultColmapFrame();
+  const double scale_error = std::abs(r.enu_from_colmap.scale / truth.scale - 1);
+  const double rotation_error_deg =
+      Eigen::AngleAxisd(r.enu_from_colmap.rotation.conjugate() * truth.rotation).angle() * 180 / M_PI;
+  const double translation_error_m = (r.enu_from_colmap.translation - truth.translation).norm();
+  EXPECT_LT(scale_error, 1e-3);
+  EXPECT_LT(rotation_error_deg, 0.05);
+  // The translation is the image of COLMAP's origin, ~160 m from the scene: it carries the rotation error.
+  EXPECT_LT(translation_error_m, 0.15);
+  EXPECT_LT(WorstCameraErrorM(r.model_enu, s.scene), 0.10);
+  for (const GcpUse& u : r.gcps) {
+    EXPECT_TRUE(u.usable) << u.gcp.name << ": " << u.skipped_reason;
+    EXPECT_GE(u.triangulation.num_used, 3) << u.gcp.name;
+    EXPECT_LT(u.triangulation.rms_reprojection_px, 1.0) << u.gcp.name;
+    EXPECT_GT(u.triangulation.max_angle_deg, 10.0) << u.gcp.name;
+  }
+  EXPECT_LT(r.gcp_check_rmse_m, 0.05);
+  std::printf("GCP only (0.5 px noise, 6 GCPs): scale error %.2e, rotation %.4f deg, translation %.4f m, worst camera "
+              "%.3f m, GCP check RMSE %.3f m\n",
+              scale_error, rotation_error_deg, translation_error_m, WorstCameraErrorM(r.model_enu, s.scene),
+              r.gcp_check_rmse_m);
+
+  // With the bundle adjustment (GCPs as priors, no GPS at all), the scene stays put.
+  options.bundle_adjust = true;
+  const ModelGeoreference ba = GeoreferenceModel(s.scene.model, {}, &gcps, options);
+  ASSERT_TRUE(ba.bundle_adjustment);
+  EXPECT_EQ(ba.bundle_adjustment->num_gps_priors, 0);
+  EXPECT_EQ(ba.bundle_adjustment->num_control_points, 6);
+  // No focal prior here: the focal length is free, and camera heights move with it.
+  EXPECT_LT(MedianPointErrorM(ba.model_enu, s.scene.model_enu), 0.05);
+  EXPECT_LT(WorstCameraErrorM(ba.model_enu, s.scene), 0.20);
+  EXPECT_LT(ba.gcp_check_rmse_m, 0.05);
+  std::printf("GCP only + bundle adjustment: median point error %.3f m, worst camera %.3f m, GCP check RMSE %.3f m\n",
+              MedianPointErrorM(ba.model_enu, s.scene.model_enu), WorstCameraErrorM(ba.model_enu, s.scene),
+              ba.gcp_check_rmse_m);
+  const Json j = GeoreferenceJson(ba, options, false);
+  const Json& g = j["georeferencing"]["ground_control_points"];
+  EXPECT_EQ(g["usable"], 6);
+  EXPECT_EQ(g["coordinate_system"], "WGS84 UTM 15N");
+  EXPECT_EQ(g["points"][0]["name"], "GCP1");
+  EXPECT_LT(g["points"][0]["check_residual_m"].get<double>(), 0.1);
+  EXPECT_EQ(j["georeferencing"]["fit_references"], "gcps");
+}
+
+TEST(GeoreferenceModelGcp, GcpsCorrectBiasedCameraGps) {
+  const GcpSurvey s = MakeGcpSurvey(0.5, 12);
+  const GcpFile gcps = ParseGcpFile(s.gcp_text, "gcp_list.txt");
+  // Camera GPS 6.2 m off (a datum or antenna-offset mistake), with 0.5 m noise.
+  const Eigen::Vector3d bias(3.0, -2.0, 5.0);
+  const EnuFrame frame(s.origin);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0, 0.5);
+  std::vector<ImageReference> refs;
+  for (const auto& [id, image] : s.scene.model.images) {
+    const Eigen::Vector3d p = s.scene.camera_centers_enu_m[id - 1] + bias + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    const Geodetic g = frame.GeodeticFromEnu(p);
+    refs.push_back({image.name, g.lat_deg, g.lon_deg, g.height_m, "synthetic"});
+  }
+  ModelGeoreferenceOptions options;
+  options.origin = s.origin;
+  options.focal_prior_px[1] = 900;
+  // Camera GPS alone: the scene lands where the biased GPS says.
+  const ModelGeoreference gps_only = GeoreferenceModel(s.scene.model, refs, options);
+  const double gps_only_error = MedianPointErrorM(gps_only.model_enu, s.scene.model_enu);
+  EXPECT_GT(gps_only_error, 5.0);
+  // With the GCPs: back within centimetres; the camera references' residuals show the bias.
+  const ModelGeoreference r = GeoreferenceModel(s.scene.model, refs, &gcps, options);
+  EXPECT_EQ(r.fit_references, "gcps");
+  const double error = MedianPointErrorM(r.model_enu, s.scene.model_enu);
+  EXPECT_LT(error, 0.05);
+  EXPECT_LT(WorstCameraErrorM(r.model_enu, s.scene), 0.10);
+  EXPECT_LT(r.gcp_check_rmse_m, 0.05);
+  ASSERT_EQ(r.camera_residuals_m.size(), 18u);
+  for (const auto& [i, residual] : r.camera_residuals_m) EXPECT_NEAR(residual, bias.norm(), 1.5);
+  // The GPS is 6.2 m off, beyond the 5 m inlier threshold: no GPS prior pulls against the GCPs.
+  EXPECT_LT(r.bundle_adjustment->num_gps_priors, 18);
+  std::printf("camera GPS biased by %.1f m: GPS only median point error %.2f m; with 6 GCPs %.3f m (GCP check RMSE "
+              "%.3f m)\n",
+              bias.norm(), gps_only_error, error, r.gcp_check_rmse_m);
+}
+
+TEST(GeoreferenceModelGcp, UnusableGcpsAreReportedAndSkipped) {
+  GcpSurvey s = MakeGcpSurvey(0.3, 13);
+  // GCP7 in one image only; GCP8 without elevation; GCP9 in images the model does not have.
+  std::istringstream lines(s.gcp_text);
+  std::string header, first_obs;
+  std::getline(lines, header);
+  std::getline(lines, first_obs);
+  std::istringstream is(first_obs);
+  double x, y, z, px, py;
+  std::string image;
+  is >> x >> y >> z >> px >> py >> image;
+  std::ostringstream extra;
+  extra.precision(12);
+  extra << x + 5 << " " << y << " " << z << " 100 100 " << image << " GCP7\n";
+  extra << x << " " << y + 5 << " NaN 100 100 IMG_1001.JPG GCP8\n" << x << " " << y + 5 << " NaN 200 100 IMG_1002.JPG GCP8\n";
+  extra << x << " " << y - 5 << " " << z << " 100 100 other1.jpg GCP9\n" << x << " " << y - 5 << " " << z << " 100 100 other2.jpg GCP9\n";
+  const GcpFile gcps = ParseGcpFile(s.gcp_text + extra.str(), "gcp_list.txt");
+  ModelGeoreferenceOptions options;
+  options.origin = s.origin;
+  options.bundle_adjust = false;
+  const ModelGeoreference r = GeoreferenceModel(s.scene.model, {}, &gcps, options);
+  ASSERT_EQ(r.gcps.size(), 9u);
+  EXPECT_FALSE(r.gcps[6].usable);
+  EXPECT_NE(r.gcps[6].skipped_reason.find("fewer than 2 usable observations"), std::string::npos);
+  EXPECT_FALSE(r.gcps[7].usable);
+  EXPECT_NE(r.gcps[7].skipped_reason.find("no elevation"), std::string::npos);
+  EXPECT_FALSE(r.gcps[8].usable);
+  EXPECT_EQ(r.gcps[8].observation_results[0].note, "no registered image of that name");
+  EXPECT_EQ(r.final_fit.num_inliers, 6);
+  int warnings = 0;
+  for (const auto& w : r.warnings) warnings += w.find("ground control point 'GCP") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(warnings, 3);
+}
+
+TEST(GeoreferenceModelGcp, TooFewGcpsWithoutCameraReferencesIsRefused) {
+  const GcpSurvey s = MakeGcpSurvey(0.3, 14);
+  // Keep GCP1 and GCP2 only.
+  std::string text = "WGS84 UTM 15N\n";
+  std::istringstream is(s.gcp_text);
+  std::string line;
+  std::getline(is, line);
+  while (std::getline(is, line)) {
+    if (line.ends_with(" GCP1") || line.ends_with(" GCP2")) text += line + "\n";
+  }
+  const GcpFile gcps = ParseGcpFile(text, "gcp_list.txt");
+  ModelGeoreferenceOptions options;
+  options.origin = s.origin;
+  try {
+    GeoreferenceModel(s.scene.model, {}, &gcps, options);
+    FAIL();
+  } catch (const InfeasibleError& e) {
+    EXPECT_NE(std::string(e.what()).find("at least 3 usable references (cameras and ground control points), found 2"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(GeoreferenceModelGcp, TwoGcpsJoinTheCameraReferences) {
+  const GcpSurvey s = MakeGcpSurvey(0.3, 15);
+  std::string text = "WGS84 UTM 15N\n";
+  std::istringstream is(s.gcp_text);
+  std::string line;
+  std::getline(is, line);
+  while (std::getline(is, line)) {
+    if (line.ends_with(" GCP1") || line.ends_with(" GCP4")) text += line + "\n";
+  }
+  const GcpFile gcps = ParseGcpFile(text, "gcp_list.txt");
+  const EnuFrame frame(s.origin);
+  std::vector<ImageReference> refs;
+  for (const auto& [id, image] : s.scene.model.images) {
+    const Geodetic g = frame.GeodeticFromEnu(s.scene.camera_centers_enu_m[id - 1]);
+    refs.push_back({image.name, g.lat_deg, g.lon_deg, g.height_m, "synthetic"});
+  }
+  ModelGeoreferenceOptions options;
+  options.origin = s.origin;
+  options.bundle_adjust = false;
+  const ModelGeoreference r = GeoreferenceModel(s.scene.model, refs, &gcps, options);
+  EXPECT_EQ(r.fit_references, "cameras+gcps");
+  EXPECT_EQ(r.final_fit.num_inliers, 20);
+  EXPECT_EQ(r.pair_labels.back(), "GCP4");
+  EXPECT_LT(r.gcp_check_rmse_m, 0.05);
 }
 
 }  // namespace

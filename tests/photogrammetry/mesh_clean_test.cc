@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "surface_test_meshes.h"
 
@@ -162,6 +163,110 @@ TEST(CleanMesh, LargeHolesStayOpen) {
   fill_all.max_hole_perimeter_m = 100.0;
   CleanMesh(mesh, fill_all, &report);
   EXPECT_EQ(report.holes_filled, 1);
+}
+
+
+// A manifold soup (after merging duplicates) takes the fast path: no Surface_mesh of the whole
+// mesh. Same repairs as the general path: small components dropped, small holes filled (on a local
+// Surface_mesh), duplicates and degenerate faces removed, isolated vertices dropped.
+TEST(CleanMesh, ManifoldSoupFastPathRepairsHolesBlobsAndDuplicates) {
+  TriangleMesh mesh = testing::TerrainGrid(20, 20, 1.0);
+  const size_t grid_faces = mesh.num_faces();
+  auto id = [](int i, int j) { return static_cast<uint32_t>(j * 20 + i); };
+  // Three separate one-cell holes and a 2 × 1-cell hole.
+  auto drop_cell = [&](int i, int j) {
+    mesh.faces.erase(std::remove_if(mesh.faces.begin(), mesh.faces.end(),
+                                    [&](const auto& f) { return f[0] == id(i, j); }),
+                     mesh.faces.end());
+  };
+  drop_cell(4, 4);
+  drop_cell(10, 4);
+  drop_cell(4, 12);
+  drop_cell(12, 12);
+  drop_cell(13, 12);
+  ASSERT_EQ(mesh.num_faces(), grid_faces - 10);
+  // A duplicate vertex used by one face, a duplicate face, a zero-area face, an isolated vertex.
+  mesh.vertices_m.push_back(mesh.vertices_m[id(2, 2)]);
+  mesh.colors_rgb.push_back(mesh.colors_rgb[id(2, 2)]);
+  for (auto& f : mesh.faces) {
+    if (f[0] == id(2, 2)) {
+      f[0] = static_cast<uint32_t>(mesh.num_vertices() - 1);
+      break;
+    }
+  }
+  mesh.faces.push_back(mesh.faces[7]);
+  mesh.faces.push_back({id(6, 0), id(7, 0), id(6, 0)});
+  mesh.vertices_m.emplace_back(-50.0, -50.0, 0.0);
+  mesh.colors_rgb.push_back({9, 9, 9});
+  // Two floating blobs (8 faces each), 100 m away.
+  for (int b = 0; b < 2; ++b) {
+    const uint32_t base = static_cast<uint32_t>(mesh.num_vertices());
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        mesh.vertices_m.emplace_back(100.0 + i + 10 * b, 100.0 + j, 5.0);
+        mesh.colors_rgb.push_back({1, 2, 3});
+      }
+    }
+    for (uint32_t j = 0; j < 2; ++j) {
+      for (uint32_t i = 0; i < 2; ++i) {
+        const uint32_t a = base + j * 3 + i;
+        mesh.faces.push_back({a, a + 1, a + 4});
+        mesh.faces.push_back({a, a + 4, a + 3});
+      }
+    }
+  }
+  MeshCleanReport report;
+  const TriangleMesh out = CleanMesh(mesh, MeshCleanOptions{}, &report);
+  EXPECT_EQ(report.duplicate_vertices_merged, 1);
+  EXPECT_EQ(report.duplicate_faces_removed, 1);
+  EXPECT_EQ(report.invalid_faces_removed, 1);
+  EXPECT_EQ(report.non_manifold_vertices_split, 0);
+  EXPECT_EQ(report.faces_reoriented, 0);
+  EXPECT_EQ(report.small_components_removed, 2);
+  EXPECT_EQ(report.faces_in_small_components, 16);
+  EXPECT_EQ(report.components_kept, 1);
+  EXPECT_EQ(report.holes_filled, 4);
+  EXPECT_GE(report.hole_faces_added, 10);
+  EXPECT_EQ(report.holes_left_open, 1);
+  EXPECT_EQ(report.isolated_vertices_removed, 1);
+  EXPECT_EQ(CountBoundaryEdges(out), 4 * 19);
+  ExpectOrientedManifold(out);
+  for (const auto& f : out.faces) EXPECT_GT(NormalUp(out, f), 0.0);
+  ASSERT_EQ(out.colors_rgb.size(), out.num_vertices());
+  for (const auto& v : out.vertices_m) EXPECT_LT(v.x(), 50.0);
+  EXPECT_EQ(static_cast<int64_t>(out.num_faces()), report.faces_out);
+  EXPECT_EQ(static_cast<int64_t>(out.num_vertices()), report.vertices_out);
+
+  // Deterministic at any thread count.
+  TriangleMesh one_thread;
+  {
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);
+    one_thread = CleanMesh(mesh, MeshCleanOptions{}, nullptr);
+  }
+  EXPECT_EQ(one_thread.faces, out.faces);
+  EXPECT_EQ(one_thread.vertices_m, out.vertices_m);
+  EXPECT_EQ(one_thread.colors_rgb, out.colors_rgb);
+}
+
+// The fast path and the general path agree on a mesh both can clean: the same faces once the
+// general path is forced by one inconsistently oriented face far from the holes.
+TEST(CleanMesh, FastAndGeneralPathsFillTheSameHole) {
+  TriangleMesh mesh = testing::TerrainGrid(12, 12, 1.0);
+  mesh.faces.erase(std::remove_if(mesh.faces.begin(), mesh.faces.end(),
+                                  [](const auto& f) { return f[0] == 5 * 12 + 5; }),
+                   mesh.faces.end());
+  MeshCleanReport fast_report, general_report;
+  const TriangleMesh fast = CleanMesh(mesh, MeshCleanOptions{}, &fast_report);
+  TriangleMesh flipped = mesh;
+  std::swap(flipped.faces[0][1], flipped.faces[0][2]);
+  const TriangleMesh general = CleanMesh(flipped, MeshCleanOptions{}, &general_report);
+  EXPECT_EQ(general_report.faces_reoriented, 1);
+  EXPECT_EQ(fast_report.holes_filled, 1);
+  EXPECT_EQ(general_report.holes_filled, 1);
+  EXPECT_EQ(fast_report.hole_faces_added, general_report.hole_faces_added);
+  EXPECT_EQ(fast.num_faces(), general.num_faces());
+  EXPECT_EQ(fast.num_vertices(), general.num_vertices());
+  ExpectOrientedManifold(fast);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "core/error.h"
 #include "photogrammetry/mesh_distance.h"
@@ -79,6 +80,24 @@ TEST(DecimationMethod, NamesRoundTrip) {
   EXPECT_EQ(ParseDecimationMethod("openmesh_quadric", "--decimator"),
             DecimationMethod::kOpenMeshQuadric);
   EXPECT_THROW(ParseDecimationMethod("qslim", "--decimator"), InputError);
+}
+
+
+TEST(DecimateMesh, TiledResultDoesNotDependOnTheThreadCount) {
+  const TriangleMesh grid = testing::TerrainGrid(121, 121, 0.5);  // 28,800 faces
+  DecimateOptions options;
+  options.method = DecimationMethod::kMeshoptimizerPartitioned;
+  options.target_faces = 3000;
+  const TriangleMesh parallel = DecimateMesh(grid, options);
+  TriangleMesh serial;
+  {
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);
+    serial = DecimateMesh(grid, options);
+  }
+  EXPECT_EQ(serial.faces, parallel.faces);
+  EXPECT_EQ(serial.vertices_m, parallel.vertices_m);
+  EXPECT_LE(parallel.num_faces(), 3300u);
+  EXPECT_GE(parallel.num_faces(), 2500u);
 }
 
 }  // namespace

@@ -98,5 +98,57 @@ TEST(BuildSurfaceFromPoints, TooFewPointsIsBadInput) {
   EXPECT_THROW(BuildSurfaceFromPoints(cloud, SurfacePipelineOptions{}), InputError);
 }
 
+
+TEST(BuildSurfaceFromMesh, RecordsTheHausdorffSamplingAndThePresetsMethod) {
+  const TriangleMesh mesh = testing::TerrainGrid(80, 80, 0.5);  // 12,482 faces
+  int64_t draft_samples = 0, final_samples = 0;
+  for (Quality quality : {Quality::kDraft, Quality::kFinal}) {
+    SurfacePipelineOptions options;
+    options.quality = quality;
+    options.target_faces = 1500;
+    options.report_times = false;
+    const SurfacePipelineResult result = BuildSurfaceFromMesh(mesh, nullptr, options);
+    const Json* decimate = FindStep(result.report, "decimate");
+    ASSERT_NE(decimate, nullptr);
+    EXPECT_TRUE((*decimate)["hausdorff_vertex_samples"].get<bool>());
+    EXPECT_EQ((*decimate)["hausdorff_seed"], 1);
+    const int64_t samples = (*decimate)["hausdorff_samples"].get<int64_t>();
+    // Every face sample and every vertex of both meshes.
+    EXPECT_EQ((*decimate)["hausdorff_points_measured"].get<int64_t>(),
+              2 * samples + static_cast<int64_t>(mesh.num_vertices() + result.mesh.num_vertices()));
+    EXPECT_LE((*decimate)["hausdorff_in_to_out_m"].get<double>(),
+              (*decimate)["hausdorff_m"].get<double>());
+    EXPECT_EQ(std::max((*decimate)["hausdorff_in_to_out_m"].get<double>(),
+                       (*decimate)["hausdorff_out_to_in_m"].get<double>()),
+              (*decimate)["hausdorff_m"].get<double>());
+    (quality == Quality::kDraft ? draft_samples : final_samples) = samples;
+  }
+  EXPECT_LT(draft_samples, final_samples);
+  SurfacePipelineOptions options;
+  options.target_faces = 1500;
+  options.decimation_method = DecimationMethod::kCgalGarlandHeckbertProbabilistic;
+  const SurfacePipelineResult result = BuildSurfaceFromMesh(mesh, nullptr, options);
+  EXPECT_EQ((*FindStep(result.report, "decimate"))["method"], "cgal_garland_heckbert_probabilistic");
+}
+
+TEST(BuildSurfaceFromMesh, RemeshStepIsRecordedAndMeasured) {
+  const TriangleMesh mesh = testing::TerrainGrid(41, 41, 1.0);
+  SurfacePipelineOptions options;
+  options.target_faces = 1000;
+  options.remesh_edge_m = 1.5;
+  options.report_times = false;
+  const SurfacePipelineResult result = BuildSurfaceFromMesh(mesh, nullptr, options);
+  const Json* remesh = FindStep(result.report, "remesh");
+  ASSERT_NE(remesh, nullptr);
+  EXPECT_EQ((*remesh)["target_edge_m"], 1.5);
+  EXPECT_EQ((*remesh)["faces_out"].get<size_t>(), result.mesh.num_faces());
+  EXPECT_GT((*remesh)["edges_in_band_fraction"].get<double>(), 0.7);
+  EXPECT_LT((*remesh)["hausdorff_m"].get<double>(), 0.2);
+  EXPECT_EQ(result.report["output"]["hausdorff_m"], (*remesh)["hausdorff_m"]);
+  EXPECT_EQ(result.mesh.colors_rgb.size(), result.mesh.num_vertices());
+  options.remesh_edge_m = -1.0;
+  EXPECT_THROW(options.Check(), InputError);
+}
+
 }  // namespace
 }  // namespace cinepath::photogrammetry
