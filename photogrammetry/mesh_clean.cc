@@ -200,6 +200,63 @@ SoupTopology AnalyzeSoup(const std::vector<std::array<uint32_t, 3>>& faces, size
   return t;
 }
 
+// Where only pinched points (bowties: several fans of faces meet at one point, every edge manifold)
+// keep a soup from being an oriented 2-manifold, gives each fan but the first its own copy of the
+// point, as CGAL's duplicate_non_manifold_vertices does, so the fast path can clean it. Fans are the
+// corners linked by shared edges: corner e continues into corner g when e.prev == g.next. New points
+// are appended in point order, copies of one point in the order of their fans' lowest face.
+// Returns the number of copies made.
+int64_t SplitPinchedPoints(const SoupTopology& topology, std::vector<std::array<uint32_t, 3>>& faces,
+                           std::vector<size_t>& original_of_point) {
+  const size_t num_points = original_of_point.size();
+  int64_t copies = 0;
+  std::vector<uint32_t> corner_faces, fan;
+  std::vector<uint32_t> next_of, prev_of, by_next;
+  for (size_t v = 0; v < num_points; ++v) {
+    if (!topology.pinched[v]) continue;
+    corner_faces.assign(topology.face_of.begin() + topology.start[v], topology.face_of.begin() + topology.start[v + 1]);
+    std::sort(corner_faces.begin(), corner_faces.end());
+    const size_t n = corner_faces.size();
+    next_of.resize(n);
+    prev_of.resize(n);
+    for (size_t k = 0; k < n; ++k) {
+      const auto& f = faces[corner_faces[k]];
+      const int at = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+      next_of[k] = f[(at + 1) % 3];
+      prev_of[k] = f[(at + 2) % 3];
+    }
+    // Corners sorted by `next` (unique at v: no directed edge repeats), to find each one's successor.
+    by_next.resize(n);
+    for (size_t k = 0; k < n; ++k) by_next[k] = static_cast<uint32_t>(k);
+    std::sort(by_next.begin(), by_next.end(), [&](uint32_t a, uint32_t b) { return next_of[a] < next_of[b]; });
+    UnionFind fans(n);
+    for (size_t a = 0; a < n; ++a) {
+      const auto it = std::lower_bound(by_next.begin(), by_next.end(), prev_of[a],
+                                       [&](uint32_t k, uint32_t value) { return next_of[k] < value; });
+      if (it != by_next.end() && next_of[*it] == prev_of[a]) fans.Unite(static_cast<uint32_t>(a), *it);
+    }
+    // The fan of the lowest face keeps v; the others, in order of their lowest face, get copies.
+    fan.assign(n, kNone);
+    for (size_t k = 0; k < n; ++k) {
+      const uint32_t root = fans.Find(static_cast<uint32_t>(k));
+      if (fan[root] == kNone) {
+        if (k == 0) {
+          fan[root] = static_cast<uint32_t>(v);
+        } else {
+          fan[root] = static_cast<uint32_t>(original_of_point.size());
+          original_of_point.push_back(original_of_point[v]);
+          ++copies;
+        }
+      }
+      auto& f = faces[corner_faces[k]];
+      for (uint32_t& i : f) {
+        if (i == v) i = fan[root];
+      }
+    }
+  }
+  return copies;
+}
+
 struct BoundaryCycle {
   std::vector<uint32_t> points;  // p0 → p1 → ... → p0, each p_i → p_{i+1} a border edge
   double perimeter_m = 0;
@@ -649,6 +706,7 @@ Json MeshCleanReport::ToJson() const {
   j["isolated_vertices_removed"] = isolated_vertices_removed;
   j["vertices_out"] = vertices_out;
   j["faces_out"] = faces_out;
+  j["repair_path"] = general_path ? "cgal_surface_mesh" : "manifold_soup";
   return j;
 }
 
@@ -762,7 +820,22 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
 
   // 4. An oriented 2-manifold soup (the common case) is cleaned without building a Surface_mesh;
   //    anything else goes through CGAL's soup orientation and Surface_mesh repairs.
-  const SoupTopology topology = AnalyzeSoup(soup, original_of_point.size());
+  SoupTopology topology = AnalyzeSoup(soup, original_of_point.size());
+  if (!topology.oriented_manifold &&
+      std::any_of(topology.pinched.begin(), topology.pinched.end(), [](char p) { return p; })) {
+    // Bowties alone (the analysis stops early on a repeated directed edge, leaving pinched unset
+    // for the rest): split them and look again.
+    std::vector<std::array<uint32_t, 3>> split = soup;
+    std::vector<size_t> split_original = original_of_point;
+    const int64_t copies = SplitPinchedPoints(topology, split, split_original);
+    SoupTopology again = AnalyzeSoup(split, split_original.size());
+    if (again.oriented_manifold) {
+      report.non_manifold_vertices_split += copies;
+      soup = std::move(split);
+      original_of_point = std::move(split_original);
+      topology = std::move(again);
+    }
+  }
   TriangleMesh out;
   if (topology.oriented_manifold) {
     std::vector<Eigen::Vector3d> points;
@@ -777,6 +850,7 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
       const auto& v = mesh.vertices_m[p];
       points.emplace_back(v.x(), v.y(), v.z());
     }
+    report.general_path = true;
     std::vector<std::array<size_t, 3>> polygons(soup.size());
     for (size_t i = 0; i < soup.size(); ++i) polygons[i] = {soup[i][0], soup[i][1], soup[i][2]};
     out = CleanWithSurfaceMesh(mesh, colored, options, std::move(points), std::move(polygons),

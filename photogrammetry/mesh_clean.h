@@ -5,7 +5,7 @@
 //
 // Speed (issue 3): duplicates are found with hash tables, and the soup's topology (oriented
 // 2-manifold or not, components, border cycles) is read from a per-point corner table. When the
-// soup is an oriented 2-manifold — the common case — no Surface_mesh of the whole mesh is built:
+// soup is an oriented 2-manifold — the common case, once bowtie points are split — no Surface_mesh of the whole mesh is built:
 // small components are dropped from the soup and CGAL fills each hole on a local Surface_mesh made
 // of the faces around it. Other soups go through CGAL's soup orientation and Surface_mesh repairs.
 // Parallel loops run over fixed chunks: the result is the same at any thread count.
@@ -49,6 +49,9 @@ struct MeshCleanReport {
   int64_t holes_left_open = 0;             // boundaries too large to be holes (incl. outer borders)
   int64_t isolated_vertices_removed = 0;
   int64_t vertices_out = 0, faces_out = 0;
+  // Which repair path ran: the oriented-manifold soup fast path (after splitting bowties, if any)
+  // or CGAL's soup orientation and Surface_mesh repairs.
+  bool general_path = false;
   Json ToJson() const;
 };
 

@@ -110,6 +110,7 @@ TEST(CleanMesh, RepairsEveryDefectKind) {
   EXPECT_EQ(report.invalid_faces_removed, 1);
   EXPECT_EQ(report.degenerate_faces_removed, 1);
   EXPECT_GE(report.non_manifold_vertices_split, 2);
+  EXPECT_TRUE(report.general_path);  // the fin is a non-manifold edge
   EXPECT_EQ(report.small_components_removed, 2);  // the blob and the split-off fin
   EXPECT_EQ(report.faces_in_small_components, 9);
   EXPECT_EQ(report.components_kept, 1);
@@ -221,6 +222,7 @@ TEST(CleanMesh, ManifoldSoupFastPathRepairsHolesBlobsAndDuplicates) {
   EXPECT_EQ(report.duplicate_faces_removed, 1);
   EXPECT_EQ(report.invalid_faces_removed, 1);
   EXPECT_EQ(report.non_manifold_vertices_split, 0);
+  EXPECT_FALSE(report.general_path);
   EXPECT_EQ(report.faces_reoriented, 0);
   EXPECT_EQ(report.small_components_removed, 2);
   EXPECT_EQ(report.faces_in_small_components, 16);
@@ -289,6 +291,49 @@ TEST(CleanMesh, BowtieVertexIsSplit) {
   EXPECT_EQ(report.components_kept, 2);
   EXPECT_EQ(out.num_faces(), 4u);
   EXPECT_EQ(out.num_vertices(), 8u);
+}
+
+// A bowtie alone no longer sends the mesh to the general path: the fast path splits it and cleans
+// the rest, with the same result as the general path (forced by one flipped face).
+TEST(CleanMesh, BowtieOnTerrainFastAndGeneralPathsAgree) {
+  TriangleMesh mesh = testing::TerrainGrid(12, 12, 1.0);
+  const uint32_t pinch = 6 * 12 + 6;  // an interior vertex: its own fan is closed
+  const uint32_t a = static_cast<uint32_t>(mesh.num_vertices());
+  const Eigen::Vector3d p = mesh.vertices_m[pinch];
+  for (const Eigen::Vector3d& d : {Eigen::Vector3d(0.3, 0, 2), Eigen::Vector3d(0, 0.3, 2), Eigen::Vector3d(-0.3, 0, 2)}) {
+    mesh.vertices_m.push_back(p + d);
+    mesh.colors_rgb.push_back({7, 7, 7});
+  }
+  mesh.faces.push_back({pinch, a, a + 1});  // a second fan at `pinch`, two faces
+  mesh.faces.push_back({pinch, a + 1, a + 2});
+  MeshCleanOptions keep_fans;
+  keep_fans.min_component_faces = 1;
+  keep_fans.min_component_fraction = 0;
+  MeshCleanReport fast_report, general_report;
+  const TriangleMesh fast = CleanMesh(mesh, keep_fans, &fast_report);
+  TriangleMesh flipped = mesh;
+  std::swap(flipped.faces[0][1], flipped.faces[0][2]);
+  const TriangleMesh general = CleanMesh(flipped, keep_fans, &general_report);
+  EXPECT_FALSE(fast_report.general_path);
+  EXPECT_TRUE(general_report.general_path);
+  EXPECT_EQ(fast_report.faces_reoriented, 0);
+  EXPECT_EQ(general_report.faces_reoriented, 1);
+  EXPECT_EQ(fast_report.non_manifold_vertices_split, 1);
+  EXPECT_EQ(general_report.non_manifold_vertices_split, 1);
+  EXPECT_EQ(fast_report.components_kept, 2);
+  EXPECT_EQ(general_report.components_kept, 2);
+  EXPECT_EQ(fast.num_faces(), mesh.num_faces());
+  EXPECT_EQ(fast.num_vertices(), mesh.num_vertices() + 1);
+  EXPECT_EQ(fast.num_faces(), general.num_faces());
+  EXPECT_EQ(fast.num_vertices(), general.num_vertices());
+  ExpectOrientedManifold(fast);
+  ASSERT_EQ(fast.colors_rgb.size(), fast.num_vertices());
+  // With the default small-component rule the two-face fan goes; the terrain stays whole.
+  MeshCleanReport default_report;
+  const TriangleMesh cleaned = CleanMesh(mesh, MeshCleanOptions{}, &default_report);
+  EXPECT_EQ(default_report.small_components_removed, 1);
+  EXPECT_EQ(cleaned.num_faces(), mesh.num_faces() - 2);
+  EXPECT_EQ(cleaned.num_vertices(), mesh.num_vertices() - 3);
 }
 
 }  // namespace
