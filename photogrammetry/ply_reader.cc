@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 #include <optional>
 #include <vector>
 
@@ -41,6 +42,20 @@ size_t TypeSize(Type t) {
 }
 
 bool IsFloat(Type t) { return t == Type::kFloat32 || t == Type::kFloat64; }
+
+// Whether an ASCII value fits the declared integer type (floats: any finite or infinite double).
+bool FitsType(Type t, double v) {
+  switch (t) {
+    case Type::kInt8: return v >= -128 && v <= 127;
+    case Type::kUint8: return v >= 0 && v <= 255;
+    case Type::kInt16: return v >= -32768 && v <= 32767;
+    case Type::kUint16: return v >= 0 && v <= 65535;
+    case Type::kInt32: return v >= -2147483648.0 && v <= 2147483647.0;
+    case Type::kUint32: return v >= 0 && v <= 4294967295.0;
+    case Type::kFloat32: case Type::kFloat64: return true;
+  }
+  return false;
+}
 
 struct Property {
   std::string name;
@@ -99,6 +114,7 @@ class ValueReader {
         Fail(std::string(what) + ": '" + std::string(t) + "' is not a number");
       }
       if (!IsFloat(type) && v != std::floor(v)) Fail(std::string(what) + ": '" + std::string(t) + "' is not an integer");
+      if (!FitsType(type, v)) Fail(std::string(what) + ": '" + std::string(t) + "' is out of range for its type");
       return v;
     }
     const size_t n = TypeSize(type);
@@ -122,6 +138,22 @@ class ValueReader {
       case Type::kFloat64: { double v; std::memcpy(&v, b, 8); return v; }
     }
     return 0;
+  }
+
+  // A list's length, no more than its items could fill: the values left on the line (ASCII) or the
+  // bytes left (binary).
+  uint64_t ReadListCount(Type count_type, Type item_type) {
+    const double count = Read(count_type, "list count");
+    if (count < 0) Fail("negative list count");
+    const double available = format_ == Format::kAscii ? static_cast<double>(tokens_.size() - token_index_)
+                                                       : static_cast<double>(remaining_bytes() / TypeSize(item_type));
+    if (count > available) {
+      std::ostringstream text;
+      text << count;
+      Fail("list count " + text.str() + " exceeds the " +
+           (format_ == Format::kAscii ? "values left on the line" : "bytes left"));
+    }
+    return static_cast<uint64_t>(count);
   }
 
   size_t remaining_bytes() const { return body_.size() - pos_; }
@@ -236,7 +268,11 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
   uint64_t num_vertices = 0;
   bool have_vertices = false;
   for (const Element& e : elements) {
-    // Guard against absurd counts before allocating.
+    // Guard against absurd counts before allocating (an ASCII instance takes at least a byte).
+    if (*format == Format::kAscii && e.count > in.remaining_bytes()) {
+      in.Fail("truncated: element '" + e.name + "' declares " + std::to_string(e.count) + " lines, " +
+              std::to_string(in.remaining_bytes()) + " bytes left");
+    }
     if (*format != Format::kAscii) {
       size_t min_size = 0;
       for (const Property& p : e.properties) min_size += p.is_list ? TypeSize(p.count_type) : TypeSize(p.type);
@@ -273,9 +309,8 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
         for (size_t k = 0; k < e.properties.size(); ++k) {
           const Property& p = e.properties[k];
           if (p.is_list) {
-            const double count = in.Read(p.count_type, "list count");
-            if (count < 0) in.Fail("negative list count");
-            for (uint64_t c = 0; c < static_cast<uint64_t>(count); ++c) in.Read(p.type, p.name.c_str());
+            const uint64_t count = in.ReadListCount(p.count_type, p.type);
+            for (uint64_t c = 0; c < count; ++c) in.Read(p.type, p.name.c_str());
           } else {
             values[k] = in.Read(p.type, p.name.c_str());
           }
@@ -311,10 +346,9 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
         for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
           const Property& p = e.properties[k];
           if (p.is_list) {
-            const double count = in.Read(p.count_type, "list count");
-            if (count < 0) in.Fail("negative list count");
+            const uint64_t count = in.ReadListCount(p.count_type, p.type);
             if (k == il) polygon.clear();
-            for (uint64_t c = 0; c < static_cast<uint64_t>(count); ++c) {
+            for (uint64_t c = 0; c < count; ++c) {
               const double v = in.Read(p.type, "vertex index");
               if (k != il) continue;
               if (v < 0 || v >= static_cast<double>(num_vertices)) {
@@ -336,14 +370,15 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
         for (size_t k = 1; k + 1 < polygon.size(); ++k) out.mesh.faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
       }
     } else {
-      // Unknown element: skip its instances.
+      // Unknown element: skip its instances. Binary instances of an element without properties
+      // take no bytes: nothing to skip, however large the count.
+      if (*format != Format::kAscii && e.properties.empty()) continue;
       for (uint64_t i = 0; i < e.count; ++i) {
         in.BeginInstance();
         for (const Property& p : e.properties) {
           if (p.is_list) {
-            const double count = in.Read(p.count_type, "list count");
-            if (count < 0) in.Fail("negative list count");
-            for (uint64_t c = 0; c < static_cast<uint64_t>(count); ++c) in.Read(p.type, p.name.c_str());
+            const uint64_t count = in.ReadListCount(p.count_type, p.type);
+            for (uint64_t c = 0; c < count; ++c) in.Read(p.type, p.name.c_str());
           } else {
             in.Read(p.type, p.name.c_str());
           }

@@ -87,6 +87,23 @@ TEST(PlyReader, ErrorsNameLineOrByteOffset) {
   std::string huge = bin;
   huge.replace(huge.find("vertex 2"), 8, "vertex 99999999999");
   EXPECT_NE(ErrorOf(huge).find("truncated: element 'vertex' declares 99999999999"), std::string::npos);
+  // An element without properties takes no bytes in binary: a huge count is read at once (found by
+  // fuzz_ply: it used to loop 5e13 times), and a vertex element without x y z is an error.
+  std::string empty_element = bin;
+  empty_element.insert(empty_element.find("end_header"), "element note 50000050600079\n");
+  EXPECT_EQ(ParsePly(empty_element, "x.ply").points.positions_m.size(), 2u);
+  EXPECT_EQ(ErrorOf("ply\nformat binary_little_endian 1.0\nelement vertex 50000050600079\nend_header\n"),
+            "x.ply: byte 77: element 'vertex' has no x, y, z properties");
+  // ASCII counts are bounded by the text left, list lengths by the values on their line (fuzz_ply).
+  EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement vertex 5555555553\nproperty float x\nproperty float y\n"
+                    "property float z\nend_header\n0 0 0\n"),
+            "x.ply: line 7: truncated: element 'vertex' declares 5555555553 lines, 6 bytes left");
+  EXPECT_EQ(ErrorOf(head + "0 0 0\n1 1 1\n3 0 1 1e127\n"),
+            "x.ply: line 12: vertex index: '1e127' is out of range for its type");
+  EXPECT_EQ(ErrorOf(head + "0 0 0\n1 1 1\n256 0 1\n"), "x.ply: line 12: list count: '256' is out of range for its type");
+  std::string long_list = head;
+  long_list.replace(long_list.find("uchar int"), 9, "uint int");
+  EXPECT_EQ(ErrorOf(long_list + "0 0 0\n1 1 1\n4 0 1 1\n"), "x.ply: line 12: list count 4 exceeds the values left on the line");
 }
 
 }  // namespace
