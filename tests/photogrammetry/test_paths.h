@@ -8,13 +8,6 @@ namespace cinepath::photogrammetry::testing {
 
 inline std::filesystem::path TestDataDir() { return CINEPATH_TEST_DATA_DIR; }
 
-// The shared data set of the project (../shared/data next to the repository, or $CINEPATH_SHARED_DATA);
-// tests that need it skip when it is absent.
-inline std::filesystem::path SharedDataDir() {
-  if (const char* env = std::getenv("CINEPATH_SHARED_DATA"); env && *env) return env;
-  return std::filesystem::path(CINEPATH_SOURCE_DIR) / ".." / "shared" / "data";
-}
-
 // A fresh, empty scratch folder under the system temp dir.
 inline std::filesystem::path ScratchDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("cinepath_georef_test_" + name);

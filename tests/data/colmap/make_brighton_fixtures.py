@@ -3,7 +3,7 @@
 
 Run with Debian's python3 (needs numpy):  /usr/bin/python3 make_brighton_fixtures.py <shared brighton_beach dir>
 
-1. brighton_sparse_default/: the COLMAP binary model with every keypoint
+1. brighton_sparse_default/ and brighton_sparse_exif_focal/: the COLMAP binary models with every keypoint
    that has no 3D point dropped (keypoint indices renumbered in images and tracks). Same cameras, poses,
    points and observations as the originals; 1.2 MB instead of 5.3 MB.
 2. odm_reference_2m.txt: the OpenDroneMap reference cloud (EPSG:32615 UTM 15N, z ellipsoidal) reduced to
@@ -102,4 +102,5 @@ def reduce_reference():
 
 
 reduce_model("sparse_default")
+reduce_model("sparse_exif_focal")
 reduce_reference()
