@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/angles.h"
-#include "export/number_format.h"
+#include "core/number_format.h"
 #include "export/zip_writer.h"
 
 namespace cinepath::exporter {

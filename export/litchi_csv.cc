@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "core/angles.h"
-#include "export/number_format.h"
+#include "core/number_format.h"
 
 namespace cinepath::exporter {
 

@@ -1,6 +1,6 @@
 #include "export/qgc_wpl.h"
 
-#include "export/number_format.h"
+#include "core/number_format.h"
 
 namespace cinepath::exporter {
 

@@ -2,20 +2,14 @@
 
 #include <array>
 #include <cmath>
-#include <cstdio>
 
 #include "core/error.h"
+#include "core/number_format.h"
 #include "core/plugin.h"
 #include "photogrammetry/exif_gps_abi.h"
 
 namespace cinepath::photogrammetry {
 namespace {
-
-std::string Fixed(double v, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, v);
-  return buffer;
-}
 
 std::string Trim(const std::string& s) {
   const size_t b = s.find_first_not_of(" \t\r\n");
@@ -114,15 +108,15 @@ std::optional<FocalPrior> FocalPriorFromExif(const ExifInfo& exif, double camera
     }
     if (width && *width > 0) {
       return FocalPrior{*exif.focal_length_mm / *width * camera_width_px,
-                        "EXIF FocalLength " + Fixed(*exif.focal_length_mm, 3) + " mm, sensor width " +
-                            Fixed(*width, 3) + " mm (" + width_source + "), " + Fixed(camera_width_px, 0) +
+                        "EXIF FocalLength " + FormatFixed(*exif.focal_length_mm, 3) + " mm, sensor width " +
+                            FormatFixed(*width, 3) + " mm (" + width_source + "), " + FormatFixed(camera_width_px, 0) +
                             " px wide"};
     }
   }
   if (exif.focal_length_35mm_mm) {
     return FocalPrior{*exif.focal_length_35mm_mm / 36.0 * camera_width_px,
-                      "EXIF FocalLengthIn35mmFilm " + Fixed(*exif.focal_length_35mm_mm, 1) + " mm (36 mm frame), " +
-                          Fixed(camera_width_px, 0) + " px wide"};
+                      "EXIF FocalLengthIn35mmFilm " + FormatFixed(*exif.focal_length_35mm_mm, 1) + " mm (36 mm frame), " +
+                          FormatFixed(camera_width_px, 0) + " px wide"};
   }
   return std::nullopt;
 }

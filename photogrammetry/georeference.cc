@@ -9,15 +9,10 @@
 #include <Eigen/SVD>
 
 #include "core/error.h"
+#include "core/number_format.h"
 
 namespace cinepath::photogrammetry {
 namespace {
-
-std::string Fixed(double v, int decimals = 2) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, v);
-  return buffer;
-}
 
 Similarity3 FitSubset(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
                       const std::vector<int>& indices) {
@@ -109,9 +104,9 @@ RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source,
     const double needed = std::max(options.min_spread_ratio * s.along_m, options.min_spread_m);
     if (s.across_m < needed) {
       throw InfeasibleError("the " + what + " are (near-)collinear in " + which + ": they lie within " +
-                            Fixed(s.across_m) + " m (RMS) of a line along which they spread " +
-                            Fixed(s.along_m) + " m; the rotation about that line is undetermined (need " +
-                            Fixed(needed) + " m across)");
+                            FormatFixed(s.across_m, 2) + " m (RMS) of a line along which they spread " +
+                            FormatFixed(s.along_m, 2) + " m; the rotation about that line is undetermined (need " +
+                            FormatFixed(needed, 2) + " m across)");
     }
   };
   check_spread(target, "ENU");
@@ -177,7 +172,7 @@ RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source,
   }
   if (best_count < 3) {
     throw InfeasibleError("georeferencing failed: no similarity fits 3 or more of the " + std::to_string(n) + " " +
-                          what + " within " + Fixed(options.inlier_threshold_m) +
+                          what + " within " + FormatFixed(options.inlier_threshold_m, 2) +
                           " m (inlier threshold); the references may not belong to this model");
   }
 
@@ -222,14 +217,14 @@ RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source,
   fit.rmse_m = fit.num_inliers > 0 ? std::sqrt(sum_in / fit.num_inliers) : 0;
   if (fit.num_inliers < 3) {
     throw InfeasibleError("georeferencing failed: only " + std::to_string(fit.num_inliers) + " of " +
-                          std::to_string(n) + " " + what + " fit within " + Fixed(options.inlier_threshold_m) +
+                          std::to_string(n) + " " + what + " fit within " + FormatFixed(options.inlier_threshold_m, 2) +
                           " m");
   }
   check_spread(inlier_targets, "ENU (inliers)");
   if (fit.rmse_m > options.max_rmse_m) {
-    throw InfeasibleError("georeferencing RMSE " + Fixed(fit.rmse_m, 3) + " m over " +
+    throw InfeasibleError("georeferencing RMSE " + FormatFixed(fit.rmse_m, 3) + " m over " +
                           std::to_string(fit.num_inliers) + " inlier " + what + " exceeds the maximum " +
-                          Fixed(options.max_rmse_m, 3) + " m (--max-rmse-m)");
+                          FormatFixed(options.max_rmse_m, 3) + " m (--max-rmse-m)");
   }
   return fit;
 }

@@ -6,17 +6,12 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/number_format.h"
 #include "core/geoid.h"
 #include "photogrammetry/camera_models.h"
 
 namespace cinepath::photogrammetry {
 namespace {
-
-std::string Fixed(double v, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, v);
-  return buffer;
-}
 
 double Round(double v, int decimals) { return RoundToDecimals(v, decimals); }
 
@@ -343,15 +338,15 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
       const std::string cam = "camera " + std::to_string(f.camera_id) + ": ";
       const BundleAdjustReport& ba = *result.bundle_adjustment;
       const std::string sigma =
-          (f.images_sigma_ratio ? "formal sigma " + Fixed(100 * *f.images_sigma_ratio, 2) + " %" : std::string("formal sigma unbounded")) +
+          (f.images_sigma_ratio ? "formal sigma " + FormatFixed(100 * *f.images_sigma_ratio, 2) + " %" : std::string("formal sigma unbounded")) +
           (ba.geometry_resolves_focal ? std::string()
-                                      : "; near-flat scene (depth relief " + Fixed(100 * ba.depth_relief_ratio, 1) +
+                                      : "; near-flat scene (depth relief " + FormatFixed(100 * ba.depth_relief_ratio, 1) +
                                             " %) under near-parallel views (axes within " +
-                                            Fixed(ba.view_axis_spread_deg, 1) + " deg)");
+                                            FormatFixed(ba.view_axis_spread_deg, 1) + " deg)");
       if (f.images_conflict_with_prior && f.images_preferred_px && f.prior_px) {
         result.warnings.push_back(
-            cam + "the images pull the focal length to " + Fixed(*f.images_preferred_px, 1) + " px (" +
-            Fixed(100 * (*f.images_preferred_px / *f.prior_px - 1), 1) + " % from the prior " + Fixed(*f.prior_px, 1) +
+            cam + "the images pull the focal length to " + FormatFixed(*f.images_preferred_px, 1) + " px (" +
+            FormatFixed(100 * (*f.images_preferred_px / *f.prior_px - 1), 1) + " % from the prior " + FormatFixed(*f.prior_px, 1) +
             " px; " + sigma +
             "): the focal-length/flying-height ambiguity of a flat scene seen from above, not a measurement; the "
             "focal length is held at the prior (" + options.focal_prior_source + ")");
@@ -364,14 +359,14 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
         std::string what = cam + "the images cannot resolve focal length vs flying height (" + sigma +
                            ") and no focal-length prior is known (give --images with EXIF, or --focal-prior-px)";
         what += ": heights above ground scale with the focal-length error (COLMAP's focal length is taken as is; "
-                "each 1 % error moves the ground by " + Fixed(0.01 * median_depth_m, 2) + " m at the median depth of " +
-                Fixed(median_depth_m, 1) + " m)";
+                "each 1 % error moves the ground by " + FormatFixed(0.01 * median_depth_m, 2) + " m at the median depth of " +
+                FormatFixed(median_depth_m, 1) + " m)";
         result.warnings.push_back(what);
       }
       if (f.prior_px && std::abs(f.before_px / *f.prior_px - 1) > 0.05) {
-        result.warnings.push_back(cam + "COLMAP's focal length (" + Fixed(f.before_px, 1) + " px) differs from the prior (" +
-                                  Fixed(*f.prior_px, 1) + " px) by " + Fixed(100 * (f.before_px / *f.prior_px - 1), 1) +
-                                  " %; adjusted to " + Fixed(f.after_px, 1) + " px");
+        result.warnings.push_back(cam + "COLMAP's focal length (" + FormatFixed(f.before_px, 1) + " px) differs from the prior (" +
+                                  FormatFixed(*f.prior_px, 1) + " px) by " + FormatFixed(100 * (f.before_px / *f.prior_px - 1), 1) +
+                                  " %; adjusted to " + FormatFixed(f.after_px, 1) + " px");
       }
     }
     // 5. Refit on the same pairs: adjusted camera centres; adjusted GCPs (re-triangulated when they

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include <Eigen/Dense>
 #include <ceres/ceres.h>
 
+#include "core/number_format.h"
 #include "photogrammetry/camera_models.h"
 
 namespace cinepath::photogrammetry {
@@ -93,12 +93,6 @@ bool Solve(const ColmapModel& model, const std::vector<PixelObservation>& obs, c
   return true;
 }
 
-std::string Fixed(double v, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, v);
-  return buffer;
-}
-
 }  // namespace
 
 Triangulation TriangulatePoint(const ColmapModel& model, const std::vector<PixelObservation>& observations,
@@ -151,13 +145,13 @@ Triangulation TriangulatePoint(const ColmapModel& model, const std::vector<Pixel
     }
     if (worst_px > options.max_reprojection_px) {
       if (use.size() > 2) {
-        t.observations[worst].note = "dropped: reprojection error " + Fixed(worst_px, 2) + " px > " +
-                                     Fixed(options.max_reprojection_px, 2) + " px";
+        t.observations[worst].note = "dropped: reprojection error " + FormatFixed(worst_px, 2) + " px > " +
+                                     FormatFixed(options.max_reprojection_px, 2) + " px";
         use.erase(std::find(use.begin(), use.end(), worst));
         continue;
       }
-      t.reason = "the two observations disagree: reprojection error " + Fixed(worst_px, 2) + " px > " +
-                 Fixed(options.max_reprojection_px, 2) + " px";
+      t.reason = "the two observations disagree: reprojection error " + FormatFixed(worst_px, 2) + " px > " +
+                 FormatFixed(options.max_reprojection_px, 2) + " px";
       break;
     }
     t.ok = true;
@@ -188,7 +182,7 @@ Triangulation TriangulatePoint(const ColmapModel& model, const std::vector<Pixel
   }
   if (t.max_angle_deg < options.min_angle_deg) {
     t.ok = false;
-    t.reason = "triangulation angle " + Fixed(t.max_angle_deg, 2) + " deg < " + Fixed(options.min_angle_deg, 2) +
+    t.reason = "triangulation angle " + FormatFixed(t.max_angle_deg, 2) + " deg < " + FormatFixed(options.min_angle_deg, 2) +
                " deg: the rays are nearly parallel, the depth is undetermined";
   }
   return t;

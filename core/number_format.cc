@@ -1,15 +1,20 @@
-#include "export/number_format.h"
+#include "core/number_format.h"
 
 #include <charconv>
 #include <cmath>
 
 #include "core/error.h"
 
-namespace cinepath::exporter {
+namespace cinepath {
+namespace {
+
+const char* NonFiniteText(double value) { return std::isnan(value) ? "nan" : value > 0 ? "inf" : "-inf"; }
+
+}  // namespace
 
 std::string FormatFixed(double value, int decimals) {
-  CINEPATH_CHECK(std::isfinite(value));
-  char buffer[64];
+  if (!std::isfinite(value)) return NonFiniteText(value);
+  char buffer[400];  // DBL_MAX has 309 integer digits
   auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
   CINEPATH_CHECK(ec == std::errc());
   std::string text(buffer, ptr);
@@ -19,7 +24,7 @@ std::string FormatFixed(double value, int decimals) {
 }
 
 std::string FormatShortest(double value) {
-  CINEPATH_CHECK(std::isfinite(value));
+  if (!std::isfinite(value)) return NonFiniteText(value);
   if (value == 0) return "0";
   char buffer[64];
   auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
@@ -27,4 +32,4 @@ std::string FormatShortest(double value) {
   return std::string(buffer, ptr);
 }
 
-}  // namespace cinepath::exporter
+}  // namespace cinepath
