@@ -51,7 +51,8 @@ class MeshCommand : public Command {
  public:
   void Setup(CLI::App& app) override {
     app.add_option("--colmap", colmap_dir_,
-                   "COLMAP sparse model folder (cameras/images/points3D .bin or .txt). Without it, --images "
+                   "COLMAP sparse model folder (cameras/images/points3D .bin or .txt), or a workspace / sparse/ folder "
+                   "holding one model (sparse/0). Without it, --images "
                    "is reconstructed by running the colmap binary (CPU) in --colmap-workspace");
     app.add_option("--colmap-workspace", workspace_,
                    "Where COLMAP runs for photos-only input (default OUTDIR/colmap; reused when it holds a model)");
@@ -110,6 +111,10 @@ class MeshCommand : public Command {
                         std::cerr << "cinepath mesh: colmap " << step << " (log in " << workspace.string() << ")\n";
                       }
                     }).string();
+    }
+    if (const fs::path found = FindColmapModelDir(colmap_dir_); found != fs::path(colmap_dir_)) {
+      std::cerr << "cinepath mesh: using the COLMAP model in " << found.string() << "\n";
+      colmap_dir_ = found.string();
     }
     const ColmapModel model = ReadColmapModel(colmap_dir_);
     const ColmapFormat format = DetectColmapFormat(colmap_dir_);

@@ -1,10 +1,13 @@
 #include "photogrammetry/colmap_reader.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <functional>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "core/file_io.h"
@@ -459,6 +462,52 @@ ColmapFormat DetectColmapFormat(const fs::path& dir) {
   if (!fs::is_directory(dir)) throw InputError(Located(dir.string(), "not a directory"));
   throw InputError(Located(dir.string(), "not a COLMAP sparse model: needs cameras, images and points3D "
                                          "as .bin or .txt"));
+}
+
+namespace {
+
+bool HoldsColmapModel(const fs::path& dir) {
+  for (const char* ext : {".bin", ".txt"}) {
+    bool all = true;
+    for (const char* stem : {"cameras", "images", "points3D"}) all = all && fs::is_regular_file(dir / (std::string(stem) + ext));
+    if (all) return true;
+  }
+  return false;
+}
+
+bool IsNumber(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+}  // namespace
+
+fs::path FindColmapModelDir(const fs::path& dir) {
+  if (HoldsColmapModel(dir) || !fs::is_directory(dir)) return dir;  // DetectColmapFormat says what is wrong
+  std::vector<fs::path> found;
+  for (const fs::path& parent : {dir / "sparse", dir}) {
+    if (!fs::is_directory(parent)) continue;
+    std::vector<std::pair<long long, fs::path>> numbered;
+    for (const auto& entry : fs::directory_iterator(parent)) {
+      const std::string name = entry.path().filename().string();
+      if (entry.is_directory() && IsNumber(name) && name.size() < 10 && HoldsColmapModel(entry.path())) {
+        numbered.emplace_back(std::stoll(name), (parent / name).lexically_normal());
+      }
+    }
+    std::sort(numbered.begin(), numbered.end());
+    for (const auto& [n, path] : numbered) found.push_back(path);
+  }
+  if (HoldsColmapModel(dir / "sparse")) found.push_back((dir / "sparse").lexically_normal());
+  if (found.empty()) {
+    throw InputError(Located(dir.string(), "not a COLMAP sparse model: needs cameras, images and points3D as .bin or "
+                                           ".txt (here, or in sparse/0 as COLMAP writes them)"));
+  }
+  if (found.size() > 1) {
+    std::string names;
+    for (const fs::path& f : found) names += (names.empty() ? "" : ", ") + f.string();
+    throw InputError(Located(dir.string(), "holds " + std::to_string(found.size()) + " COLMAP models (" + names +
+                                           "): give the one to use with --colmap"));
+  }
+  return found.front();
 }
 
 ColmapModel ReadColmapModel(const fs::path& dir) { return ReadColmapModel(dir, DetectColmapFormat(dir)); }

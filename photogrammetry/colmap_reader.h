@@ -28,6 +28,12 @@ enum class ColmapFormat { kBinary, kText };
 // Which format ReadColmapModel would read in `dir`; InputError when neither set is complete.
 ColmapFormat DetectColmapFormat(const std::filesystem::path& dir);
 
+// The sparse model a user means by `dir`: `dir` itself when it holds one, else the only model among
+// the places COLMAP writes them — `dir`/sparse/<N>, `dir`/<N> (N a number) and `dir`/sparse — so a
+// workspace root or its sparse/ folder works too. InputError when there is none, or several (named,
+// so the user can pick one).
+std::filesystem::path FindColmapModelDir(const std::filesystem::path& dir);
+
 ColmapModel ReadColmapModel(const std::filesystem::path& dir);
 ColmapModel ReadColmapModel(const std::filesystem::path& dir, ColmapFormat format);
 

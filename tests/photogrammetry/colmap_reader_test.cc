@@ -84,6 +84,28 @@ TEST(ColmapReader, MissingFilesNameTheFolder) {
   EXPECT_NE(msg.find(dir.string()), std::string::npos) << msg;
 }
 
+// A workspace root or its sparse/ folder finds the only model COLMAP wrote; several are named.
+TEST(ColmapReader, FindsTheModelInAWorkspace) {
+  const auto scene = MakeSyntheticScene(SmallScene());
+  const auto ws = testing::ScratchDir("workspace");
+  std::filesystem::create_directories(ws / "sparse" / "0");
+  std::filesystem::create_directories(ws / "images");
+  testing::WriteColmapBinary(scene.model, ws / "sparse" / "0");
+  EXPECT_EQ(FindColmapModelDir(ws), ws / "sparse" / "0");
+  EXPECT_EQ(FindColmapModelDir(ws / "sparse"), ws / "sparse" / "0");
+  EXPECT_EQ(FindColmapModelDir(ws / "sparse" / "0"), ws / "sparse" / "0");
+  std::filesystem::create_directories(ws / "sparse" / "10");
+  testing::WriteColmapText(scene.model, ws / "sparse" / "10");
+  std::filesystem::create_directories(ws / "sparse" / "2");  // empty: not a model
+  const std::string msg = ErrorOf([&] { FindColmapModelDir(ws); });
+  EXPECT_NE(msg.find("holds 2 COLMAP models (" + (ws / "sparse" / "0").string() + ", " +
+                     (ws / "sparse" / "10").string() + "): give the one to use with --colmap"),
+            std::string::npos)
+      << msg;
+  const auto empty = testing::ScratchDir("empty_workspace");
+  EXPECT_NE(ErrorOf([&] { FindColmapModelDir(empty); }).find("or in sparse/0 as COLMAP writes them"), std::string::npos);
+}
+
 TEST(ColmapReader, EveryTruncationOfBinaryFilesIsAnInputErrorWithAByteOffset) {
   const auto scene = MakeSyntheticScene(SmallScene());
   const std::string files[3] = {testing::ColmapCamerasBinary(scene.model), testing::ColmapImagesBinary(scene.model),
