@@ -30,8 +30,10 @@ struct SyntheticRefs {
   std::vector<ImageReference> refs;
 };
 
-SyntheticRefs MakeSurvey(double gps_noise_m, double outlier_fraction, uint64_t seed) {
+SyntheticRefs MakeSurvey(double gps_noise_m, double outlier_fraction, uint64_t seed,
+                         Geodetic origin = Geodetic{46.84, -91.99, 160.0}) {
   SyntheticRefs s;
+  s.origin = origin;
   testing::SyntheticOptions o;
   o.enu_from_colmap = testing::DefaultColmapFrame();
   s.scene = testing::MakeSyntheticScene(o);
@@ -89,6 +91,33 @@ TEST(GeoreferenceModel, SyntheticSurveyWithThirtyPercentWrongGpsAndBundleAdjustm
   // Determinism.
   const ModelGeoreference again = GeoreferenceModel(s.scene.model, s.refs, options);
   EXPECT_EQ(DumpJson(GeoreferenceJson(r, options, false)), DumpJson(GeoreferenceJson(again, options, false)));
+}
+
+// The same survey flown at a pole, across the antimeridian and on the equator, its origin left to
+// cinepath (the mean of the references): the transform comes back to the millimetre everywhere.
+TEST(GeoreferenceModel, SurveysAtThePolesAndTheAntimeridian) {
+  for (const Geodetic& where : {Geodetic{89.9995, 10.0, 2800.0}, Geodetic{-89.9995, -170.0, 2800.0},
+                                Geodetic{-16.5, 179.9995, 5.0}, Geodetic{0.0, 0.0, 0.0}}) {
+    const SyntheticRefs s = MakeSurvey(0.0, 0.0, 5, where);
+    ModelGeoreferenceOptions options;  // default origin
+    options.bundle_adjust = false;
+    const ModelGeoreference r = GeoreferenceModel(s.scene.model, s.refs, options);
+    EXPECT_LT(r.final_fit.rmse_m, 1e-3) << where.lat_deg << " " << where.lon_deg;
+    EXPECT_EQ(r.final_fit.num_inliers, 18);
+    EXPECT_NEAR(r.enu_from_colmap.scale / testing::DefaultColmapFrame().scale, 1, 1e-6);
+    // Every point lands where the truth has it, compared on the ellipsoid (the origins differ).
+    const EnuFrame truth(s.origin), ours(r.origin);
+    double worst_m = 0;
+    for (const auto& [id, p] : r.model_enu.points3d) {
+      const Geodetic g = ours.GeodeticFromEnu(p.xyz);
+      worst_m = std::max(worst_m, (truth.EnuFromGeodetic(g) - s.scene.model_enu.points3d.at(id).xyz).norm());
+    }
+    EXPECT_LT(worst_m, 2e-3) << where.lat_deg << " " << where.lon_deg;
+    // The default origin sits among the cameras (not on the far side of the Earth from an average
+    // of longitudes either side of ±180°, nor off the pole).
+    EXPECT_LT(truth.EnuFromGeodetic(r.origin).norm(), 200.0) << where.lat_deg << " " << where.lon_deg;
+    EXPECT_LE(std::abs(r.origin.lon_deg), 180.0);
+  }
 }
 
 TEST(GeoreferenceModel, AmslAltitudesAreConvertedWithEgm96) {
