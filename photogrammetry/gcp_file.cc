@@ -163,25 +163,12 @@ GcpFile ParseGcpFile(std::string_view text, const std::string& source) {
   std::map<std::string, size_t> by_name;  // gcp_name or coordinate text -> index into points
   std::vector<std::set<std::string>> images_of(0);
   int unnamed = 0;
-  size_t pos = 0, line_number = 0;
-  while (pos <= text.size()) {
-    size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_number;
-    const auto tokens = WhitespaceTokens(line);
-    const bool last = end == text.size();
-    if (tokens.empty() || tokens[0].front() == '#') {
-      if (last) break;
-      continue;
-    }
+  ForEachDataLine(text, [&](std::string_view line, size_t line_number, const std::vector<std::string_view>& tokens) {
     const std::string where = source + ": line " + std::to_string(line_number);
     if (!have_header) {
       file.crs = ParseGcpCoordinateSystem(line, where);
       have_header = true;
-      if (last) break;
-      continue;
+      return;
     }
     if (tokens.size() < 6) {
       throw InputError(Located(where, "expected 'geo_x geo_y geo_z im_x im_y image_name [gcp_name]', found " +
@@ -262,8 +249,7 @@ GcpFile ParseGcpFile(std::string_view text, const std::string& source) {
     o.pixel_colmap = {v[3] + 0.5, v[4] + 0.5};
     o.where = where;
     p.observations.push_back(std::move(o));
-    if (last) break;
-  }
+  });
   if (!have_header) throw InputError(Located(source, "empty: expected a coordinate-system line, then GCP lines"));
   if (file.points.empty()) throw InputError(Located(source, "no GCP lines after the coordinate system"));
   return file;

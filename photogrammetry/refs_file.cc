@@ -13,18 +13,7 @@ namespace cinepath::photogrammetry {
 std::vector<ImageReference> ParseReferences(std::string_view text, const std::string& source) {
   std::vector<ImageReference> refs;
   std::map<std::string, std::string> seen;
-  size_t pos = 0, line_number = 0;
-  while (pos <= text.size()) {
-    size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_number;
-    const auto tokens = WhitespaceTokens(line);
-    if (tokens.empty() || tokens[0].front() == '#') {
-      if (end == text.size()) break;
-      continue;
-    }
+  ForEachDataLine(text, [&](std::string_view, size_t line_number, const std::vector<std::string_view>& tokens) {
     const std::string where = source + ": line " + std::to_string(line_number);
     if (tokens.size() != 4) {
       throw InputError(Located(where, "expected 'image_name lat lon alt', found " +
@@ -49,8 +38,7 @@ std::vector<ImageReference> ParseReferences(std::string_view text, const std::st
                                           it->second + ")"));
     }
     refs.push_back(std::move(ref));
-    if (end == text.size()) break;
-  }
+  });
   return refs;
 }
 

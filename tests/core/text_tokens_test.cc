@@ -1,5 +1,8 @@
 #include "core/text_tokens.h"
 
+#include <string>
+#include <utility>
+
 #include <gtest/gtest.h>
 
 namespace cinepath {
@@ -24,6 +27,21 @@ TEST(TextTokens, TokensAreViewsIntoTheLine) {
   EXPECT_FALSE(IsTokenSpace('\n'));  // lines are split before tokens
   EXPECT_TRUE(IsTokenSpace('\v'));
   EXPECT_FALSE(IsTokenSpace('#'));
+}
+
+TEST(TextTokens, DataLinesSkipBlanksAndCommentsAndKeepTheirNumbers) {
+  std::vector<std::pair<size_t, std::string>> seen;
+  auto collect = [&](std::string_view line, size_t number, const std::vector<std::string_view>& tokens) {
+    seen.emplace_back(number, std::string(line) + "|" + std::to_string(tokens.size()));
+  };
+  ForEachDataLine("# header\na 1\n\n  \t\n  # indented comment\nb 2 3\r\nlast", collect);
+  const std::vector<std::pair<size_t, std::string>> expected = {{2, "a 1|2"}, {6, "b 2 3\r|3"}, {7, "last|1"}};
+  EXPECT_EQ(seen, expected);
+  seen.clear();
+  ForEachDataLine("x\n", collect);  // a final newline adds no line
+  ForEachDataLine("", collect);
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0].first, 1u);
 }
 
 }  // namespace
