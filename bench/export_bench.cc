@@ -94,8 +94,8 @@ Trajectory PoiPlan(bool orbit) {
   for (int i = 0; i <= 1800; ++i) {
     const double time = i / 30.0;
     const double u = 2 * kPi * time / 60;
-    const Eigen::Vector3d p = orbit ? Eigen::Vector3d(40 * std::cos(u), 40 * std::sin(u), 30)
-                                    : Eigen::Vector3d(-120 + 4 * time, 20, 15);
+    const Eigen::Vector3d p =
+        orbit ? Eigen::Vector3d(40 * std::cos(u), 40 * std::sin(u), 30) : Eigen::Vector3d(-120 + 4 * time, 20, 15);
     t.samples.push_back(LookingAt(time, p, subject));
   }
   return t;
@@ -128,8 +128,7 @@ int main(int argc, char** argv) {
   for (double angle : {3.0, 180.0}) {
     for (double e : {0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0}) {
       exporter::Selection sel;
-      const double seconds =
-          MedianSeconds(repeats, [&] { sel = exporter::SelectWaypoints(plan.samples, {e, angle}); });
+      const double seconds = MedianSeconds(repeats, [&] { sel = exporter::SelectWaypoints(plan.samples, {e, angle}); });
       curve.push_back(Json{{"max_deviation_m", e},
                            {"max_angle_deg", angle},
                            {"waypoints", sel.sample_indices.size()},
@@ -181,7 +180,8 @@ int main(int argc, char** argv) {
   Json poi = Json::array();
   for (bool orbit : {true, false}) {
     const Trajectory t = PoiPlan(orbit);
-    for (auto tracking : {exporter::RoiTracking::kNone, exporter::RoiTracking::kCamera, exporter::RoiTracking::kHeading}) {
+    for (auto tracking :
+         {exporter::RoiTracking::kNone, exporter::RoiTracking::kCamera, exporter::RoiTracking::kHeading}) {
       exporter::MissionBuildOptions b;
       b.selection = {0.5, 3.0};
       b.selection.roi_tracking = tracking;
@@ -200,9 +200,9 @@ int main(int argc, char** argv) {
   }
   out["points_of_interest_at_0.5m_3deg"] = poi;
 
-  const std::vector<exporter::Format> formats = {
-      exporter::Format::kQgcPlan,  exporter::Format::kQgcWpl,      exporter::Format::kMavlinkBin,
-      exporter::Format::kDjiWpml, exporter::Format::kDjiMsdkJson, exporter::Format::kLitchiCsv};
+  const std::vector<exporter::Format> formats = {exporter::Format::kQgcPlan,     exporter::Format::kQgcWpl,
+                                                 exporter::Format::kMavlinkBin,  exporter::Format::kDjiWpml,
+                                                 exporter::Format::kDjiMsdkJson, exporter::Format::kLitchiCsv};
   Json timings = Json::array();
   auto time_export = [&](const std::vector<exporter::Format>& fs, const std::string& label) {
     exporter::ExportOptions options;
@@ -216,7 +216,9 @@ int main(int argc, char** argv) {
       for (const auto& f : r.files) bytes += f.contents.size();
       waypoints = r.mission.waypoints.size();
     });
-    timings.push_back(Json{{"formats", label}, {"waypoints", waypoints}, {"bytes", bytes},
+    timings.push_back(Json{{"formats", label},
+                           {"waypoints", waypoints},
+                           {"bytes", bytes},
                            {"export_ms", RoundToDecimals(seconds * 1e3, 3)}});
   };
   for (auto f : formats) time_export({f}, exporter::FormatName(f));

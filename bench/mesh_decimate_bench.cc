@@ -19,10 +19,10 @@
 // with rectangular "buildings" and 2 cm measurement noise — irregular triangles and sharp walls
 // like a drone photogrammetry mesh, not a benign UV sphere. --export-raw writes it for
 // bench/open3d_decimate.py; --import-raw measures the Hausdorff error of a mesh decimated elsewhere.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <algorithm>
 #include <cstring>
 #include <ctime>
 #include <fstream>
@@ -57,8 +57,8 @@ double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 
 // Smooth value noise on an integer lattice (deterministic hash), summed over octaves.
 double Lattice(int64_t x, int64_t y, uint32_t seed) {
-  uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull ^
-               static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full ^ seed;
+  uint64_t h =
+      static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull ^ static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full ^ seed;
   h ^= h >> 33;
   h *= 0xff51afd7ed558ccdull;
   h ^= h >> 33;
@@ -141,8 +141,8 @@ void AddDefects(pg::TriangleMesh& mesh) {
   const int gx = static_cast<int>((hi.x() - lo.x()) / cell) + 1;
   std::vector<std::vector<int>> grid(static_cast<size_t>(gx) * (static_cast<int>((hi.y() - lo.y()) / cell) + 1));
   for (int h = 0; h < holes; ++h) {
-    grid[static_cast<int>((centres[h].y() - lo.y()) / cell) * gx +
-         static_cast<int>((centres[h].x() - lo.x()) / cell)].push_back(h);
+    grid[static_cast<int>((centres[h].y() - lo.y()) / cell) * gx + static_cast<int>((centres[h].x() - lo.x()) / cell)]
+        .push_back(h);
   }
   std::vector<std::array<uint32_t, 3>> kept;
   kept.reserve(mesh.faces.size());
@@ -258,25 +258,37 @@ int main(int argc, char** argv) {
   int64_t faces = 2500000;
   double ratio = 0.1;
   int64_t samples = 1000000;
-  std::string methods = "meshoptimizer,meshoptimizer_partitioned,cgal_garland_heckbert_probabilistic,"
-                        "cgal_garland_heckbert,openmesh_quadric";
+  std::string methods =
+      "meshoptimizer,meshoptimizer_partitioned,cgal_garland_heckbert_probabilistic,"
+      "cgal_garland_heckbert,openmesh_quadric";
   bool presets = false, end_to_end = false, defects = false;
   int threads = 0;
   std::string export_raw, import_raw, label = "external";
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-    if (arg == "--faces") faces = std::stoll(next());
-    else if (arg == "--ratio") ratio = std::stod(next());
-    else if (arg == "--samples") samples = std::stoll(next());
-    else if (arg == "--methods") methods = next();
-    else if (arg == "--presets") presets = true;
-    else if (arg == "--end-to-end") end_to_end = true;
-    else if (arg == "--defects") defects = true;
-    else if (arg == "--threads") threads = std::stoi(next());
-    else if (arg == "--export-raw") export_raw = next();
-    else if (arg == "--import-raw") import_raw = next();
-    else if (arg == "--label") label = next();
+    if (arg == "--faces")
+      faces = std::stoll(next());
+    else if (arg == "--ratio")
+      ratio = std::stod(next());
+    else if (arg == "--samples")
+      samples = std::stoll(next());
+    else if (arg == "--methods")
+      methods = next();
+    else if (arg == "--presets")
+      presets = true;
+    else if (arg == "--end-to-end")
+      end_to_end = true;
+    else if (arg == "--defects")
+      defects = true;
+    else if (arg == "--threads")
+      threads = std::stoi(next());
+    else if (arg == "--export-raw")
+      export_raw = next();
+    else if (arg == "--import-raw")
+      import_raw = next();
+    else if (arg == "--label")
+      label = next();
     else {
       std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
       return 2;
@@ -285,8 +297,8 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<tbb::global_control> thread_cap;
   if (threads > 0) {
-    thread_cap = std::make_unique<tbb::global_control>(
-        tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+    thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                       static_cast<size_t>(threads));
   }
   Json result;
   auto start = std::chrono::steady_clock::now();
@@ -300,8 +312,7 @@ int main(int argc, char** argv) {
                      {"threads_cap", threads},
                      {"vertices", input.num_vertices()},
                      {"generate_s", Seconds(start)}};
-  std::fprintf(stderr, "input: %zu faces, %zu vertices\n", input.num_faces(),
-               input.num_vertices());
+  std::fprintf(stderr, "input: %zu faces, %zu vertices\n", input.num_faces(), input.num_vertices());
   if (!export_raw.empty()) WriteRaw(input, export_raw);
   const int64_t target = static_cast<int64_t>(std::llround(ratio * input.num_faces()));
   result["target_faces"] = target;
@@ -313,8 +324,7 @@ int main(int argc, char** argv) {
     const pg::TriangleMesh other = ReadRaw(import_raw);
     start = std::chrono::steady_clock::now();
     const pg::HausdorffDistance d = pg::ApproximateHausdorff(input, other, hausdorff);
-    std::fprintf(stderr, "%s: %zu faces  hausdorff %.4f m\n", label.c_str(), other.num_faces(),
-                 d.symmetric_m);
+    std::fprintf(stderr, "%s: %zu faces  hausdorff %.4f m\n", label.c_str(), other.num_faces(), d.symmetric_m);
     result["external"] = {{"label", label},
                           {"faces_out", other.num_faces()},
                           {"hausdorff_m", d.symmetric_m},
@@ -328,8 +338,8 @@ int main(int argc, char** argv) {
   if (end_to_end) {
     const std::vector<std::string> names = Split(methods);
     pg::DecimateOptions options;
-    options.method = pg::ParseDecimationMethod(
-        names.empty() ? std::string("meshoptimizer_partitioned") : names.front(), "--methods");
+    options.method = pg::ParseDecimationMethod(names.empty() ? std::string("meshoptimizer_partitioned") : names.front(),
+                                               "--methods");
     options.target_faces = target;
     Json e2e;
     start = std::chrono::steady_clock::now();
@@ -344,9 +354,8 @@ int main(int argc, char** argv) {
     start = std::chrono::steady_clock::now();
     cpu0 = CpuSeconds();
     std::unique_ptr<pg::MeshDistanceIndex> cleaned_index_ptr, out_index_ptr;
-    tbb::parallel_invoke(
-        [&] { cleaned_index_ptr = std::make_unique<pg::MeshDistanceIndex>(cleaned, "cleaned"); },
-        [&] { out_index_ptr = std::make_unique<pg::MeshDistanceIndex>(out, "decimated"); });
+    tbb::parallel_invoke([&] { cleaned_index_ptr = std::make_unique<pg::MeshDistanceIndex>(cleaned, "cleaned"); },
+                         [&] { out_index_ptr = std::make_unique<pg::MeshDistanceIndex>(out, "decimated"); });
     const pg::MeshDistanceIndex& cleaned_index = *cleaned_index_ptr;
     const pg::MeshDistanceIndex& out_index = *out_index_ptr;
     const double index_s = Seconds(start), index_cpu = CpuSeconds() - cpu0;
@@ -367,10 +376,12 @@ int main(int argc, char** argv) {
                  index_s, index_cpu, in_to_out_s, in_to_out_cpu, out_to_in_s, out_to_in_cpu);
     const double n = static_cast<double>(input.num_faces());
     e2e["method"] = pg::DecimationMethodName(options.method);
-    e2e["clean"] = {{"seconds", clean_s}, {"cpu_seconds", clean_cpu}, {"report", report.ToJson()},
-                    {"digest", Digest(cleaned)}};
-    e2e["decimate"] = {{"seconds", decimate_s}, {"cpu_seconds", decimate_cpu},
-                       {"faces_out", out.num_faces()}, {"digest", Digest(out)}};
+    e2e["clean"] = {
+        {"seconds", clean_s}, {"cpu_seconds", clean_cpu}, {"report", report.ToJson()}, {"digest", Digest(cleaned)}};
+    e2e["decimate"] = {{"seconds", decimate_s},
+                       {"cpu_seconds", decimate_cpu},
+                       {"faces_out", out.num_faces()},
+                       {"digest", Digest(out)}};
     e2e["hausdorff"] = {{"seconds", hausdorff_s},
                         {"cpu_seconds", hausdorff_cpu},
                         {"hausdorff_m", d.symmetric_m},
@@ -382,9 +393,7 @@ int main(int argc, char** argv) {
                         {"in_to_out_cpu_seconds", in_to_out_cpu},
                         {"out_to_in_cpu_seconds", out_to_in_cpu}};
     const double cd = clean_s + decimate_s, cd_cpu = clean_cpu + decimate_cpu;
-    e2e["clean_decimate"] = {{"seconds", cd},
-                             {"cpu_seconds", cd_cpu},
-                             {"input_faces_per_s", n / cd}};
+    e2e["clean_decimate"] = {{"seconds", cd}, {"cpu_seconds", cd_cpu}, {"input_faces_per_s", n / cd}};
     e2e["clean_decimate_hausdorff"] = {{"seconds", cd + hausdorff_s},
                                        {"cpu_seconds", cd_cpu + hausdorff_cpu},
                                        {"input_faces_per_s", n / (cd + hausdorff_s)}};
@@ -392,9 +401,9 @@ int main(int argc, char** argv) {
                  "end-to-end %s: clean %.2f s (cpu %.2f)  decimate %.2f s (cpu %.2f) -> %zu faces  "
                  "hausdorff %.4f m %.2f s (cpu %.2f)  clean+decimate %.2f M faces/s, with hausdorff "
                  "%.2f M faces/s\n",
-                 e2e["method"].get<std::string>().c_str(), clean_s, clean_cpu, decimate_s,
-                 decimate_cpu, out.num_faces(), d.symmetric_m, hausdorff_s, hausdorff_cpu,
-                 n / cd / 1e6, n / (cd + hausdorff_s) / 1e6);
+                 e2e["method"].get<std::string>().c_str(), clean_s, clean_cpu, decimate_s, decimate_cpu,
+                 out.num_faces(), d.symmetric_m, hausdorff_s, hausdorff_cpu, n / cd / 1e6,
+                 n / (cd + hausdorff_s) / 1e6);
     result["end_to_end"] = e2e;
     std::printf("%s", cinepath::DumpJson(result).c_str());
     return 0;
@@ -429,8 +438,8 @@ int main(int argc, char** argv) {
     const pg::HausdorffDistance d =
         pg::ApproximateHausdorff(*input_index, pg::MeshDistanceIndex(out, "output"), hausdorff);
     const double hs = Seconds(start);
-    std::fprintf(stderr, "%-36s %8.2f s (cpu %.2f s) %9zu faces  hausdorff %.4f m (%.1f s)\n",
-                 name.c_str(), s, cpu, out.num_faces(), d.symmetric_m, hs);
+    std::fprintf(stderr, "%-36s %8.2f s (cpu %.2f s) %9zu faces  hausdorff %.4f m (%.1f s)\n", name.c_str(), s, cpu,
+                 out.num_faces(), d.symmetric_m, hs);
     rows.push_back({{"method", name},
                     {"seconds", s},
                     {"cpu_seconds", cpu},
@@ -453,9 +462,8 @@ int main(int argc, char** argv) {
       const pg::SurfacePipelineResult r = pg::BuildSurfaceFromMesh(input, nullptr, options);
       const double s = Seconds(start);
       const double cpu = CpuSeconds() - cpu0;
-      std::fprintf(stderr, "preset %-8s %8.2f s  %9zu faces  hausdorff %.4f m\n",
-                   pg::QualityName(quality), s, r.mesh.num_faces(),
-                   r.report["output"]["hausdorff_m"].get<double>());
+      std::fprintf(stderr, "preset %-8s %8.2f s  %9zu faces  hausdorff %.4f m\n", pg::QualityName(quality), s,
+                   r.mesh.num_faces(), r.report["output"]["hausdorff_m"].get<double>());
       table.push_back({{"quality", pg::QualityName(quality)},
                        {"seconds", s},
                        {"cpu_seconds", cpu},

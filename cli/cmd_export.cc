@@ -77,7 +77,8 @@ class ExportCommand : public Command {
     const Json report = exporter::ReportJson(result, options);
     EnsureDirectory(output_dir_);
     AtomicOutputs outputs;
-    for (const auto& file : result.files) outputs.Add(std::filesystem::path(output_dir_) / file.file_name, file.contents);
+    for (const auto& file : result.files)
+      outputs.Add(std::filesystem::path(output_dir_) / file.file_name, file.contents);
     outputs.Add(std::filesystem::path(output_dir_) / "export_report.json", DumpJson(report));
     outputs.Commit();
     std::cout << (json_ ? DumpJson(report) : exporter::ReportText(result, options));

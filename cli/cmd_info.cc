@@ -27,8 +27,8 @@ class InfoCommand : public Command {
     if (!exporter::LooksLikeMission(text)) {
       throw InputError(path_ + ": not a file kind `cinepath info` understands (QGC .plan, QGC WPL 110)");
     }
-    const exporter::ReadMission mission = text.rfind("QGC WPL", 0) == 0 ? exporter::ParseQgcWpl(text, path_)
-                                                                        : exporter::ParseQgcPlan(text, path_);
+    const exporter::ReadMission mission =
+        text.rfind("QGC WPL", 0) == 0 ? exporter::ParseQgcWpl(text, path_) : exporter::ParseQgcPlan(text, path_);
     std::cout << (json_ ? DumpJson(exporter::MissionSummaryJson(mission)) : exporter::MissionSummaryText(mission));
     return 0;
   }

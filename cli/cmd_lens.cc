@@ -34,8 +34,7 @@ class LensCommand : public Command {
     app.add_option("--focal-mm", focal_length_mm_, "Focal length, mm")->required();
     app.add_option("--f-number", f_number_, "Aperture as an f-number (2.8 for f/2.8)")->required();
     app.add_option("--focus-m", focus_text_, "Focus distance, metres, or 'inf'")->required();
-    auto* sensor = app.add_option("--sensor", sensor_name_,
-                                  "Filmback preset: " + PresetNames() + " (default super35)");
+    auto* sensor = app.add_option("--sensor", sensor_name_, "Filmback preset: " + PresetNames() + " (default super35)");
     auto* sensor_mm = app.add_option("--sensor-mm", sensor_mm_text_, "Sensor size WxH in mm, e.g. 36x24");
     sensor->excludes(sensor_mm);
     app.add_option("--width-px", width_px_, "Image width in pixels (default 3840)");
@@ -57,8 +56,7 @@ class LensCommand : public Command {
     if (!sensor_name_.empty()) {
       auto preset = FindFilmback(sensor_name_);
       if (!preset) {
-        throw InputError("--sensor: unknown filmback '" + sensor_name_ + "' (known: " +
-                         PresetNames() + ")");
+        throw InputError("--sensor: unknown filmback '" + sensor_name_ + "' (known: " + PresetNames() + ")");
       }
       filmback = *preset;
     } else if (!sensor_mm_text_.empty()) {
@@ -75,8 +73,7 @@ class LensCommand : public Command {
     for (const auto& t : at_text_) {
       const double d = ParseMetresOrInfinity(t, "--at-m");
       if (!(d * 1000.0 > focal_length_mm_)) {
-        throw InputError("--at-m: " + t + " m is not beyond the focal length " +
-                         Fmt("%g", focal_length_mm_) + " mm");
+        throw InputError("--at-m: " + t + " m is not beyond the focal length " + Fmt("%g", focal_length_mm_) + " mm");
       }
       at_m.push_back(d);
     }
@@ -121,8 +118,8 @@ class LensCommand : public Command {
       }
       report = DumpJson(j);
     } else {
-      report += "lens        " + Fmt("%g mm", focal_length_mm_) + " at f/" + Fmt("%g", f_number_) +
-                ", focused at " + (std::isinf(focus_m) ? std::string("infinity") : Fmt("%g m", focus_m)) + "\n";
+      report += "lens        " + Fmt("%g mm", focal_length_mm_) + " at f/" + Fmt("%g", f_number_) + ", focused at " +
+                (std::isinf(focus_m) ? std::string("infinity") : Fmt("%g m", focus_m)) + "\n";
       report += "sensor      " + filmback.label + " " + Fmt("%g", filmback.width_mm) + " x " +
                 Fmt("%g mm", filmback.height_mm) + ", " + std::to_string(width_px_) + " px wide\n";
       report += "blur limit  " + Fmt("%.4f mm", coc_mm) + " (" +
@@ -131,13 +128,13 @@ class LensCommand : public Command {
       report += "hyperfocal  " + Metres(dof.hyperfocal_m) + "\n";
       report += "near limit  " + Metres(dof.near_m) + "\n";
       report += "far limit   " + Metres(dof.far_m) + "\n";
-      report += "depth       " +
-                (std::isinf(dof.far_m) ? std::string("infinity") : Metres(dof.far_m - dof.near_m)) + "\n";
-      report += "field       " + Fmt("%.2f", hfov_deg) + " deg horizontal, " + Fmt("%.2f", vfov_deg) +
-                " deg vertical\n";
+      report +=
+          "depth       " + (std::isinf(dof.far_m) ? std::string("infinity") : Metres(dof.far_m - dof.near_m)) + "\n";
+      report +=
+          "field       " + Fmt("%.2f", hfov_deg) + " deg horizontal, " + Fmt("%.2f", vfov_deg) + " deg vertical\n";
       for (const auto& b : blur) {
-        report += "blur at " + (std::isinf(b.distance_m) ? std::string("infinity") : Fmt("%g m", b.distance_m)) +
-                  ": " + Fmt("%.4f mm", b.coc_mm) + ", " + Fmt("%.1f px", b.coc_px) + "\n";
+        report += "blur at " + (std::isinf(b.distance_m) ? std::string("infinity") : Fmt("%g m", b.distance_m)) + ": " +
+                  Fmt("%.4f mm", b.coc_mm) + ", " + Fmt("%.1f px", b.coc_px) + "\n";
       }
     }
     WriteFileAtomic(output_, report);

@@ -92,8 +92,10 @@ class MeshCommand : public Command {
         ->check(CLI::IsMember({"draft", "standard", "final"}));
     app.add_option("--surface", surface_, "auto | height-field | poisson");
     app.add_option("--target-faces", target_faces_, "Simplify to at most N faces")->check(CLI::PositiveNumber);
-    app.add_option("--max-error-m", max_error_m_, "Simplify within this Hausdorff error (m)")->check(CLI::PositiveNumber);
-    app.add_option("--remesh-edge-m", remesh_edge_m_, "After simplifying, remesh isotropically to edges of about L m")->check(CLI::PositiveNumber);
+    app.add_option("--max-error-m", max_error_m_, "Simplify within this Hausdorff error (m)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--remesh-edge-m", remesh_edge_m_, "After simplifying, remesh isotropically to edges of about L m")
+        ->check(CLI::PositiveNumber);
     app.add_flag("--draco", draco_, "Compress the GLB with KHR_draco_mesh_compression");
     app.add_flag("--no-timestamp", no_timestamp_, "Leave wall-clock times out of scene.json (byte-identical runs)");
     app.add_option("-o,--output", output_dir_, "Output folder (scene.glb, scene.json)")->required();
@@ -119,7 +121,8 @@ class MeshCommand : public Command {
     const ColmapModel model = ReadColmapModel(colmap_dir_);
     const ColmapFormat format = DetectColmapFormat(colmap_dir_);
     for (const char* stem : {"cameras", "images", "points3D"}) {
-      inputs.push_back((fs::path(colmap_dir_) / (std::string(stem) + (format == ColmapFormat::kBinary ? ".bin" : ".txt"))).string());
+      inputs.push_back(
+          (fs::path(colmap_dir_) / (std::string(stem) + (format == ColmapFormat::kBinary ? ".bin" : ".txt"))).string());
     }
 
     ModelGeoreferenceOptions options;
@@ -128,7 +131,8 @@ class MeshCommand : public Command {
     if (!origin_.empty()) options.origin = ParseOrigin(origin_);
     options.bundle_adjust = !no_bundle_adjust_;
     if (gps_sigma_m_) options.ba.gps_sigma_horizontal_m = options.ba.gps_sigma_vertical_m = *gps_sigma_m_;
-    options.gcp_altitude_datum = gcp_altitude_datum_ == "amsl" ? AltitudeDatum::kAmslEgm96 : AltitudeDatum::kEllipsoidal;
+    options.gcp_altitude_datum =
+        gcp_altitude_datum_ == "amsl" ? AltitudeDatum::kAmslEgm96 : AltitudeDatum::kEllipsoidal;
     options.gcp_sigma_horizontal_m = options.gcp_sigma_vertical_m = gcp_sigma_m_;
     std::optional<GcpFile> gcps;
     if (!gcp_path_.empty()) {
@@ -171,8 +175,9 @@ class MeshCommand : public Command {
       refs_source = "EXIF GPS of " + images_dir;
     }
     if (refs.empty() && !gcps) {
-      throw InputError("no references to georeference with: give --refs FILE, --images DIR with GPS EXIF, or --gcp FILE" +
-                       std::string(images_dir.empty() ? "" : " (" + images_dir + " has no GPS EXIF)"));
+      throw InputError(
+          "no references to georeference with: give --refs FILE, --images DIR with GPS EXIF, or --gcp FILE" +
+          std::string(images_dir.empty() ? "" : " (" + images_dir + " has no GPS EXIF)"));
     }
 
     // Focal-length priors: --focal-prior-px, else EXIF of an image of each camera.
@@ -207,7 +212,8 @@ class MeshCommand : public Command {
     surface.draco = draco_;
     surface.report_times = !no_timestamp_;
     Json extras = Json::object();
-    extras["origin"] = {{"lat_deg", geo.origin.lat_deg}, {"lon_deg", geo.origin.lon_deg}, {"height_m", geo.origin.height_m}};
+    extras["origin"] = {
+        {"lat_deg", geo.origin.lat_deg}, {"lon_deg", geo.origin.lon_deg}, {"height_m", geo.origin.height_m}};
     extras["frame"] = "ENU metres about origin (glTF x = east, y = up, z = -north); heights WGS84 ellipsoidal";
     surface.gltf_extras = extras;
     surface.Check();
@@ -252,7 +258,8 @@ class MeshCommand : public Command {
     for (auto it = geo_json.begin(); it != geo_json.end(); ++it) scene[it.key()] = it.value();
     scene["georeferencing"]["references_source"] = refs_source.empty() ? Json(nullptr) : Json(refs_source);
     if (gcps) scene["georeferencing"]["gcp_source"] = gcp_path_;
-    scene["georeferencing"]["images"] = images_dir.empty() ? Json(nullptr) : Json(images_dir + " (" + images_note + ")");
+    scene["georeferencing"]["images"] =
+        images_dir.empty() ? Json(nullptr) : Json(images_dir + " (" + images_note + ")");
     scene["input"] = {{"colmap", colmap_dir_},
                       {"colmap_format", format == ColmapFormat::kBinary ? "binary" : "text"},
                       {"cameras", model.cameras.size()},

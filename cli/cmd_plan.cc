@@ -53,9 +53,9 @@ class PlanCommand : public Command {
                         " limit range(s) (--strict; nothing written):";
       for (const auto& v : plan.feasibility.violations) {
         const bool minimum = v.limit.ends_with("_min") || v.limit == "subject_distance";
-        msg += "\n  " + Number(v.start_time_s) + "-" + Number(v.end_time_s) + " s  shot \"" + v.shot + "\"  " + v.limit +
-               ": " + Number(v.worst_value, "%.4g") + (v.unit.empty() ? "" : " " + v.unit) + (minimum ? " < " : " > ") +
-               Number(v.limit_value, "%.4g") + (v.unit.empty() ? "" : " " + v.unit);
+        msg += "\n  " + Number(v.start_time_s) + "-" + Number(v.end_time_s) + " s  shot \"" + v.shot + "\"  " +
+               v.limit + ": " + Number(v.worst_value, "%.4g") + (v.unit.empty() ? "" : " " + v.unit) +
+               (minimum ? " < " : " > ") + Number(v.limit_value, "%.4g") + (v.unit.empty() ? "" : " " + v.unit);
       }
       throw InfeasibleError(msg);
     }

@@ -19,8 +19,7 @@ std::unique_ptr<Command> LoadCommandPlugin(const std::string& module_file_name);
 
 }  // namespace cinepath::cli
 
-#define CINEPATH_COMMAND_PLUGIN(factory)                                                  \
-  extern "C" __attribute__((visibility("default"))) cinepath::cli::Command*              \
-  cinepath_plugin_make_command() {                                                       \
-    return cinepath::cli::factory().release();                                           \
+#define CINEPATH_COMMAND_PLUGIN(factory)                                                                     \
+  extern "C" __attribute__((visibility("default"))) cinepath::cli::Command* cinepath_plugin_make_command() { \
+    return cinepath::cli::factory().release();                                                               \
   }

@@ -22,16 +22,13 @@ std::unique_ptr<Command> MakeInfoCommand();
 const std::vector<CommandInfo>& Commands() {
   static const std::vector<CommandInfo> commands = {
 #ifdef CINEPATH_WITH_PHOTOGRAMMETRY
-      {"mesh", "COLMAP reconstruction -> cleaned, georeferenced mesh (scene.glb + scene.json)",
-       &MakeMeshCommand},
+      {"mesh", "COLMAP reconstruction -> cleaned, georeferenced mesh (scene.glb + scene.json)", &MakeMeshCommand},
 #endif
 #ifdef CINEPATH_WITH_SHOTS
-      {"plan", "shot list -> keyframed, per-frame camera flight with lens tracks (plan.json)",
-       &MakePlanCommand},
+      {"plan", "shot list -> keyframed, per-frame camera flight with lens tracks (plan.json)", &MakePlanCommand},
 #endif
 #ifdef CINEPATH_WITH_EXPORT
-      {"export", "plan -> drone missions (QGC .plan/WPL, MAVLink, DJI WPML/MSDK, Litchi CSV)",
-       &MakeExportCommand},
+      {"export", "plan -> drone missions (QGC .plan/WPL, MAVLink, DJI WPML/MSDK, Litchi CSV)", &MakeExportCommand},
       {"info", "inspect a cinepath file or mission, print a summary or JSON", &MakeInfoCommand},
 #endif
       {"lens", "depth-of-field calculator: hyperfocal distance, near/far limits, field of view, blur",

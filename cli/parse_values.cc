@@ -57,8 +57,7 @@ std::vector<double> ParseNumberList(const std::string& text, size_t count, const
     start = comma + 1;
   }
   if (values.size() != count) {
-    throw InputError(option + ": expected " + std::to_string(count) + " comma-separated numbers, got '" +
-                     text + "'");
+    throw InputError(option + ": expected " + std::to_string(count) + " comma-separated numbers, got '" + text + "'");
   }
   return values;
 }

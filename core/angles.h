@@ -47,12 +47,8 @@ inline double NormalizeRadPi(double rad) {
 inline double AngleDiffDeg(double a_deg, double b_deg) { return NormalizeDeg180Open(b_deg - a_deg); }
 
 // Compass heading (clockwise from north, [0,360)) from an ENU yaw (counter-clockwise from east, rad).
-inline double HeadingDegFromEnuYaw(double yaw_enu_rad) {
-  return NormalizeDeg360(90.0 - DegFromRad(yaw_enu_rad));
-}
+inline double HeadingDegFromEnuYaw(double yaw_enu_rad) { return NormalizeDeg360(90.0 - DegFromRad(yaw_enu_rad)); }
 // ENU yaw (rad, (-pi, pi]) from a compass heading in degrees.
-inline double EnuYawFromHeadingDeg(double heading_deg) {
-  return NormalizeRadPi(RadFromDeg(90.0 - heading_deg));
-}
+inline double EnuYawFromHeadingDeg(double heading_deg) { return NormalizeRadPi(RadFromDeg(90.0 - heading_deg)); }
 
 }  // namespace cinepath

@@ -17,18 +17,14 @@ std::string EscapeForMake(const std::string& path) {
         out.push_back('\\');
         out.push_back(c);
         break;
-      case '$':
-        out += "$$";
-        break;
-      default:
-        out.push_back(c);
+      case '$': out += "$$"; break;
+      default: out.push_back(c);
     }
   }
   return out;
 }
 
-std::string FormatDepfile(const std::vector<std::string>& targets,
-                          const std::vector<std::string>& dependencies) {
+std::string FormatDepfile(const std::vector<std::string>& targets, const std::vector<std::string>& dependencies) {
   std::string line;
   for (size_t i = 0; i < targets.size(); ++i) {
     if (i) line.push_back(' ');

@@ -12,8 +12,7 @@ namespace cinepath {
 std::string EscapeForMake(const std::string& path);
 
 // "t1 t2: d1 d2\n" with every path escaped. Dependencies keep their order, duplicates dropped.
-std::string FormatDepfile(const std::vector<std::string>& targets,
-                          const std::vector<std::string>& dependencies);
+std::string FormatDepfile(const std::vector<std::string>& targets, const std::vector<std::string>& dependencies);
 
 // Writes the line atomically.
 void WriteDepfile(const std::filesystem::path& depfile, const std::vector<std::string>& targets,

@@ -14,19 +14,14 @@ struct Values {
 Values Evaluate(Easing e, double u) {
   const double v = 1.0 - u;
   switch (e) {
-    case Easing::kLinear:
-      return {u, 1.0, 0.0};
-    case Easing::kEaseInQuad:
-      return {u * u, 2.0 * u, 2.0};
-    case Easing::kEaseOutQuad:
-      return {1.0 - v * v, 2.0 * v, -2.0};
+    case Easing::kLinear: return {u, 1.0, 0.0};
+    case Easing::kEaseInQuad: return {u * u, 2.0 * u, 2.0};
+    case Easing::kEaseOutQuad: return {1.0 - v * v, 2.0 * v, -2.0};
     case Easing::kEaseInOutQuad:
       if (u < 0.5) return {2.0 * u * u, 4.0 * u, 4.0};
       return {1.0 - 2.0 * v * v, 4.0 * v, -4.0};
-    case Easing::kEaseInCubic:
-      return {u * u * u, 3.0 * u * u, 6.0 * u};
-    case Easing::kEaseOutCubic:
-      return {1.0 - v * v * v, 3.0 * v * v, -6.0 * v};
+    case Easing::kEaseInCubic: return {u * u * u, 3.0 * u * u, 6.0 * u};
+    case Easing::kEaseOutCubic: return {1.0 - v * v * v, 3.0 * v * v, -6.0 * v};
     case Easing::kEaseInOutCubic:
       if (u < 0.5) return {4.0 * u * u * u, 12.0 * u * u, 24.0 * u};
       return {1.0 - 4.0 * v * v * v, 12.0 * v * v, -24.0 * v};
@@ -34,12 +29,10 @@ Values Evaluate(Easing e, double u) {
       return {1.0 - std::cos(kPi * u / 2.0), kPi / 2.0 * std::sin(kPi * u / 2.0),
               kPi * kPi / 4.0 * std::cos(kPi * u / 2.0)};
     case Easing::kEaseOutSine:
-      return {std::sin(kPi * u / 2.0), kPi / 2.0 * std::cos(kPi * u / 2.0),
-              -kPi * kPi / 4.0 * std::sin(kPi * u / 2.0)};
+      return {std::sin(kPi * u / 2.0), kPi / 2.0 * std::cos(kPi * u / 2.0), -kPi * kPi / 4.0 * std::sin(kPi * u / 2.0)};
     case Easing::kEaseInOutSine:
       return {(1.0 - std::cos(kPi * u)) / 2.0, kPi / 2.0 * std::sin(kPi * u), kPi * kPi / 2.0 * std::cos(kPi * u)};
-    case Easing::kSmoothstep:
-      return {u * u * (3.0 - 2.0 * u), 6.0 * u * v, 6.0 - 12.0 * u};
+    case Easing::kSmoothstep: return {u * u * (3.0 - 2.0 * u), 6.0 * u * v, 6.0 - 12.0 * u};
     case Easing::kSmootherstep:
       return {u * u * u * (u * (6.0 * u - 15.0) + 10.0), 30.0 * u * u * v * v, 60.0 * u * v * (1.0 - 2.0 * u)};
   }

@@ -61,5 +61,4 @@ inline std::string Located(const std::string& where, const std::string& what) {
 
 // Guards an invariant; a failure is a cinepath bug (exit 1, file:line in the message).
 // (Not named CHECK: glog, pulled in by Ceres, owns that name.)
-#define CINEPATH_CHECK(condition) \
-  ((condition) ? (void)0 : ::cinepath::ThrowInternal(__FILE__, __LINE__, #condition))
+#define CINEPATH_CHECK(condition) ((condition) ? (void)0 : ::cinepath::ThrowInternal(__FILE__, __LINE__, #condition))

@@ -19,8 +19,8 @@ fs::path TempPathBeside(const fs::path& target) {
   // Unique per process and call; hidden so a crashed run is easy to spot and ignore.
   static unsigned counter = 0;
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  return dir / ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
-                std::to_string(counter++));
+  return dir /
+         ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++));
 }
 
 void WriteWhole(const fs::path& path, std::string_view contents) {

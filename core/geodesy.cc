@@ -17,23 +17,20 @@ void ValidateGeodetic(const Geodetic& g, const char* what) {
     throw InputError(std::string(what) + ": latitude, longitude and height must be finite");
   }
   if (g.lat_deg < -90.0 || g.lat_deg > 90.0) {
-    throw InputError(std::string(what) + ": latitude " + std::to_string(g.lat_deg) +
-                     " is outside [-90, 90] degrees");
+    throw InputError(std::string(what) + ": latitude " + std::to_string(g.lat_deg) + " is outside [-90, 90] degrees");
   }
 }
 
 Eigen::Vector3d EcefFromGeodetic(const Geodetic& g) {
   ValidateGeodetic(g, "geodetic position");
   Eigen::Vector3d ecef;
-  GeographicLib::Geocentric::WGS84().Forward(g.lat_deg, g.lon_deg, g.height_m, ecef.x(), ecef.y(),
-                                             ecef.z());
+  GeographicLib::Geocentric::WGS84().Forward(g.lat_deg, g.lon_deg, g.height_m, ecef.x(), ecef.y(), ecef.z());
   return ecef;
 }
 
 Geodetic GeodeticFromEcef(const Eigen::Vector3d& ecef_m) {
   Geodetic g;
-  GeographicLib::Geocentric::WGS84().Reverse(ecef_m.x(), ecef_m.y(), ecef_m.z(), g.lat_deg,
-                                             g.lon_deg, g.height_m);
+  GeographicLib::Geocentric::WGS84().Reverse(ecef_m.x(), ecef_m.y(), ecef_m.z(), g.lat_deg, g.lon_deg, g.height_m);
   g.lon_deg = NormalizeDeg180(g.lon_deg);
   return g;
 }
@@ -47,8 +44,7 @@ struct EnuFrame::Impl {
 EnuFrame::EnuFrame(const Geodetic& origin) : origin_(origin) {
   ValidateGeodetic(origin, "ENU origin");
   origin_.lon_deg = NormalizeDeg180(origin.lon_deg);
-  impl_ = std::make_unique<Impl>(Impl{GeographicLib::LocalCartesian(origin_.lat_deg, origin_.lon_deg,
-                                                                    origin_.height_m,
+  impl_ = std::make_unique<Impl>(Impl{GeographicLib::LocalCartesian(origin_.lat_deg, origin_.lon_deg, origin_.height_m,
                                                                     GeographicLib::Geocentric::WGS84()),
                                       EcefFromGeodetic(origin_), Eigen::Matrix3d::Identity()});
   // LocalCartesian reports M (row-major) such that ecef_direction = M * enu_direction.
@@ -59,8 +55,7 @@ EnuFrame::EnuFrame(const Geodetic& origin) : origin_(origin) {
 }
 
 EnuFrame::~EnuFrame() = default;
-EnuFrame::EnuFrame(const EnuFrame& other)
-    : origin_(other.origin_), impl_(std::make_unique<Impl>(*other.impl_)) {}
+EnuFrame::EnuFrame(const EnuFrame& other) : origin_(other.origin_), impl_(std::make_unique<Impl>(*other.impl_)) {}
 EnuFrame& EnuFrame::operator=(const EnuFrame& other) {
   origin_ = other.origin_;
   impl_ = std::make_unique<Impl>(*other.impl_);

@@ -23,8 +23,10 @@ T ReadBigEndian(const std::string& bytes, size_t offset) {
   U u;
   std::memcpy(&u, bytes.data() + offset, sizeof(U));
   if constexpr (std::endian::native == std::endian::little) {
-    if constexpr (sizeof(U) == 4) u = __builtin_bswap32(u);
-    else u = __builtin_bswap64(u);
+    if constexpr (sizeof(U) == 4)
+      u = __builtin_bswap32(u);
+    else
+      u = __builtin_bswap64(u);
   }
   T value;
   std::memcpy(&value, &u, sizeof(T));
@@ -45,8 +47,7 @@ Egm96Geoid::Egm96Geoid(const std::filesystem::path& gtx_path) {
   }
   constexpr size_t kHeaderBytes = 4 * 8 + 2 * 4;
   if (bytes.size() < kHeaderBytes) {
-    throw InputError(source + ": byte 0: truncated .gtx header (" + std::to_string(bytes.size()) +
-                     " bytes)");
+    throw InputError(source + ": byte 0: truncated .gtx header (" + std::to_string(bytes.size()) + " bytes)");
   }
   lat0_deg_ = ReadBigEndian<double>(bytes, 0);
   lon0_deg_ = ReadBigEndian<double>(bytes, 8);
@@ -61,15 +62,14 @@ Egm96Geoid::Egm96Geoid(const std::filesystem::path& gtx_path) {
   const size_t n = static_cast<size_t>(rows_) * static_cast<size_t>(cols_);
   if (bytes.size() != kHeaderBytes + 4 * n) {
     throw InputError(source + ": byte " + std::to_string(bytes.size()) + ": expected " +
-                     std::to_string(kHeaderBytes + 4 * n) + " bytes for a " + std::to_string(rows_) +
-                     "x" + std::to_string(cols_) + " grid");
+                     std::to_string(kHeaderBytes + 4 * n) + " bytes for a " + std::to_string(rows_) + "x" +
+                     std::to_string(cols_) + " grid");
   }
   grid_m_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const float v = ReadBigEndian<float>(bytes, kHeaderBytes + 4 * i);
     if (!std::isfinite(v) || std::fabs(v) > 200.0f) {
-      throw InputError(source + ": byte " + std::to_string(kHeaderBytes + 4 * i) +
-                       ": implausible undulation");
+      throw InputError(source + ": byte " + std::to_string(kHeaderBytes + 4 * i) + ": implausible undulation");
     }
     grid_m_[i] = v;
   }
@@ -110,9 +110,7 @@ double Egm96Geoid::UndulationM(double lat_deg, double lon_deg) const {
   const double fr = r - r0;
   const double fc = c - c0;
   const int c1 = global ? (c0 + 1) % cols_ : std::min(c0 + 1, cols_ - 1);
-  auto at = [&](int row, int col) {
-    return static_cast<double>(grid_m_[static_cast<size_t>(row) * cols_ + col]);
-  };
+  auto at = [&](int row, int col) { return static_cast<double>(grid_m_[static_cast<size_t>(row) * cols_ + col]); };
   const double south = at(r0, c0) * (1 - fc) + at(r0, c1) * fc;
   const double north = at(r0 + 1, c0) * (1 - fc) + at(r0 + 1, c1) * fc;
   return south * (1 - fr) + north * fr;

@@ -35,8 +35,7 @@ std::string TypeName(const Json& node) {
 
 std::string DumpJson(const Json& document) {
   RequireFinite(document, "");
-  std::string text = document.dump(2, ' ', /*ensure_ascii=*/false,
-                                   nlohmann::json::error_handler_t::strict);
+  std::string text = document.dump(2, ' ', /*ensure_ascii=*/false, nlohmann::json::error_handler_t::strict);
   text.push_back('\n');
   return text;
 }
@@ -65,14 +64,12 @@ Json ParseJsonText(std::string_view text, const std::string& source_name) {
     std::string what = e.what();
     const auto pos = what.find("syntax error");
     if (pos != std::string::npos) what = what.substr(pos);
-    throw InputError(source_name + ": line " + std::to_string(line) + ", column " +
-                     std::to_string(column) + ": invalid JSON: " + what);
+    throw InputError(source_name + ": line " + std::to_string(line) + ", column " + std::to_string(column) +
+                     ": invalid JSON: " + what);
   }
 }
 
-Json ParseJsonFile(const std::filesystem::path& path) {
-  return ParseJsonText(ReadFileToString(path), path.string());
-}
+Json ParseJsonFile(const std::filesystem::path& path) { return ParseJsonText(ReadFileToString(path), path.string()); }
 
 JsonField::JsonField(const Json& node, std::string source, std::string path)
     : node_(&node), source_(std::move(source)), path_(std::move(path)) {}
@@ -89,8 +86,7 @@ JsonField JsonField::operator[](std::string_view key) const {
   const std::string child_path = path_.empty() ? std::string(key) : path_ + "." + std::string(key);
   auto it = node_->find(std::string(key));
   if (it == node_->end()) {
-    throw InputError(Located(source_.empty() ? child_path : source_ + ": " + child_path,
-                             "missing (required)"));
+    throw InputError(Located(source_.empty() ? child_path : source_ + ": " + child_path, "missing (required)"));
   }
   return JsonField(*it, source_, child_path);
 }

@@ -20,8 +20,8 @@ std::string Num(double v) {
 void ValidateSubjectDistanceM(double d_m, double focal_length_mm) {
   if (std::isnan(d_m) || d_m == -kInf) throw InputError("subject distance must be a number");
   if (d_m * kMmPerM <= focal_length_mm) {
-    throw InputError("subject distance " + Num(d_m) + " m is not beyond the focal length " +
-                     Num(focal_length_mm) + " mm (no real image)");
+    throw InputError("subject distance " + Num(d_m) + " m is not beyond the focal length " + Num(focal_length_mm) +
+                     " mm (no real image)");
   }
 }
 
@@ -67,8 +67,7 @@ void ValidateFNumber(double f_number, const std::string& what) {
   }
 }
 
-void ValidateFocusDistanceM(double focus_distance_m, double focal_length_mm,
-                            const std::string& what) {
+void ValidateFocusDistanceM(double focus_distance_m, double focal_length_mm, const std::string& what) {
   if (std::isnan(focus_distance_m) || focus_distance_m == -kInf) {
     throw InputError(what + ": must be a number of metres or inf");
   }
@@ -76,13 +75,12 @@ void ValidateFocusDistanceM(double focus_distance_m, double focal_length_mm,
     throw InputError(what + ": must be > 0 m, got " + Num(focus_distance_m));
   }
   if (focus_distance_m * kMmPerM <= focal_length_mm) {
-    throw InputError(what + ": " + Num(focus_distance_m) + " m is inside the focal length " +
-                     Num(focal_length_mm) + " mm (no real image)");
+    throw InputError(what + ": " + Num(focus_distance_m) + " m is inside the focal length " + Num(focal_length_mm) +
+                     " mm (no real image)");
   }
 }
 
-double BlurCircleMm(double focal_length_mm, double f_number, double focus_distance_m,
-                    double subject_distance_m) {
+double BlurCircleMm(double focal_length_mm, double f_number, double focus_distance_m, double subject_distance_m) {
   ValidateFocalLengthMm(focal_length_mm);
   ValidateFNumber(f_number);
   ValidateFocusDistanceM(focus_distance_m, focal_length_mm);
@@ -111,8 +109,7 @@ double HyperfocalDistanceM(double focal_length_mm, double f_number, double coc_m
   return h_mm / kMmPerM;
 }
 
-DepthOfField DepthOfFieldLimits(double focal_length_mm, double f_number, double focus_distance_m,
-                                double coc_mm) {
+DepthOfField DepthOfFieldLimits(double focal_length_mm, double f_number, double focus_distance_m, double coc_mm) {
   DepthOfField dof;
   dof.hyperfocal_m = HyperfocalDistanceM(focal_length_mm, f_number, coc_mm);
   ValidateFocusDistanceM(focus_distance_m, focal_length_mm);

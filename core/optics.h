@@ -17,8 +17,8 @@
 namespace cinepath {
 
 struct Filmback {
-  std::string name;  // preset key, e.g. "super35"
-  std::string label; // human name, e.g. "Super 35"
+  std::string name;   // preset key, e.g. "super35"
+  std::string label;  // human name, e.g. "Super 35"
   double width_mm = 0;
   double height_mm = 0;
   double DiagonalMm() const;
@@ -43,8 +43,7 @@ void ValidateFocusDistanceM(double focus_distance_m, double focal_length_mm,
 // Blur-circle diameter on the sensor, mm, for a point at distance d when focused at s (stable form):
 //   c = (f^2 / N) * |1/s - 1/d| / (1 - f/s)
 // s = +inf gives c = f^2 / (N d); d = +inf gives c = (f^2/N) (1/s) / (1 - f/s).
-double BlurCircleMm(double focal_length_mm, double f_number, double focus_distance_m,
-                    double subject_distance_m);
+double BlurCircleMm(double focal_length_mm, double f_number, double focus_distance_m, double subject_distance_m);
 
 // mm on the sensor to pixels: c_px = c * width_px / sensor_width_mm.
 double MmToPixels(double sensor_mm, double sensor_width_mm, int width_px);
@@ -60,8 +59,7 @@ struct DepthOfField {
 
 // near = s (H - f) / (H + s - 2f); far = s (H - f) / (H - s), infinite when s >= H.
 // s = +inf gives near = H - f, far = +inf.
-DepthOfField DepthOfFieldLimits(double focal_length_mm, double f_number, double focus_distance_m,
-                                double coc_mm);
+DepthOfField DepthOfFieldLimits(double focal_length_mm, double f_number, double focus_distance_m, double coc_mm);
 
 // Angle of view across a sensor extent: 2 atan(extent / (2 f)), radians (focus at infinity, no
 // focus breathing).

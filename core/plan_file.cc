@@ -22,9 +22,7 @@ constexpr int kLens = 6;
 // coarser than that precision and are written as they are.
 double R(double v, int decimals) { return std::fabs(v) > 1e15 ? v : RoundToDecimals(v, decimals); }
 
-Json Vec3(const Eigen::Vector3d& v) {
-  return Json::array({R(v.x(), kMetres), R(v.y(), kMetres), R(v.z(), kMetres)});
-}
+Json Vec3(const Eigen::Vector3d& v) { return Json::array({R(v.x(), kMetres), R(v.y(), kMetres), R(v.z(), kMetres)}); }
 
 Json Quat(const Eigen::Quaterniond& q_in) {
   // Renormalize only what is not already unit to the written precision, so that reading a plan and
@@ -103,7 +101,7 @@ Eigen::Quaterniond ReadQuat(const JsonField& f) {
 
 double ReadFocus(const JsonField& parent, const char* key) {
   if (!parent.Has(key)) {
-    if (!parent.node().contains(key)) parent[key];  // throws "missing"
+    if (!parent.node().contains(key)) parent[key];   // throws "missing"
     return std::numeric_limits<double>::infinity();  // null = infinity
   }
   return parent[key].AsPositive();
@@ -359,9 +357,7 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
   return plan;
 }
 
-Trajectory ReadPlanFile(const std::filesystem::path& path) {
-  return PlanFromJson(ParseJsonFile(path), path.string());
-}
+Trajectory ReadPlanFile(const std::filesystem::path& path) { return PlanFromJson(ParseJsonFile(path), path.string()); }
 
 std::string PlanSamplesToCsv(const Trajectory& plan) {
   std::string out =

@@ -108,8 +108,8 @@ std::vector<Eigen::Quaterniond> SquadControlPoints(const std::vector<Eigen::Quat
   return s;
 }
 
-Eigen::Quaterniond Squad(const Eigen::Quaterniond& q0, const Eigen::Quaterniond& q1,
-                         const Eigen::Quaterniond& s0, const Eigen::Quaterniond& s1, double t) {
+Eigen::Quaterniond Squad(const Eigen::Quaterniond& q0, const Eigen::Quaterniond& q1, const Eigen::Quaterniond& s0,
+                         const Eigen::Quaterniond& s1, double t) {
   if (t == 0.0) return q0.normalized();
   if (t == 1.0) return q1.normalized();
   return SlerpNoFlip(SlerpNoFlip(q0, q1, t), SlerpNoFlip(s0, s1, t), 2.0 * t * (1.0 - t));
@@ -174,8 +174,9 @@ Eigen::Quaterniond AimWithScreenOffset(const Eigen::Vector3d& target_enu, const 
 
 Eigen::Quaterniond WorldFromCameraFromGimbal(const GimbalAngles& g) {
   const double yaw = EnuYawFromHeadingDeg(g.drone_heading_deg + g.gimbal_yaw_deg);
-  const Eigen::Matrix3d m = YawPitchMatrix(yaw, RadFromDeg(g.gimbal_pitch_deg)) *
-                            Eigen::AngleAxisd(RadFromDeg(g.gimbal_roll_deg), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d m =
+      YawPitchMatrix(yaw, RadFromDeg(g.gimbal_pitch_deg)) *
+      Eigen::AngleAxisd(RadFromDeg(g.gimbal_roll_deg), Eigen::Vector3d::UnitZ()).toRotationMatrix();
   return QuaternionFromMatrix(m);
 }
 

@@ -51,8 +51,8 @@ std::vector<Eigen::Quaterniond> AlignHemispheres(const std::vector<Eigen::Quater
 // Inner control points s_i = q_i exp(-(log(q_i^-1 q_{i+1}) + log(q_i^-1 q_{i-1})) / 4), with the
 // end keys duplicated (s_0 = q_0, s_{n-1} = q_{n-1}). Expects aligned keys.
 std::vector<Eigen::Quaterniond> SquadControlPoints(const std::vector<Eigen::Quaterniond>& aligned);
-Eigen::Quaterniond Squad(const Eigen::Quaterniond& q0, const Eigen::Quaterniond& q1,
-                         const Eigen::Quaterniond& s0, const Eigen::Quaterniond& s1, double t);
+Eigen::Quaterniond Squad(const Eigen::Quaterniond& q0, const Eigen::Quaterniond& q1, const Eigen::Quaterniond& s0,
+                         const Eigen::Quaterniond& s1, double t);
 
 // Level-horizon look-at: the camera looks along `forward_enu` (any length > 0) with its x axis
 // horizontal (no roll). When forward is vertical (within 1e-12 rad of straight down/up) the roll
@@ -65,8 +65,7 @@ Eigen::Quaterniond LookAt(const Eigen::Vector3d& forward_enu, double fallback_he
 // `target_enu`, keeping the horizon level. With ray_camera = (0, 0, 1) this is LookAt. If the
 // requested screen offset cannot be reached with a level horizon (target too close to vertical
 // for the vertical offset), the pitch is clamped to straight down/up.
-Eigen::Quaterniond AimWithScreenOffset(const Eigen::Vector3d& target_enu,
-                                       const Eigen::Vector3d& ray_camera,
+Eigen::Quaterniond AimWithScreenOffset(const Eigen::Vector3d& target_enu, const Eigen::Vector3d& ray_camera,
                                        double fallback_heading_deg = 0.0);
 
 struct GimbalAngles {

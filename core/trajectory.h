@@ -20,8 +20,8 @@
 namespace cinepath {
 
 struct CameraSpec {
-  std::string filmback = "custom";     // preset name, or "custom"
-  double sensor_width_mm = 24.89;      // Super 35 by default
+  std::string filmback = "custom";  // preset name, or "custom"
+  double sensor_width_mm = 24.89;   // Super 35 by default
   double sensor_height_mm = 18.67;
   int width_px = 3840;
   int height_px = 2160;
@@ -32,9 +32,9 @@ struct CameraSpec {
   double min_focus_distance_m = 0.5;
   double coc_mm = 0.0;  // acceptable blur for DoF reports; 0 = derive from the filmback diagonal
   // Lens servo limits for feasibility checks (planning priors, ../shared/specs/optics.md).
-  double max_focal_rate_mm_s = 20;         // zoom speed
-  double max_focus_rate_m_s = 15;          // follow-focus speed
-  double max_aperture_rate_stops_s = 3;    // iris speed
+  double max_focal_rate_mm_s = 20;       // zoom speed
+  double max_focus_rate_m_s = 15;        // follow-focus speed
+  double max_aperture_rate_stops_s = 3;  // iris speed
 };
 
 // The flight limits a plan is checked against (profiles in shots/drone_profiles.h). Altitudes are
@@ -60,15 +60,15 @@ struct TrajectorySample {
   Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
   Geodetic geodetic;  // filled when the plan has an origin
   Eigen::Quaterniond world_from_camera = Eigen::Quaterniond::Identity();
-  double drone_heading_deg = 0;   // compass heading of the drone's nose
-  double gimbal_pitch_deg = 0;    // -90 straight down .. +30 up
+  double drone_heading_deg = 0;  // compass heading of the drone's nose
+  double gimbal_pitch_deg = 0;   // -90 straight down .. +30 up
   double gimbal_roll_deg = 0;
-  double gimbal_yaw_deg = 0;      // relative to the drone's nose
+  double gimbal_yaw_deg = 0;  // relative to the drone's nose
   double focal_length_mm = 24;
-  double focus_distance_m = 10;   // +inf = focused at infinity
+  double focus_distance_m = 10;  // +inf = focused at infinity
   double f_number = 2.8;
   double shutter_s = 1.0 / 50.0;
-  std::string shot;                   // name of the shot this sample belongs to
+  std::string shot;  // name of the shot this sample belongs to
   std::vector<std::string> subjects_in_frame;
 };
 
@@ -77,7 +77,7 @@ struct ShotSpan {
   std::string type;  // "ORBIT", "CHASE", ...
   double start_time_s = 0;
   double end_time_s = 0;
-  std::string subject;                  // the actor the shot frames ("" for none)
+  std::string subject;                    // the actor the shot frames ("" for none)
   std::string transition = "continuous";  // how this shot joins the previous one: "continuous" | "cut"
 };
 

@@ -27,7 +27,8 @@ MsdkJson WriteDjiMsdkJson(const Mission& mission) {
   j["gimbalPitchRotationEnabled"] = true;
   j["repeatTimes"] = 1;
   j["pointOfInterest"] = nullptr;
-  j["home"] = Json{{"latitude", mission.home.lat_deg}, {"longitude", mission.home.lon_deg},
+  j["home"] = Json{{"latitude", mission.home.lat_deg},
+                   {"longitude", mission.home.lon_deg},
                    {"altitudeAmsl", RoundToDecimals(mission.home.amsl_m, 3)}};
   Json list = Json::array();
   bool held_too_long = false;

@@ -12,7 +12,7 @@ namespace {
 constexpr int kArcChords = 32;       // even: the arc's midpoint is a vertex
 constexpr double kMaxTurnDeg = 179;  // sharper reversals stop at the waypoint
 constexpr double kDampingShrink = 0.7;
-constexpr double kLegShare = 0.45;   // d ≤ 0.45 × each adjacent leg: the two on a leg sum to < its length
+constexpr double kLegShare = 0.45;  // d ≤ 0.45 × each adjacent leg: the two on a leg sum to < its length
 
 double PointSegmentDistance(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
@@ -63,8 +63,8 @@ double PolylineDistance(const std::vector<Eigen::Vector3d>& line, const Eigen::V
 
 }  // namespace
 
-double DistanceToTurnPath(const std::vector<Eigen::Vector3d>& corners, const std::vector<double>& damping_m,
-                          size_t w, const Eigen::Vector3d& q) {
+double DistanceToTurnPath(const std::vector<Eigen::Vector3d>& corners, const std::vector<double>& damping_m, size_t w,
+                          const Eigen::Vector3d& q) {
   CINEPATH_CHECK(corners.size() == damping_m.size() && w + 1 < corners.size());
   const std::vector<Eigen::Vector3d> turn_a = TurnPolyline(corners, damping_m, w);
   const std::vector<Eigen::Vector3d> turn_b = TurnPolyline(corners, damping_m, w + 1);

@@ -29,8 +29,8 @@ namespace cinepath::exporter {
 constexpr double kDjiMinDampingM = 0.2;  // smallest damping distance tried (assumed; docs/export.md)
 
 struct TurnFit {
-  std::vector<double> damping_m;     // per waypoint; 0 = stop at the waypoint (no turn)
-  double max_deviation_m = 0;        // of the modelled flown path, over all samples
+  std::vector<double> damping_m;  // per waypoint; 0 = stop at the waypoint (no turn)
+  double max_deviation_m = 0;     // of the modelled flown path, over all samples
 };
 
 // `waypoints`: selected sample indices (increasing, first = 0, last = samples.size() − 1);
@@ -41,8 +41,8 @@ TurnFit FitCoordinatedTurns(const std::vector<TrajectorySample>& samples, const 
 // Distance from `q` to the modelled path through `corners` with damping distances `damping_m`
 // (same length; 0 = sharp corner), restricted to the part between corners[w] and corners[w + 1]
 // including the full turns at both ends.
-double DistanceToTurnPath(const std::vector<Eigen::Vector3d>& corners, const std::vector<double>& damping_m,
-                          size_t w, const Eigen::Vector3d& q);
+double DistanceToTurnPath(const std::vector<Eigen::Vector3d>& corners, const std::vector<double>& damping_m, size_t w,
+                          const Eigen::Vector3d& q);
 
 // Largest deviation of samples [waypoints[w], waypoints[w+1]] (for every w) from the modelled path.
 double TurnPathDeviation(const std::vector<TrajectorySample>& samples, const std::vector<int>& waypoints,

@@ -67,7 +67,8 @@ void MissionConfig(Xml& x, const Mission& mission, const DroneProfile& profile, 
   x.Leaf("wpml:finishAction", "goHome");
   x.Leaf("wpml:exitOnRCLost", "executeLostAction");
   x.Leaf("wpml:executeRCLostAction", "goBack");
-  x.Leaf("wpml:takeOffSecurityHeight", Num(std::clamp(std::ceil(mission.waypoints.front().relative_alt_m), 8.0, 1500.0), 1));
+  x.Leaf("wpml:takeOffSecurityHeight",
+         Num(std::clamp(std::ceil(mission.waypoints.front().relative_alt_m), 8.0, 1500.0), 1));
   x.Leaf("wpml:globalTransitionalSpeed", Num(ClampSpeed(mission.waypoints.front().speed_mps), 2));
   x.Leaf("wpml:globalRTHHeight", Num(rth, 1));
   if (is_template) {
@@ -101,10 +102,9 @@ void HeadingParam(Xml& x, const Mission& mission, size_t w, bool relative) {
   x.Open("wpml:waypointHeadingParam");
   x.Leaf("wpml:waypointHeadingMode", roi ? "towardPOI" : "smoothTransition");
   x.Leaf("wpml:waypointHeadingAngle", Num(NormalizeDeg180(wp.heading_deg), 2));
-  x.Leaf("wpml:waypointPoiPoint",
-         roi ? Num(roi->lat_deg, 9) + "," + Num(roi->lon_deg, 9) + "," +
-                   Num(relative ? roi->relative_alt_m : roi->ellipsoidal_height_m, 3)
-             : "0.000000,0.000000,0.000000");
+  x.Leaf("wpml:waypointPoiPoint", roi ? Num(roi->lat_deg, 9) + "," + Num(roi->lon_deg, 9) + "," +
+                                            Num(relative ? roi->relative_alt_m : roi->ellipsoidal_height_m, 3)
+                                      : "0.000000,0.000000,0.000000");
   x.Leaf("wpml:waypointHeadingPathMode", "followBadArc");
   x.Close("wpml:waypointHeadingParam");
 }
@@ -326,7 +326,8 @@ WpmlDocuments WriteWpmlDocuments(const Mission& mission, const DroneProfile& pro
         slow_legs, hover_total_s));
   }
   bool gimbal_yaw_varies = false;
-  for (const auto& wp : wps) gimbal_yaw_varies |= std::abs(AngleDiffDeg(wps.front().gimbal_yaw_deg, wp.gimbal_yaw_deg)) > 0.5;
+  for (const auto& wp : wps)
+    gimbal_yaw_varies |= std::abs(AngleDiffDeg(wps.front().gimbal_yaw_deg, wp.gimbal_yaw_deg)) > 0.5;
   if (gimbal_yaw_varies) {
     docs.notes.push_back("gimbal yaw set only at the first waypoint; afterwards the gimbal follows the heading");
   }

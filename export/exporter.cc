@@ -88,7 +88,8 @@ ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& op
       const MavMission items = BuildMavMission(mission, options.firmware, options.altitude_ref);
       report.notes = items.notes;
       report.mission_items = static_cast<int>(items.items.size());
-      if (format == Format::kQgcPlan) file.contents = WriteQgcPlan(mission, items, options.firmware, options.altitude_ref);
+      if (format == Format::kQgcPlan)
+        file.contents = WriteQgcPlan(mission, items, options.firmware, options.altitude_ref);
       if (format == Format::kQgcWpl) file.contents = WriteQgcWpl(mission, items);
       if (format == Format::kMavlinkBin) file.contents = WriteMavlinkBin(mission, items, options.firmware);
     } else if (format == Format::kDjiWpml) {
@@ -148,7 +149,8 @@ Json ReportJson(const ExportResult& result, const ExportOptions& options) {
   j["firmware"] = FirmwareName(options.firmware);
   j["drone"] = options.drone_profile.empty() ? DefaultProfileName(options.firmware) : options.drone_profile;
   j["altitude_ref"] = AltitudeRefName(options.altitude_ref);
-  j["home"] = Json{{"lat_deg", m.home.lat_deg}, {"lon_deg", m.home.lon_deg},
+  j["home"] = Json{{"lat_deg", m.home.lat_deg},
+                   {"lon_deg", m.home.lon_deg},
                    {"amsl_m", RoundToDecimals(m.home.amsl_m, 3)},
                    {"ellipsoidal_height_m", RoundToDecimals(m.home.ellipsoidal_height_m, 3)}};
   j["plan_samples"] = m.plan_sample_count;
@@ -164,15 +166,16 @@ Json ReportJson(const ExportResult& result, const ExportOptions& options) {
   for (const Mission& mission : result.missions) {
     if (mission.roi_tracking == RoiTracking::kNone) continue;
     for (const MissionRoi& r : mission.rois) {
-      rois.push_back(Json{{"start_time_s", RoundToDecimals(r.start_time_s, 3)},
-                          {"end_time_s", RoundToDecimals(r.end_time_s, 3)},
-                          {"lat_deg", RoundToDecimals(r.lat_deg, 9)},
-                          {"lon_deg", RoundToDecimals(r.lon_deg, 9)},
-                          {"amsl_m", RoundToDecimals(r.amsl_m, 3)},
-                          {"relative_alt_m", RoundToDecimals(r.relative_alt_m, 3)},
-                          {"enu_m", Json::array({RoundToDecimals(r.point_enu_m.x(), 3), RoundToDecimals(r.point_enu_m.y(), 3),
-                                                 RoundToDecimals(r.point_enu_m.z(), 3)})},
-                          {"axes_within_deg", RoundToDecimals(r.fit_angle_deg, 4)}});
+      rois.push_back(
+          Json{{"start_time_s", RoundToDecimals(r.start_time_s, 3)},
+               {"end_time_s", RoundToDecimals(r.end_time_s, 3)},
+               {"lat_deg", RoundToDecimals(r.lat_deg, 9)},
+               {"lon_deg", RoundToDecimals(r.lon_deg, 9)},
+               {"amsl_m", RoundToDecimals(r.amsl_m, 3)},
+               {"relative_alt_m", RoundToDecimals(r.relative_alt_m, 3)},
+               {"enu_m", Json::array({RoundToDecimals(r.point_enu_m.x(), 3), RoundToDecimals(r.point_enu_m.y(), 3),
+                                      RoundToDecimals(r.point_enu_m.z(), 3)})},
+               {"axes_within_deg", RoundToDecimals(r.fit_angle_deg, 4)}});
     }
     break;  // every ROI-tracking mission detects the same stretches
   }
@@ -222,7 +225,8 @@ std::string ReportText(const ExportResult& result, const ExportOptions& options)
     for (size_t k = 0; k < mission.rois.size(); ++k) {
       const MissionRoi& r = mission.rois[k];
       out += fmt::format(
-          "point of interest {}: t {:.2f}-{:.2f} s at {:.7f}, {:.7f}, {:.2f} m AMSL ({:.2f} m above home); every camera "
+          "point of interest {}: t {:.2f}-{:.2f} s at {:.7f}, {:.7f}, {:.2f} m AMSL ({:.2f} m above home); every "
+          "camera "
           "axis within {:.2f} deg of it\n",
           k + 1, r.start_time_s, r.end_time_s, r.lat_deg, r.lon_deg, r.amsl_m, r.relative_alt_m, r.fit_angle_deg);
     }
@@ -237,7 +241,8 @@ std::string ReportText(const ExportResult& result, const ExportOptions& options)
     }
     out += fmt::format(", angle {:.2f} deg", fm.max_angle_error_reached_deg);
     if (!fm.rois.empty()) out += fmt::format(", {} point(s) of interest", fm.rois.size());
-    if (IsMavlinkFormat(r.format)) out += fmt::format("; {} mission items, {}", r.mission_items, FirmwareName(options.firmware));
+    if (IsMavlinkFormat(r.format))
+      out += fmt::format("; {} mission items, {}", r.mission_items, FirmwareName(options.firmware));
     out += ")\n";
     for (const auto& n : r.notes) out += "  note: " + n + "\n";
     for (const auto& v : r.violations) out += "  LIMIT (forced): " + v.message + "\n";

@@ -25,7 +25,7 @@ struct ExportOptions {
   Firmware firmware = Firmware::kPx4;
   std::string drone_profile;  // empty: the firmware's default profile
   AltitudeRef altitude_ref = AltitudeRef::kRelative;
-  bool force = false;         // write even when a limit is broken (still reported)
+  bool force = false;  // write even when a limit is broken (still reported)
   RoiMode roi = RoiMode::kAuto;
   MissionBuildOptions build;  // origin/home/selection
   void Check() const;         // InputError: no format, duplicate format, a format that cannot hold altitude_ref
@@ -49,7 +49,7 @@ struct FormatReport {
 // interest with the camera; DJI WPML flies coordinated turns and turns its nose to the point; MSDK v4
 // flies straight legs with explicit headings. Formats with the same model share one Mission.
 struct ExportResult {
-  Mission mission;                // the first format's (= missions[reports[0].mission])
+  Mission mission;  // the first format's (= missions[reports[0].mission])
   std::vector<Mission> missions;
   std::vector<ExportFile> files;
   std::vector<FormatReport> reports;

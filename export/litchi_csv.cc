@@ -17,15 +17,15 @@ LitchiCsv WriteLitchiCsv(const Mission& mission) {
   for (int a = 1; a <= kActionSlots; ++a) {
     out += ",actiontype" + std::to_string(a) + ",actionparam" + std::to_string(a);
   }
-  out += ",altitudemode,speed(m/s),poi_latitude,poi_longitude,poi_altitude(m),poi_altitudemode,photo_timeinterval,"
-         "photo_distinterval\n";
+  out +=
+      ",altitudemode,speed(m/s),poi_latitude,poi_longitude,poi_altitude(m),poi_altitudemode,photo_timeinterval,"
+      "photo_distinterval\n";
   const auto& wps = mission.waypoints;
   for (size_t w = 0; w < wps.size(); ++w) {
     const MissionWaypoint& wp = wps[w];
     // Inside a point-of-interest stretch the waypoint is assigned the POI and the gimbal "focuses" it
     // (gimbal mode 1); elsewhere the gimbal pitch is interpolated (mode 2).
-    const MissionRoi* roi =
-        mission.roi_tracking != RoiTracking::kNone && wp.roi >= 0 ? &mission.rois[wp.roi] : nullptr;
+    const MissionRoi* roi = mission.roi_tracking != RoiTracking::kNone && wp.roi >= 0 ? &mission.rois[wp.roi] : nullptr;
     out += FormatFixed(wp.lat_deg, 9) + "," + FormatFixed(wp.lon_deg, 9) + "," + FormatFixed(wp.relative_alt_m, 3) +
            "," + FormatFixed(NormalizeDeg360(wp.heading_deg), 2) + ",0,0," + (roi ? "1," : "2,") +
            FormatFixed(wp.gimbal_pitch_deg, 2);

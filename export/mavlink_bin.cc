@@ -94,10 +94,9 @@ std::string WriteMavlinkBin(const Mission& mission, const MavMission& items, Fir
   stream += FrameMavlink2(packet_seq++, mavlink_wire::kSenderSystem, mavlink_wire::kSenderComponent,
                           mavlink_wire::kMsgMissionCount, count, mavlink_wire::kCrcExtraMissionCount);
   for (size_t seq = 0; seq < all.size(); ++seq) {
-    stream += FrameMavlink2(packet_seq++, mavlink_wire::kSenderSystem, mavlink_wire::kSenderComponent,
-                            mavlink_wire::kMsgMissionItemInt,
-                            MissionItemIntPayload(all[seq], static_cast<uint16_t>(seq), false),
-                            mavlink_wire::kCrcExtraMissionItemInt);
+    stream += FrameMavlink2(
+        packet_seq++, mavlink_wire::kSenderSystem, mavlink_wire::kSenderComponent, mavlink_wire::kMsgMissionItemInt,
+        MissionItemIntPayload(all[seq], static_cast<uint16_t>(seq), false), mavlink_wire::kCrcExtraMissionItemInt);
   }
   return stream;
 }

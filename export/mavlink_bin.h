@@ -32,8 +32,8 @@ uint16_t X25Accumulate(uint16_t crc, std::string_view bytes);
 
 // One framed MAVLink 2 packet: header, payload (trailing zeros truncated, at least one byte kept),
 // checksum over header-after-magic + payload + crc_extra.
-std::string FrameMavlink2(uint8_t packet_seq, uint8_t sysid, uint8_t compid, uint32_t msgid,
-                          std::string payload, uint8_t crc_extra);
+std::string FrameMavlink2(uint8_t packet_seq, uint8_t sysid, uint8_t compid, uint32_t msgid, std::string payload,
+                          uint8_t crc_extra);
 
 // MISSION_ITEM_INT payload (38 bytes, wire order). x/y are degE7 for global frames, unscaled otherwise.
 std::string MissionItemIntPayload(const MavItem& item, uint16_t seq, bool current);

@@ -34,8 +34,9 @@ MavItem HomeItem(const Mission& mission) {
 
 MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRef ref) {
   if (ref == AltitudeRef::kEllipsoid) {
-    throw InputError("--altitude-ref ellipsoid: MAVLink missions carry altitudes relative to home (frame 3) or "
-                     "AMSL (frame 0), not ellipsoidal heights");
+    throw InputError(
+        "--altitude-ref ellipsoid: MAVLink missions carry altitudes relative to home (frame 3) or "
+        "AMSL (frame 0), not ellipsoidal heights");
   }
   CINEPATH_CHECK(!mission.waypoints.empty());
   const bool px4 = firmware == Firmware::kPx4;
@@ -47,8 +48,13 @@ MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRe
   MavItem takeoff;
   takeoff.command = mav::kNavTakeoff;
   takeoff.frame = nav_frame;
-  takeoff.params = {0, 0, 0, px4 ? NormalizeDeg360(first.heading_deg) : 0.0, mission.home.lat_deg,
-                    mission.home.lon_deg, AltitudeIn(first, ref)};
+  takeoff.params = {0,
+                    0,
+                    0,
+                    px4 ? NormalizeDeg360(first.heading_deg) : 0.0,
+                    mission.home.lat_deg,
+                    mission.home.lon_deg,
+                    AltitudeIn(first, ref)};
   out.items.push_back(takeoff);
 
   const bool has_zoom = mission.max_focal_length_mm > mission.min_focal_length_mm;
@@ -85,7 +91,12 @@ MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRe
       MavItem set_roi;
       set_roi.command = mav::kDoSetRoiLocation;
       set_roi.frame = nav_frame;
-      set_roi.params = {0, 0, 0, 0, governing->lat_deg, governing->lon_deg,
+      set_roi.params = {0,
+                        0,
+                        0,
+                        0,
+                        governing->lat_deg,
+                        governing->lon_deg,
                         ref == AltitudeRef::kRelative ? governing->relative_alt_m : governing->amsl_m};
       set_roi.waypoint = wi;
       out.items.push_back(set_roi);
@@ -105,8 +116,7 @@ MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRe
             DoItem(mav::kSetCameraZoom, {mav::kZoomTypeFocalLength, wp.focal_length_mm, 0, 0, 0, 0, 0}, wi));
       } else if (has_zoom || !prev) {
         out.items.push_back(DoItem(mav::kSetCameraZoom,
-                                   {mav::kZoomTypeRange, ZoomPercent(mission, wp.focal_length_mm), 0, 0, 0, 0, 0},
-                                   wi));
+                                   {mav::kZoomTypeRange, ZoomPercent(mission, wp.focal_length_mm), 0, 0, 0, 0, 0}, wi));
       }
     }
     const bool focus_changed =
@@ -145,8 +155,7 @@ MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRe
     if (!px4 && prev) {
       const MissionWaypoint* before = w >= 2 ? &wps[w - 2] : nullptr;
       if (!before || Changed(before->speed_mps, prev->speed_mps, 0.01)) {
-        out.items.push_back(
-            DoItem(mav::kDoChangeSpeed, {mav::kSpeedTypeGround, prev->speed_mps, -1, 0, 0, 0, 0}, wi));
+        out.items.push_back(DoItem(mav::kDoChangeSpeed, {mav::kSpeedTypeGround, prev->speed_mps, -1, 0, 0, 0, 0}, wi));
       }
     }
   }
@@ -168,8 +177,10 @@ MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRe
     out.notes.push_back(fmt::format(
         "{} point(s) of interest: DO_SET_ROI_LOCATION / DO_SET_ROI_NONE; inside them the firmware points the camera "
         "({}), per-waypoint {}gimbal items left out",
-        mission.rois.size(), px4 ? "PX4: nose and gimbal to the ROI" : "ArduPilot: mount to the ROI, vehicle yaws if "
-                                                                         "the mount cannot pan",
+        mission.rois.size(),
+        px4 ? "PX4: nose and gimbal to the ROI"
+            : "ArduPilot: mount to the ROI, vehicle yaws if "
+              "the mount cannot pan",
         px4 ? "" : "CONDITION_YAW and "));
   }
   if (px4) {

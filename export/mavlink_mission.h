@@ -67,13 +67,13 @@ struct MavItem {
   int frame = mav::kFrameMission;
   std::array<double, 7> params{};  // param1..4, then x/lat, y/lon, z/alt (degrees, metres)
   bool autocontinue = true;
-  int waypoint = -1;               // mission waypoint this item belongs to (−1: takeoff/RTL)
+  int waypoint = -1;  // mission waypoint this item belongs to (−1: takeoff/RTL)
   bool IsGlobal() const { return frame == mav::kFrameGlobal || frame == mav::kFrameGlobalRelativeAlt; }
 };
 
 struct MavMission {
-  std::vector<MavItem> items;       // mission items, without home
-  std::vector<std::string> notes;   // what the firmware cannot carry
+  std::vector<MavItem> items;      // mission items, without home
+  std::vector<std::string> notes;  // what the firmware cannot carry
 };
 
 // `ref` must be kRelative or kAmsl (InputError otherwise: MAVLink has no ellipsoidal frame).

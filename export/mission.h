@@ -31,11 +31,11 @@ struct MissionWaypoint {
   double lon_deg = 0;
   double ellipsoidal_height_m = 0;
   double amsl_m = 0;
-  double relative_alt_m = 0;   // amsl_m − home amsl
-  double speed_mps = 0;        // ground-path speed on the leg that leaves this waypoint (last: previous leg)
-  double heading_deg = 0;      // drone compass heading at the waypoint
+  double relative_alt_m = 0;  // amsl_m − home amsl
+  double speed_mps = 0;       // ground-path speed on the leg that leaves this waypoint (last: previous leg)
+  double heading_deg = 0;     // drone compass heading at the waypoint
   double gimbal_pitch_deg = 0;
-  double gimbal_yaw_deg = 0;   // relative to the nose
+  double gimbal_yaw_deg = 0;  // relative to the nose
   double focal_length_mm = 24;
   double focus_distance_m = 10;  // +inf = infinity
   double f_number = 2.8;
@@ -97,8 +97,8 @@ struct Mission {
   double straight_deviation_reached_m = 0;
   double max_angle_error_reached_deg = 0;
   int plan_sample_count = 0;
-  int cut_count = 0;            // transits inserted at "cut" transitions
-  double transit_speed_mps = 0; // speed of those transits
+  int cut_count = 0;             // transits inserted at "cut" transitions
+  double transit_speed_mps = 0;  // speed of those transits
   // The plan's own fence (plan.json "drone"): altitude band of the ENU up coordinate about the
   // origin, and the drone's horizontal speed limit.
   double fence_min_up_m = -std::numeric_limits<double>::infinity();

@@ -1,15 +1,15 @@
 #include "export/mission_builder.h"
 
-#include <charconv>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <sstream>
 
 #include "core/angles.h"
 #include "core/error.h"
 #include "core/file_io.h"
-#include "core/json.h"
 #include "core/geoid.h"
+#include "core/json.h"
 #include "export/dji_turns.h"
 #include "export/roi.h"
 
@@ -38,8 +38,8 @@ void RequireFinite(double value, const std::string& plan, size_t index, const ch
 // Latitude, longitude and the three altitudes of a local ENU point (a waypoint or a point of
 // interest: both carry the same fields).
 template <typename Located>
-void SetGeoPosition(const EnuFrame& frame, const Egm96Geoid& geoid, double home_amsl_m,
-                    const Eigen::Vector3d& enu_m, Located* out) {
+void SetGeoPosition(const EnuFrame& frame, const Egm96Geoid& geoid, double home_amsl_m, const Eigen::Vector3d& enu_m,
+                    Located* out) {
   const Geodetic g = frame.GeodeticFromEnu(enu_m);
   out->lat_deg = g.lat_deg;
   out->lon_deg = g.lon_deg;
@@ -96,16 +96,17 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
   std::optional<Geodetic> origin = trajectory.origin ? trajectory.origin : options.scene_origin;
   if (!origin) {
     if (options.absolute_altitudes) {
-      throw InputError(Located(plan, "origin: the plan has no WGS84 origin (none in the plan, no --scene); "
-                                     "absolute altitudes (amsl/ellipsoid) need one"));
+      throw InputError(Located(plan,
+                               "origin: the plan has no WGS84 origin (none in the plan, no --scene); "
+                               "absolute altitudes (amsl/ellipsoid) need one"));
     }
     if (!options.home) {
-      throw InputError(Located(plan, "origin: the plan has no WGS84 origin; pass --scene scene.json, or "
-                                     "--home LAT,LON,ALT to place the scene origin at home"));
+      throw InputError(Located(plan,
+                               "origin: the plan has no WGS84 origin; pass --scene scene.json, or "
+                               "--home LAT,LON,ALT to place the scene origin at home"));
     }
     origin = Geodetic{options.home->lat_deg, options.home->lon_deg,
-                      geoid.EllipsoidalFromAmslM(options.home->lat_deg, options.home->lon_deg,
-                                                 options.home->amsl_m)};
+                      geoid.EllipsoidalFromAmslM(options.home->lat_deg, options.home->lon_deg, options.home->amsl_m)};
   }
   ValidateGeodetic(*origin, "origin");
   mission.origin = *origin;
@@ -251,8 +252,8 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
   auto& wps = mission.waypoints;
   for (size_t w = 0; w + 1 < wps.size(); ++w) {
     const double length_m = (wps[w + 1].position_enu_m - wps[w].position_enu_m).norm();
-    wps[w].speed_mps = wps[w].transit_after ? options.transit_speed_mps
-                                             : length_m / (wps[w + 1].time_s - wps[w].time_s);
+    wps[w].speed_mps =
+        wps[w].transit_after ? options.transit_speed_mps : length_m / (wps[w + 1].time_s - wps[w].time_s);
   }
   if (wps.size() >= 2) wps.back().speed_mps = wps[wps.size() - 2].speed_mps;
   return mission;

@@ -27,12 +27,12 @@ Geodetic ReadSceneOriginFile(const std::filesystem::path& scene_json);
 HomeSpec ParseHomeSpec(const std::string& text, const std::string& option);
 
 struct MissionBuildOptions {
-  std::string plan_name = "plan.json";       // for messages
-  std::optional<Geodetic> scene_origin;       // from --scene, used when the plan has none
-  std::optional<HomeSpec> home;               // default: the origin
-  bool absolute_altitudes = false;            // some requested output needs AMSL/ellipsoidal heights
-  SelectionOptions selection;    // tolerances and roi_tracking (its `rois` are filled here)
-  double transit_speed_mps = 5;  // legs across a "cut" between shots (recording off)
+  std::string plan_name = "plan.json";   // for messages
+  std::optional<Geodetic> scene_origin;  // from --scene, used when the plan has none
+  std::optional<HomeSpec> home;          // default: the origin
+  bool absolute_altitudes = false;       // some requested output needs AMSL/ellipsoidal heights
+  SelectionOptions selection;            // tolerances and roi_tracking (its `rois` are filled here)
+  double transit_speed_mps = 5;          // legs across a "cut" between shots (recording off)
   // Detect point-of-interest stretches (roi.h) when selection.roi_tracking != kNone.
   double roi_min_duration_s = 2.0;
   TurnModel turn_model = TurnModel::kStraight;

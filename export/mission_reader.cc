@@ -91,7 +91,8 @@ ReadMission ParseQgcPlan(const std::string& text, const std::string& source) {
       m.params[p] = v.IsNull() ? std::nan("") : v.AsDouble();
     }
     const Json& node = item.node();
-    const int alt_keys = node.contains("AltitudeMode") + node.contains("Altitude") + node.contains("AMSLAltAboveTerrain");
+    const int alt_keys =
+        node.contains("AltitudeMode") + node.contains("Altitude") + node.contains("AMSLAltAboveTerrain");
     if (alt_keys != 0 && alt_keys != 3) {
       item.Fail("AltitudeMode, Altitude and AMSLAltAboveTerrain must appear together");
     }
@@ -163,22 +164,20 @@ Json MissionSummaryJson(const ReadMission& mission) {
   Json j;
   j["kind"] = mission.kind;
   if (mission.firmware_type) {
-    j["firmware"] = *mission.firmware_type == mav::kAutopilotPx4          ? "px4"
+    j["firmware"] = *mission.firmware_type == mav::kAutopilotPx4         ? "px4"
                     : *mission.firmware_type == mav::kAutopilotArduPilot ? "ardupilot"
-                                                                          : "other";
+                                                                         : "other";
   }
-  j["home"] = Json{{"lat_deg", mission.home_lat_deg}, {"lon_deg", mission.home_lon_deg},
-                   {"amsl_m", mission.home_amsl_m}};
+  j["home"] =
+      Json{{"lat_deg", mission.home_lat_deg}, {"lon_deg", mission.home_lon_deg}, {"amsl_m", mission.home_amsl_m}};
   j["mission_items"] = static_cast<int>(mission.items.size());
   std::map<std::string, int> counts;
   Json waypoints = Json::array();
   for (const MavItem& item : mission.items) {
     ++counts[CommandLabel(item.command)];
     if (item.command == mav::kNavWaypoint) {
-      waypoints.push_back(Json{{"lat_deg", item.params[4]},
-                               {"lon_deg", item.params[5]},
-                               {"alt_m", item.params[6]},
-                               {"frame", item.frame}});
+      waypoints.push_back(Json{
+          {"lat_deg", item.params[4]}, {"lon_deg", item.params[5]}, {"alt_m", item.params[6]}, {"frame", item.frame}});
     }
   }
   Json commands = Json::object();

@@ -15,12 +15,12 @@
 namespace cinepath::exporter {
 
 struct ReadMission {
-  std::string kind;                    // "qgc-plan" | "qgc-wpl"
-  std::optional<int> firmware_type;    // MAV_AUTOPILOT (.plan only)
+  std::string kind;                  // "qgc-plan" | "qgc-wpl"
+  std::optional<int> firmware_type;  // MAV_AUTOPILOT (.plan only)
   double home_lat_deg = 0;
   double home_lon_deg = 0;
   double home_amsl_m = 0;
-  std::vector<MavItem> items;          // without home
+  std::vector<MavItem> items;  // without home
 };
 
 // InputError naming the file and the field / line on anything malformed.

@@ -11,11 +11,11 @@ namespace cinepath::exporter {
 enum class Format { kQgcPlan, kQgcWpl, kMavlinkBin, kDjiWpml, kDjiMsdkJson, kLitchiCsv };
 enum class Firmware { kPx4, kArduPilot };
 
-const char* FormatName(Format format);         // "qgc-plan", ...
-const char* FormatFileName(Format format);     // "mission.plan", ...
-Format ParseFormat(const std::string& name);   // InputError listing the known names
+const char* FormatName(Format format);        // "qgc-plan", ...
+const char* FormatFileName(Format format);    // "mission.plan", ...
+Format ParseFormat(const std::string& name);  // InputError listing the known names
 bool IsMavlinkFormat(Format format);
-const char* FirmwareName(Firmware firmware);   // "px4" | "ardupilot"
+const char* FirmwareName(Firmware firmware);  // "px4" | "ardupilot"
 Firmware ParseFirmware(const std::string& name);
 
 // A drone (and its flight controller / app) as far as a mission cares.
@@ -29,7 +29,7 @@ struct DroneProfile {
   int max_mission_items = 2000;  // MAVLink items (flight controller storage)
   int dji_drone_enum = 67;       // WPML droneInfo (M30 by default)
   int dji_drone_sub_enum = 0;
-  int dji_payload_enum = 52;     // WPML payloadInfo
+  int dji_payload_enum = 52;  // WPML payloadInfo
 };
 const DroneProfile& FindDroneProfile(const std::string& name);  // InputError listing known names
 std::vector<std::string> DroneProfileNames();

@@ -38,7 +38,7 @@ std::string WriteQgcPlan(const Mission& mission, const MavMission& items, Firmwa
   Json m;
   m["version"] = 2;
   m["firmwareType"] = firmware == Firmware::kPx4 ? mav::kAutopilotPx4 : mav::kAutopilotArduPilot;
-  m["vehicleType"] = 2;  // MAV_TYPE_QUADROTOR
+  m["vehicleType"] = 2;   // MAV_TYPE_QUADROTOR
   m["cruiseSpeed"] = 15;  // integers: Mission Planner reads these as int
   m["hoverSpeed"] = std::max(1, static_cast<int>(std::lround(max_speed)));
   m["globalPlanAltitudeMode"] = alt_mode;

@@ -45,7 +45,8 @@ RoiFit FitRoi(const std::vector<TrajectorySample>& samples, int first, int last,
   mean_axis.normalize();
   double spread_deg = 0;
   for (int i = first; i <= last; ++i) {
-    spread_deg = std::max(spread_deg, DegFromRad(std::acos(std::clamp(OpticalAxisEnu(samples[i]).dot(mean_axis), -1.0, 1.0))));
+    spread_deg =
+        std::max(spread_deg, DegFromRad(std::acos(std::clamp(OpticalAxisEnu(samples[i]).dot(mean_axis), -1.0, 1.0))));
   }
   if (require_spread && spread_deg <= 2 * max_angle_deg) return fit;
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(a);
@@ -53,8 +54,8 @@ RoiFit FitRoi(const std::vector<TrajectorySample>& samples, int first, int last,
   fit.point_enu_m = ldlt.solve(b);
   if (!fit.point_enu_m.allFinite()) return fit;
   for (int i = first; i <= last; ++i) {
-    fit.max_angle_deg = std::max(
-        fit.max_angle_deg, AxisAngleDeg(OpticalAxisEnu(samples[i]), samples[i].position_enu_m, fit.point_enu_m));
+    fit.max_angle_deg = std::max(fit.max_angle_deg,
+                                 AxisAngleDeg(OpticalAxisEnu(samples[i]), samples[i].position_enu_m, fit.point_enu_m));
     if (fit.max_angle_deg > max_angle_deg) return fit;
   }
   fit.accepted = true;

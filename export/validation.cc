@@ -47,8 +47,8 @@ std::vector<Violation> ValidateMission(const Mission& mission, Format format, co
   }
   if (IsMavlinkFormat(format) && mavlink_item_count > profile.max_mission_items) {
     out.Add(-1, profile.name + " max mission items",
-            fmt::format("{} mission items, drone profile {} stores at most {}", mavlink_item_count,
-                        profile.name, profile.max_mission_items));
+            fmt::format("{} mission items, drone profile {} stores at most {}", mavlink_item_count, profile.name,
+                        profile.max_mission_items));
   }
 
   // Each bound comes from the tighter of the format and the drone profile; messages name which.
@@ -68,9 +68,8 @@ std::vector<Violation> ValidateMission(const Mission& mission, Format format, co
 
   for (int w = 0; w < n; ++w) {
     const MissionWaypoint& wp = wps[w];
-    for (double v : {wp.lat_deg, wp.lon_deg, wp.ellipsoidal_height_m, wp.amsl_m, wp.relative_alt_m,
-                     wp.speed_mps, wp.heading_deg, wp.gimbal_pitch_deg, wp.gimbal_yaw_deg, wp.focal_length_mm,
-                     wp.f_number}) {
+    for (double v : {wp.lat_deg, wp.lon_deg, wp.ellipsoidal_height_m, wp.amsl_m, wp.relative_alt_m, wp.speed_mps,
+                     wp.heading_deg, wp.gimbal_pitch_deg, wp.gimbal_yaw_deg, wp.focal_length_mm, wp.f_number}) {
       if (!std::isfinite(v)) {
         out.Add(w, "finite values", "a value is NaN or infinite");
         break;
@@ -83,8 +82,7 @@ std::vector<Violation> ValidateMission(const Mission& mission, Format format, co
     }
     if (is_leg_start && n > 1 && wp.speed_mps < limits.min_speed_mps) {
       out.Add(w, "min speed",
-              fmt::format("speed {:.2f} m/s below the format's minimum {:g} m/s", wp.speed_mps,
-                          limits.min_speed_mps));
+              fmt::format("speed {:.2f} m/s below the format's minimum {:g} m/s", wp.speed_mps, limits.min_speed_mps));
     }
     if (wp.relative_alt_m < min_alt || wp.relative_alt_m > max_alt) {
       out.Add(w, "altitude range",
@@ -102,14 +100,14 @@ std::vector<Violation> ValidateMission(const Mission& mission, Format format, co
       const double horizontal_mps = leg.head<2>().norm() / (wps[w + 1].time_s - wp.time_s);
       if (horizontal_mps > mission.plan_max_horizontal_speed_mps) {
         out.Add(w, "plan drone max horizontal speed",
-                fmt::format("horizontal speed {:.2f} m/s above the plan drone's ({}) limit {:g} m/s",
-                            horizontal_mps, mission.plan_drone_name, mission.plan_max_horizontal_speed_mps));
+                fmt::format("horizontal speed {:.2f} m/s above the plan drone's ({}) limit {:g} m/s", horizontal_mps,
+                            mission.plan_drone_name, mission.plan_max_horizontal_speed_mps));
       }
     }
     if (wp.gimbal_pitch_deg < min_pitch || wp.gimbal_pitch_deg > max_pitch) {
       out.Add(w, "gimbal pitch range",
-              fmt::format("gimbal pitch {:.2f} deg outside [{:g} ({}), {:g} ({})] deg", wp.gimbal_pitch_deg,
-                          min_pitch, min_pitch_src, max_pitch, max_pitch_src));
+              fmt::format("gimbal pitch {:.2f} deg outside [{:g} ({}), {:g} ({})] deg", wp.gimbal_pitch_deg, min_pitch,
+                          min_pitch_src, max_pitch, max_pitch_src));
     }
     if (w + 1 < n) {
       const double spacing = (wps[w + 1].position_enu_m - wp.position_enu_m).norm();

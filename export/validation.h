@@ -11,9 +11,9 @@
 namespace cinepath::exporter {
 
 struct Violation {
-  int waypoint = -1;   // 0-based waypoint index; −1 for the mission as a whole
-  std::string limit;   // e.g. "dji-msdk-json max speed 15 m/s"
-  std::string message; // the complete sentence shown to people
+  int waypoint = -1;    // 0-based waypoint index; −1 for the mission as a whole
+  std::string limit;    // e.g. "dji-msdk-json max speed 15 m/s"
+  std::string message;  // the complete sentence shown to people
 };
 
 // `mavlink_item_count` is the number of MAVLink items the mission turns into (0 for DJI/Litchi).

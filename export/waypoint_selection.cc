@@ -64,8 +64,7 @@ LegError MeasureLeg(const std::vector<TrajectorySample>& samples, int a, int b, 
     const double pitch = sa.gimbal_pitch_deg + t * (sb.gimbal_pitch_deg - sa.gimbal_pitch_deg);
     const double gyaw = LerpAngleDeg(sa.gimbal_yaw_deg, sb.gimbal_yaw_deg, t);
     error.angle_deg = std::max({error.angle_deg, std::abs(AngleDiffDeg(heading, s.drone_heading_deg)),
-                                std::abs(pitch - s.gimbal_pitch_deg),
-                                std::abs(AngleDiffDeg(gyaw, s.gimbal_yaw_deg))});
+                                std::abs(pitch - s.gimbal_pitch_deg), std::abs(AngleDiffDeg(gyaw, s.gimbal_yaw_deg))});
   }
   return error;
 }

@@ -28,13 +28,13 @@ namespace cinepath::exporter {
 enum class RoiTracking { kNone, kCamera, kHeading };
 
 struct SelectionOptions {
-  double max_deviation_m = 0.5;   // largest allowed distance between the flown leg and the plan
-  double max_angle_deg = 3.0;     // largest allowed heading / gimbal error
+  double max_deviation_m = 0.5;  // largest allowed distance between the flown leg and the plan
+  double max_angle_deg = 3.0;    // largest allowed heading / gimbal error
   RoiTracking roi_tracking = RoiTracking::kNone;
   // Point-of-interest stretches (sample indices of the samples given to SelectWaypoints). Their first
   // and last samples always become waypoints; legs inside a stretch are measured with roi_tracking.
   std::vector<RoiStretch> rois;
-  void Check() const;             // InputError for non-positive or non-finite tolerances
+  void Check() const;  // InputError for non-positive or non-finite tolerances
 };
 
 struct Selection {

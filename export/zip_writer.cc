@@ -27,9 +27,9 @@ void PutU32(std::string& out, uint32_t v) {
   PutU16(out, v >> 16);
 }
 
-constexpr uint32_t kDosTime = 0;          // 00:00:00
+constexpr uint32_t kDosTime = 0;                        // 00:00:00
 constexpr uint32_t kDosDate = (0 << 9) | (1 << 5) | 1;  // 1980-01-01
-constexpr uint32_t kVersion = 20;         // 2.0: stored entries, folders
+constexpr uint32_t kVersion = 20;                       // 2.0: stored entries, folders
 
 }  // namespace
 

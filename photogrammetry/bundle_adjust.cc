@@ -89,7 +89,7 @@ struct Observation {
 
 struct State {
   std::vector<uint32_t> image_ids;
-  std::vector<size_t> image_camera;  // index into cameras
+  std::vector<size_t> image_camera;              // index into cameras
   std::vector<std::array<double, 4>> rotations;  // x, y, z, w
   std::vector<std::array<double, 3>> centers;
   std::vector<uint32_t> camera_ids;
@@ -119,8 +119,8 @@ double MeanFocal(const State& s, size_t cam) {
 }
 
 SolveResult Solve(State& s, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
-                  const std::map<uint32_t, double>& focal_prior_px, const BundleAdjustOptions& options,
-                  FocalMode mode, int max_iterations) {
+                  const std::map<uint32_t, double>& focal_prior_px, const BundleAdjustOptions& options, FocalMode mode,
+                  int max_iterations) {
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
@@ -129,9 +129,8 @@ SolveResult Solve(State& s, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m
   for (const Observation& o : s.observations) {
     const size_t cam = s.image_camera[o.image];
     reprojection_blocks.push_back(problem.AddResidualBlock(
-        ReprojectionError::Create(s.camera_models[cam], o.xy_px),
-        new ceres::HuberLoss(options.reprojection_huber_px), s.rotations[o.image].data(),
-        s.centers[o.image].data(), s.points[o.point].data(), s.intrinsics[cam].data()));
+        ReprojectionError::Create(s.camera_models[cam], o.xy_px), new ceres::HuberLoss(options.reprojection_huber_px),
+        s.rotations[o.image].data(), s.centers[o.image].data(), s.points[o.point].data(), s.intrinsics[cam].data()));
   }
   for (size_t i = 0; i < s.image_ids.size(); ++i) {
     if (!problem.HasParameterBlock(s.rotations[i].data())) continue;
@@ -139,8 +138,8 @@ SolveResult Solve(State& s, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m
     const auto it = gps_enu_m.find(s.image_ids[i]);
     if (it != gps_enu_m.end()) {
       problem.AddResidualBlock(
-          CenterPriorError::Create(it->second, options.gps_sigma_horizontal_m, options.gps_sigma_vertical_m),
-          nullptr, s.centers[i].data());
+          CenterPriorError::Create(it->second, options.gps_sigma_horizontal_m, options.gps_sigma_vertical_m), nullptr,
+          s.centers[i].data());
     }
   }
   for (size_t k = 0; k < s.control.size(); ++k) {
@@ -204,8 +203,8 @@ double RmsReprojection(const State& s) {
     const size_t cam = s.image_camera[o.image];
     ReprojectionError e(s.camera_models[cam], o.xy_px);
     double r[2];
-    if (!e(s.rotations[o.image].data(), s.centers[o.image].data(), s.points[o.point].data(),
-           s.intrinsics[cam].data(), r)) {
+    if (!e(s.rotations[o.image].data(), s.centers[o.image].data(), s.points[o.point].data(), s.intrinsics[cam].data(),
+           r)) {
       continue;
     }
     sum += r[0] * r[0] + r[1] * r[1];
@@ -253,7 +252,8 @@ State StateFromModel(const ColmapModel& model, const std::vector<ControlPointPri
   for (const ControlPointPrior& c : control) {
     const size_t pi = s.points.size();
     s.points.push_back({c.initial_enu_m.x(), c.initial_enu_m.y(), c.initial_enu_m.z()});
-    for (const auto& [image_id, pixel] : c.observations) s.observations.push_back({image_index.at(image_id), pi, pixel});
+    for (const auto& [image_id, pixel] : c.observations)
+      s.observations.push_back({image_index.at(image_id), pi, pixel});
     s.control.push_back(c);
   }
   return s;
@@ -305,8 +305,7 @@ void ScaleFocal(State& s, size_t cam, double ratio) {
 double RmsReprojectionErrorPx(const ColmapModel& model) { return RmsReprojection(StateFromModel(model)); }
 
 BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
-                                   const std::map<uint32_t, double>& focal_prior_px,
-                                   const BundleAdjustOptions& options,
+                                   const std::map<uint32_t, double>& focal_prior_px, const BundleAdjustOptions& options,
                                    const std::vector<ControlPointPrior>& control_points,
                                    std::vector<Eigen::Vector3d>* control_points_enu_m) {
   const auto start = std::chrono::steady_clock::now();
@@ -314,7 +313,8 @@ BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32
   auto log = [&](const char* what, const SolveResult& r) {
     if (verbose) {
       std::fprintf(stderr, "BA %s: %d iterations, %.2f s, reprojection cost %.3f\n", what, r.iterations,
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), r.reprojection_cost);
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                   r.reprojection_cost);
     }
   };
   State state = StateFromModel(model_enu, control_points);
@@ -356,8 +356,10 @@ BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32
     double cost[2];
     for (int side = 0; side < 2; ++side) {
       State moved = state;
-      for (size_t cam = 0; cam < moved.camera_ids.size(); ++cam) ScaleFocal(moved, cam, side == 0 ? 1 - step : 1 + step);
-      const SolveResult r = Solve(moved, gps_enu_m, focal_prior_px, options, FocalMode::kFixed, options.profile_iterations);
+      for (size_t cam = 0; cam < moved.camera_ids.size(); ++cam)
+        ScaleFocal(moved, cam, side == 0 ? 1 - step : 1 + step);
+      const SolveResult r =
+          Solve(moved, gps_enu_m, focal_prior_px, options, FocalMode::kFixed, options.profile_iterations);
       cost[side] = r.reprojection_cost;
       log(side == 0 ? "profile -" : "profile +", r);
     }

@@ -23,7 +23,8 @@
 //      re-solve; the reprojection cost's curvature over the three solutions gives the focal length's
 //      standard deviation from the images alone (sigma_f = sigma_px / sqrt(d²cost/df²)) and the focal
 //      they prefer (the parabola's minimum).
-//   3. Only with free_focal_when_resolved, and when the images resolve it (sigma below `resolvable_sigma_ratio`) AND agree with the prior
+//   3. Only with free_focal_when_resolved, and when the images resolve it (sigma below `resolvable_sigma_ratio`) AND
+//   agree with the prior
 //      (preferred focal within `max_focal_disagreement_ratio`) is the focal length freed (with its
 //      prior) and solved again. Otherwise it stays at the prior, and the report says why. (On Brighton
 //      Beach the images "prefer" +24 % with a formal sigma of 0.7 %: a systematic pull along the valley
@@ -54,7 +55,7 @@ struct BundleAdjustOptions {
   bool refine_focal = true;
   bool refine_distortion = true;
   int max_iterations = 100;
-  double profile_step_ratio = 0.05;    // focal moved by ±5 % for the resolvability profile
+  double profile_step_ratio = 0.05;  // focal moved by ±5 % for the resolvability profile
   double resolvable_sigma_ratio = 0.02;
   // The images "conflict" with the prior when the focal length they prefer is further than this from it;
   // the focal length then stays at the prior.
@@ -97,8 +98,8 @@ struct FocalReport {
 };
 
 struct BundleAdjustReport {
-  double depth_relief_ratio = 0;     // see BundleAdjustOptions::min_depth_relief_ratio
-  double view_axis_spread_deg = 0;   // see BundleAdjustOptions::min_view_axis_spread_deg
+  double depth_relief_ratio = 0;    // see BundleAdjustOptions::min_depth_relief_ratio
+  double view_axis_spread_deg = 0;  // see BundleAdjustOptions::min_view_axis_spread_deg
   bool geometry_resolves_focal = false;
   int num_images = 0;
   int num_points = 0;
@@ -118,8 +119,7 @@ struct BundleAdjustReport {
 // (optional) join the problem; their adjusted positions go to `control_points_enu_m` when given.
 // InfeasibleError when the problem has no observations.
 BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
-                                   const std::map<uint32_t, double>& focal_prior_px,
-                                   const BundleAdjustOptions& options,
+                                   const std::map<uint32_t, double>& focal_prior_px, const BundleAdjustOptions& options,
                                    const std::vector<ControlPointPrior>& control_points = {},
                                    std::vector<Eigen::Vector3d>* control_points_enu_m = nullptr);
 

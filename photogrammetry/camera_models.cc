@@ -30,9 +30,7 @@ constexpr std::array<ModelInfo, kNumCameraModels> kModels = {{
 
 bool IsKnownCameraModel(int model_id) { return model_id >= 0 && model_id < kNumCameraModels; }
 
-int CameraModelNumParams(int model_id) {
-  return IsKnownCameraModel(model_id) ? kModels[model_id].num_params : 0;
-}
+int CameraModelNumParams(int model_id) { return IsKnownCameraModel(model_id) ? kModels[model_id].num_params : 0; }
 
 std::string_view CameraModelName(int model_id) {
   return IsKnownCameraModel(model_id) ? kModels[model_id].name : std::string_view();
@@ -45,9 +43,7 @@ std::optional<int> CameraModelIdFromName(std::string_view name) {
   return std::nullopt;
 }
 
-bool CameraModelHasSingleFocal(int model_id) {
-  return IsKnownCameraModel(model_id) && kModels[model_id].single_focal;
-}
+bool CameraModelHasSingleFocal(int model_id) { return IsKnownCameraModel(model_id) && kModels[model_id].single_focal; }
 
 std::vector<int> CameraModelFocalIndices(int model_id) {
   if (!IsKnownCameraModel(model_id)) return {};
@@ -66,10 +62,8 @@ std::vector<int> CameraModelExtraIndices(int model_id) {
   return extra;
 }
 
-bool PixelToNormalized(int model_id, std::span<const double> params, double x, double y, double* u,
-                       double* v) {
-  if (!IsKnownCameraModel(model_id) ||
-      static_cast<int>(params.size()) != CameraModelNumParams(model_id)) {
+bool PixelToNormalized(int model_id, std::span<const double> params, double x, double y, double* u, double* v) {
+  if (!IsKnownCameraModel(model_id) || static_cast<int>(params.size()) != CameraModelNumParams(model_id)) {
     return false;
   }
   // Undistorted guess from the pinhole part, then Newton on distort(u, v) = (ud, vd).

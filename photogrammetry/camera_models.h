@@ -78,10 +78,10 @@ T FisheyeScale(const T& u, const T& v) {
 // `params` holds the model's full parameter vector. Returns false for an unknown model.
 template <typename T>
 bool DistortNormalized(int model_id, const T* params, const T& u, const T& v, T* ud, T* vd) {
+  using camera_models_internal::FisheyeScale;
   using std::atan;
   using std::sqrt;
   using std::tan;
-  using camera_models_internal::FisheyeScale;
   switch (static_cast<CameraModelId>(model_id)) {
     case CameraModelId::kSimplePinhole:
     case CameraModelId::kPinhole:
@@ -225,7 +225,6 @@ bool ProjectNormalizedToPixel(int model_id, const T* params, const T& u, const T
 // Pixel -> normalized camera coordinates, inverting the distortion numerically (Newton iterations
 // with a numeric Jacobian, as COLMAP's IterativeUndistortion). Returns false for an unknown model or
 // when the iteration does not converge.
-bool PixelToNormalized(int model_id, std::span<const double> params, double x, double y, double* u,
-                       double* v);
+bool PixelToNormalized(int model_id, std::span<const double> params, double x, double y, double* u, double* v);
 
 }  // namespace cinepath::photogrammetry

@@ -66,8 +66,7 @@ inline bool IsOrientedManifoldTriangleSoup(const std::vector<std::array<std::siz
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (const auto& f : faces) {
       for (int k = 0; k < 3; ++k) {
-        link[fill[f[k]]++] = {static_cast<uint32_t>(f[(k + 1) % 3]),
-                              static_cast<uint32_t>(f[(k + 2) % 3])};
+        link[fill[f[k]]++] = {static_cast<uint32_t>(f[(k + 1) % 3]), static_cast<uint32_t>(f[(k + 2) % 3])};
       }
     }
   }
@@ -95,8 +94,7 @@ inline bool IsOrientedManifoldTriangleSoup(const std::vector<std::array<std::siz
     }
     std::size_t walked = 0;
     uint32_t x = first;
-    for (const std::pair<uint32_t, uint32_t>* e = next(x); e != nullptr && walked <= n;
-         e = next(x)) {
+    for (const std::pair<uint32_t, uint32_t>* e = next(x); e != nullptr && walked <= n; e = next(x)) {
       ++walked;
       x = e->second;
       if (x == first) break;

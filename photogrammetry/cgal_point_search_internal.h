@@ -22,8 +22,8 @@ class PointSearch {
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Point = Kernel::Point_3;
   using Entry = std::pair<Point, uint32_t>;
-  using Traits = CGAL::Search_traits_adapter<Entry, CGAL::First_of_pair_property_map<Entry>,
-                                             CGAL::Search_traits_3<Kernel>>;
+  using Traits =
+      CGAL::Search_traits_adapter<Entry, CGAL::First_of_pair_property_map<Entry>, CGAL::Search_traits_3<Kernel>>;
   using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
   using Tree = Search::Tree;
 

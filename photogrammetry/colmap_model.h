@@ -45,8 +45,8 @@ struct ColmapImage {
   }
   bool operator==(const ColmapImage& o) const {
     return image_id == o.image_id && cam_from_world_rotation.coeffs() == o.cam_from_world_rotation.coeffs() &&
-           cam_from_world_translation == o.cam_from_world_translation && camera_id == o.camera_id &&
-           name == o.name && points2d_px == o.points2d_px && point3d_ids == o.point3d_ids;
+           cam_from_world_translation == o.cam_from_world_translation && camera_id == o.camera_id && name == o.name &&
+           points2d_px == o.points2d_px && point3d_ids == o.point3d_ids;
   }
 };
 

@@ -31,15 +31,13 @@ class BinaryCursor {
   std::string Where(size_t at) const { return source_ + ": byte " + std::to_string(at); }
   std::string Where() const { return Where(offset_); }
 
-  [[noreturn]] void Fail(size_t at, const std::string& what) const {
-    throw InputError(Located(Where(at), what));
-  }
+  [[noreturn]] void Fail(size_t at, const std::string& what) const { throw InputError(Located(Where(at), what)); }
 
   template <typename T>
   T Read(const char* what) {
     if (remaining() < sizeof(T)) {
-      Fail(offset_, std::string("truncated: ") + what + " needs " + std::to_string(sizeof(T)) +
-                        " bytes, " + std::to_string(remaining()) + " left");
+      Fail(offset_, std::string("truncated: ") + what + " needs " + std::to_string(sizeof(T)) + " bytes, " +
+                        std::to_string(remaining()) + " left");
     }
     T value;
     std::memcpy(&value, data_.data() + offset_, sizeof(T));  // host is little-endian (x86-64, arm64)
@@ -68,9 +66,8 @@ class BinaryCursor {
   // anything is allocated for it.
   void CheckCount(uint64_t count, size_t min_bytes_each, size_t count_at, const char* what) const {
     if (min_bytes_each > 0 && count > remaining() / min_bytes_each) {
-      Fail(count_at, std::string("truncated or corrupt: ") + what + " = " + std::to_string(count) +
-                         " needs at least " + std::to_string(min_bytes_each) + " bytes each, " +
-                         std::to_string(remaining()) + " left");
+      Fail(count_at, std::string("truncated or corrupt: ") + what + " = " + std::to_string(count) + " needs at least " +
+                         std::to_string(min_bytes_each) + " bytes each, " + std::to_string(remaining()) + " left");
     }
   }
 
@@ -202,8 +199,7 @@ void ParseColmapCamerasBinary(std::string_view data, const std::string& source, 
     const size_t model_at = in.offset();
     camera.model_id = in.Read<int32_t>("model_id");
     if (!IsKnownCameraModel(camera.model_id)) {
-      in.Fail(model_at, "unknown camera model id " + std::to_string(camera.model_id) +
-                            " (COLMAP 3.8 defines 0..10)");
+      in.Fail(model_at, "unknown camera model id " + std::to_string(camera.model_id) + " (COLMAP 3.8 defines 0..10)");
     }
     camera.width_px = in.Read<uint64_t>("width");
     camera.height_px = in.Read<uint64_t>("height");
@@ -306,7 +302,8 @@ void ParseColmapCamerasText(std::string_view data, const std::string& source, Co
       const std::string_view t = line.token(1);
       const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), numeric);
       if (ec != std::errc() || ptr != t.data() + t.size() || !IsKnownCameraModel(numeric)) {
-        line.Fail("unknown camera model '" + std::string(t) + "' (COLMAP 3.8 defines SIMPLE_PINHOLE, "
+        line.Fail("unknown camera model '" + std::string(t) +
+                  "' (COLMAP 3.8 defines SIMPLE_PINHOLE, "
                   "PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE, FULL_OPENCV, FOV, "
                   "SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, THIN_PRISM_FISHEYE)");
       }
@@ -319,8 +316,8 @@ void ParseColmapCamerasText(std::string_view data, const std::string& source, Co
     CheckCamera(camera, [&](const std::string& what) { line.Fail(what); });
     const size_t n = CameraModelNumParams(camera.model_id);
     if (line.size() != 4 + n) {
-      line.Fail(std::string(CameraModelName(camera.model_id)) + " takes " + std::to_string(n) +
-                " parameters, found " + std::to_string(line.size() < 4 ? 0 : line.size() - 4));
+      line.Fail(std::string(CameraModelName(camera.model_id)) + " takes " + std::to_string(n) + " parameters, found " +
+                std::to_string(line.size() < 4 ? 0 : line.size() - 4));
     }
     for (size_t k = 0; k < n; ++k) camera.params.push_back(line.Finite(4 + k, "camera parameter"));
     if (!model.cameras.emplace(camera.camera_id, camera).second) {
@@ -340,9 +337,8 @@ void ParseColmapImagesText(std::string_view data, const std::string& source, Col
     ColmapImage image;
     image.image_id = line.Integer<uint32_t>(0, "IMAGE_ID");
     bool ok = false;
-    image.cam_from_world_rotation =
-        NormalizedQuaternion(line.Finite(1, "QW"), line.Finite(2, "QX"), line.Finite(3, "QY"),
-                             line.Finite(4, "QZ"), &ok);
+    image.cam_from_world_rotation = NormalizedQuaternion(line.Finite(1, "QW"), line.Finite(2, "QX"),
+                                                         line.Finite(3, "QY"), line.Finite(4, "QZ"), &ok);
     if (!ok) line.Fail("zero-length quaternion");
     image.cam_from_world_translation = {line.Finite(5, "TX"), line.Finite(6, "TY"), line.Finite(7, "TZ")};
     image.camera_id = line.Integer<uint32_t>(8, "CAMERA_ID");
@@ -353,8 +349,7 @@ void ParseColmapImagesText(std::string_view data, const std::string& source, Col
     if (lines.Next(&points_raw, &points_number)) {
       const TextLine points(points_raw, source, points_number);
       if (points.size() % 3 != 0) {
-        points.Fail("POINTS2D must be triples (X, Y, POINT3D_ID), found " + std::to_string(points.size()) +
-                    " values");
+        points.Fail("POINTS2D must be triples (X, Y, POINT3D_ID), found " + std::to_string(points.size()) + " values");
       }
       const size_t n = points.size() / 3;
       image.points2d_px.resize(n);
@@ -392,8 +387,8 @@ void ParseColmapPoints3DText(std::string_view data, const std::string& source, C
     point.error_px = line.Finite(7, "ERROR");
     if ((line.size() - 8) % 2 != 0) line.Fail("TRACK must be pairs (IMAGE_ID, POINT2D_IDX)");
     for (size_t k = 8; k + 1 < line.size(); k += 2) {
-      point.track.push_back({line.Integer<uint32_t>(k, "track IMAGE_ID"),
-                             line.Integer<uint32_t>(k + 1, "track POINT2D_IDX")});
+      point.track.push_back(
+          {line.Integer<uint32_t>(k, "track IMAGE_ID"), line.Integer<uint32_t>(k + 1, "track POINT2D_IDX")});
     }
     const uint64_t id = point.point3d_id;
     if (!model.points3d.emplace(id, std::move(point)).second) {
@@ -423,9 +418,8 @@ void ValidateColmapModel(const ColmapModel& model, const ColmapLocations& where)
     for (size_t k = 0; k < image.point3d_ids.size(); ++k) {
       const uint64_t pid = image.point3d_ids[k];
       if (pid != kInvalidPoint3DId && !model.points3d.contains(pid)) {
-        throw InputError(Located(image_where(id), "image " + std::to_string(id) + " keypoint " +
-                                                      std::to_string(k) + " refers to point3D_id " +
-                                                      std::to_string(pid) +
+        throw InputError(Located(image_where(id), "image " + std::to_string(id) + " keypoint " + std::to_string(k) +
+                                                      " refers to point3D_id " + std::to_string(pid) +
                                                       ", which is not in the points3D file"));
       }
     }
@@ -434,14 +428,12 @@ void ValidateColmapModel(const ColmapModel& model, const ColmapLocations& where)
     for (const auto& element : point.track) {
       const auto it = model.images.find(element.image_id);
       if (it == model.images.end()) {
-        throw InputError(Located(point_where(id), "point3D " + std::to_string(id) +
-                                                      " track refers to image_id " +
+        throw InputError(Located(point_where(id), "point3D " + std::to_string(id) + " track refers to image_id " +
                                                       std::to_string(element.image_id) +
                                                       ", which is not in the images file"));
       }
       if (element.point2d_idx >= it->second.points2d_px.size()) {
-        throw InputError(Located(point_where(id), "point3D " + std::to_string(id) +
-                                                      " track refers to keypoint " +
+        throw InputError(Located(point_where(id), "point3D " + std::to_string(id) + " track refers to keypoint " +
                                                       std::to_string(element.point2d_idx) + " of image " +
                                                       std::to_string(element.image_id) + ", which has " +
                                                       std::to_string(it->second.points2d_px.size())));
@@ -460,8 +452,9 @@ ColmapFormat DetectColmapFormat(const fs::path& dir) {
   if (all_exist(".bin")) return ColmapFormat::kBinary;
   if (all_exist(".txt")) return ColmapFormat::kText;
   if (!fs::is_directory(dir)) throw InputError(Located(dir.string(), "not a directory"));
-  throw InputError(Located(dir.string(), "not a COLMAP sparse model: needs cameras, images and points3D "
-                                         "as .bin or .txt"));
+  throw InputError(Located(dir.string(),
+                           "not a COLMAP sparse model: needs cameras, images and points3D "
+                           "as .bin or .txt"));
 }
 
 namespace {
@@ -469,7 +462,8 @@ namespace {
 bool HoldsColmapModel(const fs::path& dir) {
   for (const char* ext : {".bin", ".txt"}) {
     bool all = true;
-    for (const char* stem : {"cameras", "images", "points3D"}) all = all && fs::is_regular_file(dir / (std::string(stem) + ext));
+    for (const char* stem : {"cameras", "images", "points3D"})
+      all = all && fs::is_regular_file(dir / (std::string(stem) + ext));
     if (all) return true;
   }
   return false;
@@ -498,14 +492,15 @@ fs::path FindColmapModelDir(const fs::path& dir) {
   }
   if (HoldsColmapModel(dir / "sparse")) found.push_back((dir / "sparse").lexically_normal());
   if (found.empty()) {
-    throw InputError(Located(dir.string(), "not a COLMAP sparse model: needs cameras, images and points3D as .bin or "
-                                           ".txt (here, or in sparse/0 as COLMAP writes them)"));
+    throw InputError(Located(dir.string(),
+                             "not a COLMAP sparse model: needs cameras, images and points3D as .bin or "
+                             ".txt (here, or in sparse/0 as COLMAP writes them)"));
   }
   if (found.size() > 1) {
     std::string names;
     for (const fs::path& f : found) names += (names.empty() ? "" : ", ") + f.string();
     throw InputError(Located(dir.string(), "holds " + std::to_string(found.size()) + " COLMAP models (" + names +
-                                           "): give the one to use with --colmap"));
+                                               "): give the one to use with --colmap"));
   }
   return found.front();
 }

@@ -40,8 +40,8 @@ ColmapModel ReadColmapModel(const std::filesystem::path& dir, ColmapFormat forma
 // Cross-file references. `where` holds, per element, the location string the parsers recorded
 // (ColmapLocations); messages cite it.
 struct ColmapLocations {
-  std::map<uint32_t, std::string> images;     // image id -> "images.bin: byte 123"
-  std::map<uint64_t, std::string> points3d;   // point id -> "points3D.txt: line 9"
+  std::map<uint32_t, std::string> images;    // image id -> "images.bin: byte 123"
+  std::map<uint64_t, std::string> points3d;  // point id -> "points3D.txt: line 9"
 };
 void ValidateColmapModel(const ColmapModel& model, const ColmapLocations& where);
 

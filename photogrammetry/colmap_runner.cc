@@ -73,16 +73,14 @@ fs::path LargestModel(const fs::path& sparse) {
     try {
       const size_t n = ReadColmapModel(d).images.size();
       if (n > best_images) best = d, best_images = n;
-    } catch (const InputError&) {
-    }
+    } catch (const InputError&) {}
   }
   return best;
 }
 
 }  // namespace
 
-fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& workspace,
-                                 const ColmapRunOptions& options,
+fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& workspace, const ColmapRunOptions& options,
                                  const std::function<void(const std::string&)>& on_step) {
   if (!fs::is_directory(images_dir)) throw InputError(Located(images_dir.string(), "not a directory (--images)"));
   fs::create_directories(workspace / "sparse");
@@ -94,19 +92,18 @@ fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& wor
     if (on_step) on_step(name);
     RunStep(name, std::move(args), workspace / ("colmap_" + name + ".log"));
   };
-  step("feature_extractor", {options.colmap_binary, "feature_extractor", "--database_path", db.string(),
-                             "--image_path", images_dir.string(), "--ImageReader.camera_model", options.camera_model,
-                             "--ImageReader.single_camera", options.single_camera ? "1" : "0",
-                             "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", threads});
+  step("feature_extractor",
+       {options.colmap_binary, "feature_extractor", "--database_path", db.string(), "--image_path", images_dir.string(),
+        "--ImageReader.camera_model", options.camera_model, "--ImageReader.single_camera",
+        options.single_camera ? "1" : "0", "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", threads});
   step("exhaustive_matcher", {options.colmap_binary, "exhaustive_matcher", "--database_path", db.string(),
                               "--SiftMatching.use_gpu", "0", "--SiftMatching.num_threads", threads});
-  step("mapper", {options.colmap_binary, "mapper", "--database_path", db.string(), "--image_path",
-                  images_dir.string(), "--output_path", (workspace / "sparse").string(), "--Mapper.num_threads",
-                  threads});
+  step("mapper", {options.colmap_binary, "mapper", "--database_path", db.string(), "--image_path", images_dir.string(),
+                  "--output_path", (workspace / "sparse").string(), "--Mapper.num_threads", threads});
   const fs::path model = LargestModel(workspace / "sparse");
   if (model.empty()) {
-    throw RuntimeError("colmap mapper registered no images (log " + (workspace / "colmap_mapper.log").string() +
-                       ":" + LogTail(workspace / "colmap_mapper.log", 8) + ")");
+    throw RuntimeError("colmap mapper registered no images (log " + (workspace / "colmap_mapper.log").string() + ":" +
+                       LogTail(workspace / "colmap_mapper.log", 8) + ")");
   }
   return model;
 }

@@ -115,8 +115,8 @@ std::optional<FocalPrior> FocalPriorFromExif(const ExifInfo& exif, double camera
   }
   if (exif.focal_length_35mm_mm) {
     return FocalPrior{*exif.focal_length_35mm_mm / 36.0 * camera_width_px,
-                      "EXIF FocalLengthIn35mmFilm " + FormatFixed(*exif.focal_length_35mm_mm, 1) + " mm (36 mm frame), " +
-                          FormatFixed(camera_width_px, 0) + " px wide"};
+                      "EXIF FocalLengthIn35mmFilm " + FormatFixed(*exif.focal_length_35mm_mm, 1) +
+                          " mm (36 mm frame), " + FormatFixed(camera_width_px, 0) + " px wide"};
   }
   return std::nullopt;
 }

@@ -11,14 +11,14 @@ inline constexpr int kCinepathExifAbiVersion = 1;
 
 struct CinepathExifRecord {
   int abi_version;
-  int has_gps;            // latitude, longitude and altitude all present
-  double lat_deg;         // signed with GPSLatitudeRef
-  double lon_deg;         // signed with GPSLongitudeRef
-  double alt_m;           // GPSAltitude, negated when GPSAltitudeRef = 1 (below sea level)
+  int has_gps;     // latitude, longitude and altitude all present
+  double lat_deg;  // signed with GPSLatitudeRef
+  double lon_deg;  // signed with GPSLongitudeRef
+  double alt_m;    // GPSAltitude, negated when GPSAltitudeRef = 1 (below sea level)
   int has_focal_length;
-  double focal_length_mm;           // Exif FocalLength
-  double focal_length_35mm_mm;      // Exif FocalLengthIn35mmFilm, 0 when absent
-  int width_px;           // the image as stored (not Exif PixelXDimension)
+  double focal_length_mm;       // Exif FocalLength
+  double focal_length_35mm_mm;  // Exif FocalLengthIn35mmFilm, 0 when absent
+  int width_px;                 // the image as stored (not Exif PixelXDimension)
   int height_px;
   char make[64];
   char model[64];

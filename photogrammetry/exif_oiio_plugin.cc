@@ -11,9 +11,7 @@
 
 namespace {
 
-void CopyString(const std::string& s, char* out, size_t size) {
-  std::snprintf(out, size, "%s", s.c_str());
-}
+void CopyString(const std::string& s, char* out, size_t size) { std::snprintf(out, size, "%s", s.c_str()); }
 
 bool ReadDegrees(const OIIO::ImageSpec& spec, const char* name, double* degrees) {
   float dms[3] = {0, 0, 0};
@@ -25,7 +23,7 @@ bool ReadDegrees(const OIIO::ImageSpec& spec, const char* name, double* degrees)
 }  // namespace
 
 extern "C" __attribute__((visibility("default"))) int cinepath_exif_read(const char* path, CinepathExifRecord* record,
-                                                                          char* error, size_t error_size) {
+                                                                         char* error, size_t error_size) {
   std::memset(record, 0, sizeof(*record));
   record->abi_version = kCinepathExifAbiVersion;
   auto input = OIIO::ImageInput::open(path);

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <limits>
-#include <optional>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <GeographicLib/Constants.hpp>
@@ -72,8 +72,8 @@ GcpCoordinateSystem Utm(std::string header, int zone, bool north, const std::str
   crs.utm_zone = zone;
   crs.utm_north = north;
   crs.header = std::move(header);
-  crs.description = "WGS84 UTM zone " + std::to_string(zone) + (north ? "N" : "S") +
-                    " (x = easting m, y = northing m, z = height m)";
+  crs.description =
+      "WGS84 UTM zone " + std::to_string(zone) + (north ? "N" : "S") + " (x = easting m, y = northing m, z = height m)";
   return crs;
 }
 
@@ -84,7 +84,8 @@ GcpCoordinateSystem ParseProjString(const std::vector<std::string_view>& tokens,
   bool south = false, wgs84 = false;
   for (std::string_view raw : tokens) {
     const std::string t = Lower(raw);
-    if (t.rfind('+', 0) != 0) throw InputError(Located(where, "PROJ string: '" + std::string(raw) + "' is not a +key[=value]"));
+    if (t.rfind('+', 0) != 0)
+      throw InputError(Located(where, "PROJ string: '" + std::string(raw) + "' is not a +key[=value]"));
     const size_t eq = t.find('=');
     const std::string key = t.substr(1, eq == std::string::npos ? std::string::npos : eq - 1);
     const std::string value = eq == std::string::npos ? "" : t.substr(eq + 1);
@@ -111,13 +112,16 @@ GcpCoordinateSystem ParseProjString(const std::vector<std::string_view>& tokens,
       throw InputError(Located(where, "PROJ string: +" + key + " is not supported (" + std::string(kSupported) + ")"));
     }
   }
-  if (!wgs84) throw InputError(Located(where, "PROJ string without +datum=WGS84 or +ellps=WGS84 (" + std::string(kSupported) + ")"));
+  if (!wgs84)
+    throw InputError(
+        Located(where, "PROJ string without +datum=WGS84 or +ellps=WGS84 (" + std::string(kSupported) + ")"));
   if (proj == "utm") {
     if (!zone) throw InputError(Located(where, "PROJ string: +proj=utm without +zone"));
     return Utm(header, *zone, !south, where);
   }
   if (proj == "longlat" || proj == "latlong" || proj == "lonlat") return Geographic(header);
-  throw InputError(Located(where, "PROJ string: +proj=" + proj + " is not supported (" + std::string(kSupported) + ")"));
+  throw InputError(
+      Located(where, "PROJ string: +proj=" + proj + " is not supported (" + std::string(kSupported) + ")"));
 }
 
 }  // namespace
@@ -126,7 +130,8 @@ GcpCoordinateSystem ParseGcpCoordinateSystem(std::string_view header_view, const
   const auto tokens = WhitespaceTokens(header_view);
   std::string header;
   for (size_t i = 0; i < tokens.size(); ++i) header += (i ? " " : "") + std::string(tokens[i]);
-  if (tokens.empty()) throw InputError(Located(where, "missing coordinate-system line (" + std::string(kSupported) + ")"));
+  if (tokens.empty())
+    throw InputError(Located(where, "missing coordinate-system line (" + std::string(kSupported) + ")"));
   const std::string first = Upper(tokens[0]);
   if (tokens[0].front() == '+' || (tokens[0].front() == '\'' && tokens[0].size() > 1)) {
     // ODM strips quotes around a PROJ string.
@@ -140,7 +145,8 @@ GcpCoordinateSystem ParseGcpCoordinateSystem(std::string_view header_view, const
     if (*code == 4326 || *code == 4979) return Geographic(header);
     if (*code >= 32601 && *code <= 32660) return Utm(header, *code - 32600, true, where);
     if (*code >= 32701 && *code <= 32760) return Utm(header, *code - 32700, false, where);
-    throw InputError(Located(where, "EPSG:" + std::to_string(*code) + " is not supported (" + std::string(kSupported) + ")"));
+    throw InputError(
+        Located(where, "EPSG:" + std::to_string(*code) + " is not supported (" + std::string(kSupported) + ")"));
   }
   if (first == "WGS84" && tokens.size() == 1) return Geographic(header);
   if (first == "WGS84" && tokens.size() == 3 && Upper(tokens[1]) == "UTM") {
@@ -151,7 +157,8 @@ GcpCoordinateSystem ParseGcpCoordinateSystem(std::string_view header_view, const
       zone_text.pop_back();
     }
     const auto zone = ParseInt(zone_text);
-    if (!zone) throw InputError(Located(where, "'" + header + "': expected 'WGS84 UTM <zone>N' or 'WGS84 UTM <zone>S'"));
+    if (!zone)
+      throw InputError(Located(where, "'" + header + "': expected 'WGS84 UTM <zone>N' or 'WGS84 UTM <zone>S'"));
     return Utm(header, *zone, north, where);
   }
   throw InputError(Located(where, "unsupported coordinate system '" + header + "' (" + std::string(kSupported) + ")"));
@@ -179,8 +186,8 @@ GcpFile ParseGcpFile(std::string_view text, const std::string& source) {
     for (int k = 0; k < 5; ++k) {
       const auto value = ParseNumber(tokens[k], k == 2);
       if (!value) {
-        throw InputError(Located(where, std::string(names[k]) + ": '" + std::string(tokens[k]) + "' is not a finite number" +
-                                            (k == 2 ? " (or NaN for no elevation)" : "")));
+        throw InputError(Located(where, std::string(names[k]) + ": '" + std::string(tokens[k]) +
+                                            "' is not a finite number" + (k == 2 ? " (or NaN for no elevation)" : "")));
       }
       v[k] = *value;
     }
@@ -193,11 +200,12 @@ GcpFile ParseGcpFile(std::string_view text, const std::string& source) {
       lon = v[0];
       lat = v[1];
       if (std::abs(lat) > 90) {
-        throw InputError(Located(where, "geo_y (latitude) " + std::string(tokens[1]) + " outside [-90, 90]" +
-                                            (std::abs(v[0]) <= 90 ? "; with " + file.crs.header +
-                                                                        " geo_x is the longitude and geo_y the latitude "
-                                                                        "(the columns look swapped)"
-                                                                  : std::string())));
+        throw InputError(
+            Located(where, "geo_y (latitude) " + std::string(tokens[1]) + " outside [-90, 90]" +
+                               (std::abs(v[0]) <= 90 ? "; with " + file.crs.header +
+                                                           " geo_x is the longitude and geo_y the latitude "
+                                                           "(the columns look swapped)"
+                                                     : std::string())));
       }
       if (lon < -180 || lon > 360) {
         throw InputError(Located(where, "geo_x (longitude) " + std::string(tokens[0]) + " outside [-180, 360]"));

@@ -46,10 +46,10 @@ namespace cinepath::photogrammetry {
 struct GcpCoordinateSystem {
   enum class Kind { kGeographic, kUtm };
   Kind kind = Kind::kGeographic;
-  int utm_zone = 0;        // 1..60 for kUtm
-  bool utm_north = true;   // hemisphere for kUtm
-  std::string header;      // the first line as written (trimmed)
-  std::string description; // "WGS84 geographic (x = longitude, y = latitude)", "WGS84 UTM zone 32N"
+  int utm_zone = 0;         // 1..60 for kUtm
+  bool utm_north = true;    // hemisphere for kUtm
+  std::string header;       // the first line as written (trimmed)
+  std::string description;  // "WGS84 geographic (x = longitude, y = latitude)", "WGS84 UTM zone 32N"
 };
 
 struct GcpObservation {
@@ -62,9 +62,9 @@ struct GcpObservation {
 struct GroundControlPoint {
   std::string name;  // gcp_name, or "gcp<k>" (1-based, in file order) when the file gives none
   bool named_in_file = false;
-  double geo_x = 0, geo_y = 0;      // as written
-  double lat_deg = 0, lon_deg = 0;  // WGS84
-  std::optional<double> geo_z_m;    // unset for NaN ("no elevation")
+  double geo_x = 0, geo_y = 0;               // as written
+  double lat_deg = 0, lon_deg = 0;           // WGS84
+  std::optional<double> geo_z_m;             // unset for NaN ("no elevation")
   std::vector<GcpObservation> observations;  // in file order
   std::string where;                         // first line that names the point
 };

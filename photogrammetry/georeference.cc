@@ -4,8 +4,8 @@
 #include <limits>
 #include <random>
 
-#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 
 #include "core/error.h"
@@ -91,9 +91,8 @@ PointSpread MeasureSpread(const std::vector<Eigen::Vector3d>& points) {
   return spread;
 }
 
-RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source,
-                              const std::vector<Eigen::Vector3d>& target, const RobustFitOptions& options,
-                              const std::string& what) {
+RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
+                              const RobustFitOptions& options, const std::string& what) {
   CINEPATH_CHECK(source.size() == target.size());
   const int n = static_cast<int>(source.size());
   if (n < 3) {

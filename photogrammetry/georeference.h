@@ -62,14 +62,13 @@ struct RobustFit {
 };
 
 // `what` names the data in refusal messages (e.g. "references").
-RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source,
-                              const std::vector<Eigen::Vector3d>& target, const RobustFitOptions& options,
-                              const std::string& what = "references");
+RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
+                              const RobustFitOptions& options, const std::string& what = "references");
 
 // How far a point set spreads along its principal direction and away from its best-fit line (RMS).
 struct PointSpread {
-  double along_m = 0;  // RMS extent along the principal direction
-  double across_m = 0; // RMS distance from the best-fit line
+  double along_m = 0;   // RMS extent along the principal direction
+  double across_m = 0;  // RMS distance from the best-fit line
 };
 PointSpread MeasureSpread(const std::vector<Eigen::Vector3d>& points);
 

@@ -6,8 +6,8 @@
 #include <map>
 
 #include "core/error.h"
-#include "core/number_format.h"
 #include "core/geoid.h"
+#include "core/number_format.h"
 #include "photogrammetry/camera_models.h"
 
 namespace cinepath::photogrammetry {
@@ -164,7 +164,8 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
         std::optional<uint32_t> id;
         if (const auto it = image_by_name.find(name); it != image_by_name.end()) {
           id = it->second;
-        } else if (const auto b = image_by_base.find(base_name(name)); b != image_by_base.end() && b->second.size() == 1) {
+        } else if (const auto b = image_by_base.find(base_name(name));
+                   b != image_by_base.end() && b->second.size() == 1) {
           id = b->second.front();
         }
         u.image_ids.push_back(id);
@@ -191,7 +192,8 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
         ++usable_gcps;
       }
       if (!u.usable) {
-        result.warnings.push_back("ground control point '" + p.name + "' (" + p.where + ") skipped: " + u.skipped_reason);
+        result.warnings.push_back("ground control point '" + p.name + "' (" + p.where +
+                                  ") skipped: " + u.skipped_reason);
       }
       result.gcps.push_back(std::move(u));
     }
@@ -277,8 +279,9 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
   }
   result.pair_targets_enu_m = target;
   result.fit_references = gcp_frame ? "gcps" : (usable_gcps > 0 ? "cameras+gcps" : "cameras");
-  const std::string what = gcp_frame ? "ground control points"
-                                     : (usable_gcps > 0 ? "references (cameras and ground control points)" : "references");
+  const std::string what = gcp_frame
+                               ? "ground control points"
+                               : (usable_gcps > 0 ? "references (cameras and ground control points)" : "references");
 
   // 3. First fit.
   result.first_fit = FitSimilarityRobust(source, target, options.fit, what);
@@ -309,7 +312,8 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
       const GcpUse& u = result.gcps[pair_gcp[i]];
       ControlPointPrior c;
       for (size_t k = 0; k < u.observation_results.size(); ++k) {
-        if (u.observation_results[k].used) c.observations.push_back({*u.image_ids[k], u.gcp.observations[k].pixel_colmap});
+        if (u.observation_results[k].used)
+          c.observations.push_back({*u.image_ids[k], u.gcp.observations[k].pixel_colmap});
       }
       c.initial_enu_m = result.enu_from_colmap(u.triangulation.xyz);
       c.target_enu_m = u.enu_m;
@@ -338,18 +342,20 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
       const std::string cam = "camera " + std::to_string(f.camera_id) + ": ";
       const BundleAdjustReport& ba = *result.bundle_adjustment;
       const std::string sigma =
-          (f.images_sigma_ratio ? "formal sigma " + FormatFixed(100 * *f.images_sigma_ratio, 2) + " %" : std::string("formal sigma unbounded")) +
-          (ba.geometry_resolves_focal ? std::string()
-                                      : "; near-flat scene (depth relief " + FormatFixed(100 * ba.depth_relief_ratio, 1) +
-                                            " %) under near-parallel views (axes within " +
-                                            FormatFixed(ba.view_axis_spread_deg, 1) + " deg)");
+          (f.images_sigma_ratio ? "formal sigma " + FormatFixed(100 * *f.images_sigma_ratio, 2) + " %"
+                                : std::string("formal sigma unbounded")) +
+          (ba.geometry_resolves_focal
+               ? std::string()
+               : "; near-flat scene (depth relief " + FormatFixed(100 * ba.depth_relief_ratio, 1) +
+                     " %) under near-parallel views (axes within " + FormatFixed(ba.view_axis_spread_deg, 1) + " deg)");
       if (f.images_conflict_with_prior && f.images_preferred_px && f.prior_px) {
         result.warnings.push_back(
             cam + "the images pull the focal length to " + FormatFixed(*f.images_preferred_px, 1) + " px (" +
-            FormatFixed(100 * (*f.images_preferred_px / *f.prior_px - 1), 1) + " % from the prior " + FormatFixed(*f.prior_px, 1) +
-            " px; " + sigma +
+            FormatFixed(100 * (*f.images_preferred_px / *f.prior_px - 1), 1) + " % from the prior " +
+            FormatFixed(*f.prior_px, 1) + " px; " + sigma +
             "): the focal-length/flying-height ambiguity of a flat scene seen from above, not a measurement; the "
-            "focal length is held at the prior (" + options.focal_prior_source + ")");
+            "focal length is held at the prior (" +
+            options.focal_prior_source + ")");
       } else if (f.prior_px) {
         if (!f.images_resolve_focal) {
           result.warnings.push_back(cam + "the images cannot resolve focal length vs flying height (" + sigma +
@@ -358,15 +364,18 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
       } else if (!f.images_resolve_focal) {
         std::string what = cam + "the images cannot resolve focal length vs flying height (" + sigma +
                            ") and no focal-length prior is known (give --images with EXIF, or --focal-prior-px)";
-        what += ": heights above ground scale with the focal-length error (COLMAP's focal length is taken as is; "
-                "each 1 % error moves the ground by " + FormatFixed(0.01 * median_depth_m, 2) + " m at the median depth of " +
-                FormatFixed(median_depth_m, 1) + " m)";
+        what +=
+            ": heights above ground scale with the focal-length error (COLMAP's focal length is taken as is; "
+            "each 1 % error moves the ground by " +
+            FormatFixed(0.01 * median_depth_m, 2) + " m at the median depth of " + FormatFixed(median_depth_m, 1) +
+            " m)";
         result.warnings.push_back(what);
       }
       if (f.prior_px && std::abs(f.before_px / *f.prior_px - 1) > 0.05) {
-        result.warnings.push_back(cam + "COLMAP's focal length (" + FormatFixed(f.before_px, 1) + " px) differs from the prior (" +
-                                  FormatFixed(*f.prior_px, 1) + " px) by " + FormatFixed(100 * (f.before_px / *f.prior_px - 1), 1) +
-                                  " %; adjusted to " + FormatFixed(f.after_px, 1) + " px");
+        result.warnings.push_back(cam + "COLMAP's focal length (" + FormatFixed(f.before_px, 1) +
+                                  " px) differs from the prior (" + FormatFixed(*f.prior_px, 1) + " px) by " +
+                                  FormatFixed(100 * (f.before_px / *f.prior_px - 1), 1) + " %; adjusted to " +
+                                  FormatFixed(f.after_px, 1) + " px");
       }
     }
     // 5. Refit on the same pairs: adjusted camera centres; adjusted GCPs (re-triangulated when they
@@ -569,7 +578,8 @@ Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions
     gcp["points"] = points;
     gcp["usable"] = usable;
     gcp["check_rmse_m"] = Round(r.gcp_check_rmse_m, 4);
-    gcp["check_note"] = "each usable GCP re-triangulated in the final model from its pixels alone, minus its surveyed position";
+    gcp["check_note"] =
+        "each usable GCP re-triangulated in the final model from its pixels alone, minus its surveyed position";
     g["ground_control_points"] = gcp;
   }
   g["rmse_m"] = Round(r.final_fit.rmse_m, 4);

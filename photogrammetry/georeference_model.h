@@ -73,20 +73,20 @@ struct GcpUse {
   GroundControlPoint gcp;
   std::vector<std::optional<uint32_t>> image_ids;  // per observation; unset: no registered image of that name
   double height_ellipsoidal_m = 0;
-  Eigen::Vector3d enu_m = Eigen::Vector3d::Zero();  // surveyed position
-  Triangulation triangulation;                      // in the input (COLMAP) frame
+  Eigen::Vector3d enu_m = Eigen::Vector3d::Zero();     // surveyed position
+  Triangulation triangulation;                         // in the input (COLMAP) frame
   std::vector<ObservationResult> observation_results;  // per file observation (gcp.observations)
   bool usable = false;
-  std::string skipped_reason;                       // when not usable
-  std::optional<size_t> pair_index;                 // in the fits' pair lists
-  std::optional<Triangulation> final_triangulation; // in the final ENU model
+  std::string skipped_reason;                           // when not usable
+  std::optional<size_t> pair_index;                     // in the fits' pair lists
+  std::optional<Triangulation> final_triangulation;     // in the final ENU model
   std::optional<Eigen::Vector3d> final_residual_enu_m;  // re-triangulated minus surveyed
 };
 
 struct ReferenceUse {
   ImageReference reference;
   double height_ellipsoidal_m = 0;
-  std::optional<uint32_t> image_id;  // unset: no registered image of that name
+  std::optional<uint32_t> image_id;   // unset: no registered image of that name
   bool matched_by_file_name = false;  // matched on the name without folders (unique on both sides)
   Eigen::Vector3d enu_m = Eigen::Vector3d::Zero();
   // Filled for matched references (index into the fits' pair lists).
@@ -99,8 +99,8 @@ struct ModelGeoreference {
   Similarity3 enu_from_colmap;  // the first, similarity-only fit
   RobustFit first_fit;
   std::optional<BundleAdjustReport> bundle_adjustment;
-  RobustFit final_fit;   // adjusted camera centres vs references, after the refit
-  ColmapModel model_enu; // final model in ENU metres
+  RobustFit final_fit;    // adjusted camera centres vs references, after the refit
+  ColmapModel model_enu;  // final model in ENU metres
   std::vector<ReferenceUse> references;
   std::vector<GcpUse> gcps;
   std::optional<GcpCoordinateSystem> gcp_crs;
@@ -113,7 +113,7 @@ struct ModelGeoreference {
   std::vector<Eigen::Vector3d> pair_final_enu_m;  // the pairs' sources in the final model
   // Camera references against the final model (also when they were not fit pairs): |C - ref| (m).
   std::map<size_t, double> camera_residuals_m;  // index into references
-  double gcp_check_rmse_m = 0;  // over the re-triangulated usable GCPs
+  double gcp_check_rmse_m = 0;                  // over the re-triangulated usable GCPs
   std::vector<std::string> warnings;
 };
 
@@ -144,7 +144,6 @@ AffineMap FitAffineBetweenModels(const ColmapModel& from, const ColmapModel& to)
 
 // scene.json members this part owns: {"origin": ..., "enu_from_colmap": ..., "georeferencing": ...}.
 // `include_timing` adds wall-clock times (off for byte-identical outputs).
-Json GeoreferenceJson(const ModelGeoreference& result, const ModelGeoreferenceOptions& options,
-                      bool include_timing);
+Json GeoreferenceJson(const ModelGeoreference& result, const ModelGeoreferenceOptions& options, bool include_timing);
 
 }  // namespace cinepath::photogrammetry

@@ -75,8 +75,7 @@ struct VertexData {
   std::vector<uint32_t> indices;
 };
 
-void MinMax(const std::vector<float>& xyz, std::vector<double>& min_values,
-            std::vector<double>& max_values) {
+void MinMax(const std::vector<float>& xyz, std::vector<double>& min_values, std::vector<double>& max_values) {
   min_values.assign(3, std::numeric_limits<double>::infinity());
   max_values.assign(3, -std::numeric_limits<double>::infinity());
   for (size_t i = 0; i < xyz.size(); ++i) {
@@ -101,24 +100,20 @@ DracoResult EncodeDraco(const VertexData& data, const GlbWriteOptions& options) 
   draco::Mesh mesh;
   mesh.set_num_points(static_cast<uint32_t>(n));
   draco::GeometryAttribute position;
-  position.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false,
-                sizeof(float) * 3, 0);
+  position.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
   const int position_att = mesh.AddAttribute(position, true, static_cast<uint32_t>(n));
   int color_att = -1;
   if (!data.colors.empty()) {
     draco::GeometryAttribute color;
-    color.Init(draco::GeometryAttribute::COLOR, nullptr, 3, draco::DT_FLOAT32, false,
-               sizeof(float) * 3, 0);
+    color.Init(draco::GeometryAttribute::COLOR, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
     color_att = mesh.AddAttribute(color, true, static_cast<uint32_t>(n));
   }
   for (size_t i = 0; i < n; ++i) {
     mesh.attribute(position_att)
-        ->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)),
-                            &data.positions[3 * i]);
+        ->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)), &data.positions[3 * i]);
     if (color_att >= 0) {
-      mesh.attribute(color_att)
-          ->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)),
-                              &data.colors[3 * i]);
+      mesh.attribute(color_att)->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)),
+                                                   &data.colors[3 * i]);
     }
   }
   for (size_t f = 0; f < data.indices.size() / 3; ++f) {
@@ -128,8 +123,7 @@ DracoResult EncodeDraco(const VertexData& data, const GlbWriteOptions& options) 
   }
 
   draco::Encoder encoder;
-  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION,
-                                   options.draco_position_bits);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.draco_position_bits);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, options.draco_color_bits);
   const int speed = 10 - std::clamp(options.draco_compression_level, 0, 10);
   encoder.SetSpeedOptions(speed, speed);
@@ -153,8 +147,7 @@ DracoResult EncodeDraco(const VertexData& data, const GlbWriteOptions& options) 
   const draco::Mesh& out = *decoded.value();
   result.num_points = out.num_points();
   result.num_faces = out.num_faces();
-  const draco::PointAttribute* decoded_position =
-      out.GetAttributeByUniqueId(static_cast<uint32_t>(result.position_id));
+  const draco::PointAttribute* decoded_position = out.GetAttributeByUniqueId(static_cast<uint32_t>(result.position_id));
   CINEPATH_CHECK(decoded_position != nullptr);
   std::vector<float> xyz(3 * out.num_points());
   for (uint32_t i = 0; i < out.num_points(); ++i) {
@@ -167,8 +160,7 @@ DracoResult EncodeDraco(const VertexData& data, const GlbWriteOptions& options) 
 }  // namespace
 
 Eigen::Vector3f GltfFromEnu(const Eigen::Vector3d& enu_m) {
-  return Eigen::Vector3f(static_cast<float>(enu_m.x()), static_cast<float>(enu_m.z()),
-                         static_cast<float>(-enu_m.y()));
+  return Eigen::Vector3f(static_cast<float>(enu_m.x()), static_cast<float>(enu_m.z()), static_cast<float>(-enu_m.y()));
 }
 
 float LinearFromSrgb8(uint8_t value) {
@@ -200,8 +192,7 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& option
   if (mesh_enu.has_colors()) {
     data.colors.reserve(3 * mesh_enu.num_vertices());
     for (const auto& c : mesh_enu.colors_rgb) {
-      data.colors.insert(data.colors.end(),
-                         {srgb_to_linear[c[0]], srgb_to_linear[c[1]], srgb_to_linear[c[2]]});
+      data.colors.insert(data.colors.end(), {srgb_to_linear[c[0]], srgb_to_linear[c[1]], srgb_to_linear[c[2]]});
     }
   }
   data.indices.reserve(3 * mesh_enu.num_faces());
@@ -256,24 +247,23 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& option
   } else {
     const size_t index_offset = bin.size();
     AppendBytes(bin, data.indices.data(), data.indices.size() * sizeof(uint32_t));
-    index_accessor.bufferView = AddBufferView(model, index_offset, bin.size() - index_offset,
-                                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    index_accessor.bufferView =
+        AddBufferView(model, index_offset, bin.size() - index_offset, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     index_accessor.count = data.indices.size();
     PadTo4(bin);
 
     const size_t position_offset = bin.size();
     AppendBytes(bin, data.positions.data(), data.positions.size() * sizeof(float));
-    position_accessor.bufferView = AddBufferView(model, position_offset,
-                                                 bin.size() - position_offset,
-                                                 TINYGLTF_TARGET_ARRAY_BUFFER);
+    position_accessor.bufferView =
+        AddBufferView(model, position_offset, bin.size() - position_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
     position_accessor.count = mesh_enu.num_vertices();
     MinMax(data.positions, position_accessor.minValues, position_accessor.maxValues);
 
     if (!data.colors.empty()) {
       const size_t color_offset = bin.size();
       AppendBytes(bin, data.colors.data(), data.colors.size() * sizeof(float));
-      color_accessor.bufferView = AddBufferView(model, color_offset, bin.size() - color_offset,
-                                                TINYGLTF_TARGET_ARRAY_BUFFER);
+      color_accessor.bufferView =
+          AddBufferView(model, color_offset, bin.size() - color_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
       color_accessor.count = mesh_enu.num_vertices();
     }
   }

@@ -23,7 +23,7 @@ struct GlbWriteOptions {
   int draco_position_bits = 16;  // 500 m / 2^16 ≈ 7.6 mm (photogrammetry.md §7)
   int draco_color_bits = 10;
   int draco_compression_level = 7;  // Draco speed = 10 − level
-  Json extras;                     // copied into asset.extras and scene.extras (object or null)
+  Json extras;                      // copied into asset.extras and scene.extras (object or null)
 };
 
 // glTF position of an ENU point: (e, u, −n).

@@ -19,8 +19,8 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/boost/graph/iterator.h>
 
-#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
+#include <Eigen/Geometry>
 
 #include "core/error.h"
 #include "photogrammetry/cgal_mesh_internal.h"
@@ -176,8 +176,8 @@ SoupTopology AnalyzeSoup(const std::vector<std::array<uint32_t, 3>>& faces, size
         continue;
       }
       auto find = [&](uint32_t x) -> const Corner* {
-        const Corner* it = std::lower_bound(
-            begin, stop, x, [](const Corner& a, uint32_t value) { return a.next < value; });
+        const Corner* it =
+            std::lower_bound(begin, stop, x, [](const Corner& a, uint32_t value) { return a.next < value; });
         return it != stop && it->next == x ? it : nullptr;
       };
       size_t walked = 0;
@@ -194,9 +194,8 @@ SoupTopology AnalyzeSoup(const std::vector<std::array<uint32_t, 3>>& faces, size
       if (path_starts == 1) t.boundary_next[v] = first;
     }
   });
-  t.oriented_manifold =
-      std::all_of(chunk_ok.begin(), chunk_ok.end(), [](char ok) { return ok; }) &&
-      std::none_of(t.pinched.begin(), t.pinched.end(), [](char p) { return p; });
+  t.oriented_manifold = std::all_of(chunk_ok.begin(), chunk_ok.end(), [](char ok) { return ok; }) &&
+                        std::none_of(t.pinched.begin(), t.pinched.end(), [](char p) { return p; });
   return t;
 }
 
@@ -267,10 +266,9 @@ struct BoundaryCycle {
 // Surface_mesh made of the faces around the hole's border (all the hole filler looks at: the border
 // polyline, the faces on it and the edge lengths around its vertices). Appends the new points and
 // faces; returns the number of faces added (0: left open).
-int64_t FillHoleLocally(const BoundaryCycle& cycle, const SoupTopology& topology,
-                        size_t faces_before_filling, std::vector<Eigen::Vector3d>& points,
-                        std::vector<std::array<uint32_t, 3>>& faces, std::vector<Color>* colors,
-                        const Color& fill_color) {
+int64_t FillHoleLocally(const BoundaryCycle& cycle, const SoupTopology& topology, size_t faces_before_filling,
+                        std::vector<Eigen::Vector3d>& points, std::vector<std::array<uint32_t, 3>>& faces,
+                        std::vector<Color>* colors, const Color& fill_color) {
   // 1. The star of the border: faces around its points (from the CSR, plus faces added by
   //    earlier hole fills, which the CSR does not know).
   std::vector<uint32_t> star;
@@ -296,8 +294,7 @@ int64_t FillHoleLocally(const BoundaryCycle& cycle, const SoupTopology& topology
   std::vector<uint32_t> local_to_global;
   for (uint32_t f : star) local_to_global.insert(local_to_global.end(), faces[f].begin(), faces[f].end());
   std::sort(local_to_global.begin(), local_to_global.end());
-  local_to_global.erase(std::unique(local_to_global.begin(), local_to_global.end()),
-                        local_to_global.end());
+  local_to_global.erase(std::unique(local_to_global.begin(), local_to_global.end()), local_to_global.end());
   auto local = [&](uint32_t g) {
     return static_cast<size_t>(std::lower_bound(local_to_global.begin(), local_to_global.end(), g) -
                                local_to_global.begin());
@@ -319,13 +316,12 @@ int64_t FillHoleLocally(const BoundaryCycle& cycle, const SoupTopology& topology
     PMP::orient_polygon_soup(local_points, polygons);
     std::map<std::tuple<double, double, double>, uint32_t> by_position;
     for (size_t p = 0; p < num_local; ++p) {
-      by_position.emplace(std::make_tuple(local_points[p].x(), local_points[p].y(),
-                                          local_points[p].z()),
+      by_position.emplace(std::make_tuple(local_points[p].x(), local_points[p].y(), local_points[p].z()),
                           local_to_global[p]);
     }
     for (size_t p = num_local; p < local_points.size(); ++p) {
-      local_to_global.push_back(by_position.at(
-          std::make_tuple(local_points[p].x(), local_points[p].y(), local_points[p].z())));
+      local_to_global.push_back(
+          by_position.at(std::make_tuple(local_points[p].x(), local_points[p].y(), local_points[p].z())));
     }
   }
   SurfaceMesh sm;
@@ -346,8 +342,7 @@ int64_t FillHoleLocally(const BoundaryCycle& cycle, const SoupTopology& topology
   }
   std::vector<FaceIndex> new_faces;
   std::vector<VertexIndex> new_vertices;
-  PMP::triangulate_and_refine_hole(sm, h, std::back_inserter(new_faces),
-                                   std::back_inserter(new_vertices));
+  PMP::triangulate_and_refine_hole(sm, h, std::back_inserter(new_faces), std::back_inserter(new_vertices));
   if (new_faces.empty()) return 0;
   // 4. Back into the soup: new points get new indices, in the order CGAL created them.
   std::map<uint32_t, uint32_t> global_of_new;
@@ -376,11 +371,10 @@ int64_t FillHoleLocally(const BoundaryCycle& cycle, const SoupTopology& topology
 // The fast path, for a soup that is already an oriented 2-manifold (a terrain from the height
 // field, Poisson's output, most given meshes): components, small-component removal and border
 // cycles come from the soup itself, and CGAL is called only around holes to fill.
-TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored,
-                               const MeshCleanOptions& options, std::vector<Eigen::Vector3d> points,
-                               std::vector<std::array<uint32_t, 3>> faces,
-                               const std::vector<size_t>& original_of_point,
-                               const SoupTopology& topology, MeshCleanReport& report) {
+TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored, const MeshCleanOptions& options,
+                               std::vector<Eigen::Vector3d> points, std::vector<std::array<uint32_t, 3>> faces,
+                               const std::vector<size_t>& original_of_point, const SoupTopology& topology,
+                               MeshCleanReport& report) {
   const size_t n = points.size();
   // Components (vertex-connected = edge-connected on a manifold), with the lowest point as root.
   UnionFind components(n);
@@ -397,8 +391,7 @@ TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored,
     if (root[v] == v) largest = std::max(largest, faces_per_root[v]);
   }
   const int64_t threshold = std::max<int64_t>(
-      options.min_component_faces,
-      static_cast<int64_t>(std::ceil(options.min_component_fraction * largest)));
+      options.min_component_faces, static_cast<int64_t>(std::ceil(options.min_component_fraction * largest)));
   std::vector<char> component_kept(n, 0);
   for (size_t v = 0; v < n; ++v) {
     if (root[v] != v || faces_per_root[v] == 0) continue;
@@ -471,8 +464,8 @@ TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored,
       for (int k = 0; k < 3; ++k) {
         mean[k] = static_cast<uint8_t>(std::lround(sum[k] / static_cast<double>(edges)));
       }
-      const int64_t added = FillHoleLocally(c, topology, faces_before_filling, points, faces,
-                                            colored ? &colors : nullptr, mean);
+      const int64_t added =
+          FillHoleLocally(c, topology, faces_before_filling, points, faces, colored ? &colors : nullptr, mean);
       if (added == 0) {
         ++report.holes_left_open;
         continue;
@@ -515,12 +508,10 @@ TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored,
 // The general path, for soups that are not an oriented 2-manifold: CGAL orients the soup
 // (duplicating points where the surface is not a manifold), then Polygon_mesh_processing does
 // every repair on a Surface_mesh.
-TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
-                                  const MeshCleanOptions& options, std::vector<Point3> points,
-                                  std::vector<std::array<size_t, 3>> polygons,
+TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const MeshCleanOptions& options,
+                                  std::vector<Point3> points, std::vector<std::array<size_t, 3>> polygons,
                                   const std::vector<std::array<uint32_t, 3>>& faces,
-                                  std::vector<size_t> original_of_point,
-                                  MeshCleanReport& report) {
+                                  std::vector<size_t> original_of_point, MeshCleanReport& report) {
   // 4. Non-manifold edges and vertices: orient the soup; CGAL duplicates the points where the
   //    surface is not a 2-manifold. Then keep each component in the orientation most of its input
   //    faces had (orienting may flip a whole component).
@@ -531,12 +522,11 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
     // Points added by CGAL are copies: find their originals by position.
     std::map<std::tuple<double, double, double>, size_t> original_by_position;
     for (size_t p = 0; p < points_before; ++p) {
-      original_by_position.emplace(std::make_tuple(points[p].x(), points[p].y(), points[p].z()),
-                                   original_of_point[p]);
+      original_by_position.emplace(std::make_tuple(points[p].x(), points[p].y(), points[p].z()), original_of_point[p]);
     }
     for (size_t p = points_before; p < points.size(); ++p) {
-      original_of_point.push_back(original_by_position.at(
-          std::make_tuple(points[p].x(), points[p].y(), points[p].z())));
+      original_of_point.push_back(
+          original_by_position.at(std::make_tuple(points[p].x(), points[p].y(), points[p].z())));
     }
     UnionFind components(points.size());
     for (const auto& polygon : polygons) {
@@ -552,8 +542,7 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
       counts.second += 1;
     }
     for (size_t i = 0; i < polygons.size(); ++i) {
-      const auto& counts =
-          flipped_and_total[components.Find(static_cast<uint32_t>(polygons[i][0]))];
+      const auto& counts = flipped_and_total[components.Find(static_cast<uint32_t>(polygons[i][0]))];
       if (2 * counts.first > counts.second) {
         std::reverse(polygons[i].begin(), polygons[i].end());
         flipped[i] = !flipped[i];
@@ -577,8 +566,7 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
     std::vector<HalfedgeIndex> non_manifold;
     PMP::non_manifold_vertices(sm, std::back_inserter(non_manifold));
     if (!non_manifold.empty()) {
-      report.non_manifold_vertices_split +=
-          static_cast<int64_t>(PMP::duplicate_non_manifold_vertices(sm));
+      report.non_manifold_vertices_split += static_cast<int64_t>(PMP::duplicate_non_manifold_vertices(sm));
     }
   }
 
@@ -588,11 +576,9 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
     const std::size_t num_components = PMP::connected_components(sm, cc_map);
     std::vector<int64_t> faces_per_component(num_components, 0);
     for (FaceIndex f : sm.faces()) ++faces_per_component[cc_map[f]];
-    const int64_t largest =
-        *std::max_element(faces_per_component.begin(), faces_per_component.end());
+    const int64_t largest = *std::max_element(faces_per_component.begin(), faces_per_component.end());
     const int64_t threshold = std::max<int64_t>(
-        options.min_component_faces,
-        static_cast<int64_t>(std::ceil(options.min_component_fraction * largest)));
+        options.min_component_faces, static_cast<int64_t>(std::ceil(options.min_component_fraction * largest)));
     for (int64_t count : faces_per_component) {
       if (count < threshold && count < largest) {
         ++report.small_components_removed;
@@ -629,8 +615,7 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
       c.h = h;
       for (HalfedgeIndex e : CGAL::halfedges_around_face(h, sm)) {
         ++c.edges;
-        c.perimeter_m += std::sqrt(CGAL::squared_distance(sm.point(sm.source(e)),
-                                                          sm.point(sm.target(e))));
+        c.perimeter_m += std::sqrt(CGAL::squared_distance(sm.point(sm.source(e)), sm.point(sm.target(e))));
       }
       c.component = cc_map[sm.face(sm.opposite(h))];
       longest[c.component] = std::max(longest[c.component], c.perimeter_m);
@@ -641,8 +626,7 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
     for (const Cycle& c : info) {
       const bool outer = !outer_taken[c.component] && c.perimeter_m == longest[c.component];
       if (outer) outer_taken[c.component] = 1;
-      if (outer || c.edges > options.max_hole_edges ||
-          c.perimeter_m > options.max_hole_perimeter_m) {
+      if (outer || c.edges > options.max_hole_edges || c.perimeter_m > options.max_hole_perimeter_m) {
         ++report.holes_left_open;
         continue;
       }
@@ -653,8 +637,7 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
       }
       std::vector<FaceIndex> new_faces;
       std::vector<VertexIndex> new_vertices;
-      PMP::triangulate_and_refine_hole(sm, c.h, std::back_inserter(new_faces),
-                                       std::back_inserter(new_vertices));
+      PMP::triangulate_and_refine_hole(sm, c.h, std::back_inserter(new_faces), std::back_inserter(new_vertices));
       if (new_faces.empty()) {
         ++report.holes_left_open;
         continue;
@@ -683,7 +666,6 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored,
   return out;
 }
 
-
 }  // namespace
 
 Json MeshCleanReport::ToJson() const {
@@ -710,8 +692,7 @@ Json MeshCleanReport::ToJson() const {
   return j;
 }
 
-TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options,
-                       MeshCleanReport* report_out) {
+TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options, MeshCleanReport* report_out) {
   MeshCleanReport report;
   report.vertices_in = static_cast<int64_t>(mesh.num_vertices());
   report.faces_in = static_cast<int64_t>(mesh.num_faces());
@@ -749,15 +730,13 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
         verdict[i] = kInvalid;
         continue;
       }
-      const std::array<uint32_t, 3> r{representative[f[0]], representative[f[1]],
-                                      representative[f[2]]};
+      const std::array<uint32_t, 3> r{representative[f[0]], representative[f[1]], representative[f[2]]};
       const Eigen::Vector3d& a = mesh.vertices_m[r[0]];
       const Eigen::Vector3d& b = mesh.vertices_m[r[1]];
       const Eigen::Vector3d& cc = mesh.vertices_m[r[2]];
       const double area = 0.5 * (b - a).cross(cc - a).norm();
       if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2] || area < options.min_face_area_m2 ||
-          CGAL::collinear(Point3(a.x(), a.y(), a.z()), Point3(b.x(), b.y(), b.z()),
-                          Point3(cc.x(), cc.y(), cc.z()))) {
+          CGAL::collinear(Point3(a.x(), a.y(), a.z()), Point3(b.x(), b.y(), b.z()), Point3(cc.x(), cc.y(), cc.z()))) {
         verdict[i] = kDegenerate;
       }
     }
@@ -780,12 +759,10 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
         continue;
       }
       const auto& f = mesh.faces[i];
-      const std::array<uint32_t, 3> r{representative[f[0]], representative[f[1]],
-                                      representative[f[2]]};
+      const std::array<uint32_t, 3> r{representative[f[0]], representative[f[1]], representative[f[2]]};
       const std::array<uint32_t, 3> key = sorted(r);
       const uint32_t id = static_cast<uint32_t>(faces.size());
-      if (seen.FindOrInsert(FaceHash(key), id, [&](uint32_t j) { return sorted(faces[j]) == key; }) !=
-          id) {
+      if (seen.FindOrInsert(FaceHash(key), id, [&](uint32_t j) { return sorted(faces[j]) == key; }) != id) {
         ++report.duplicate_faces_removed;
         continue;
       }
@@ -813,8 +790,7 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
   }
   std::vector<std::array<uint32_t, 3>> soup(faces.size());
   for (size_t i = 0; i < faces.size(); ++i) {
-    soup[i] = {static_cast<uint32_t>(compact[faces[i][0]]),
-               static_cast<uint32_t>(compact[faces[i][1]]),
+    soup[i] = {static_cast<uint32_t>(compact[faces[i][0]]), static_cast<uint32_t>(compact[faces[i][1]]),
                static_cast<uint32_t>(compact[faces[i][2]])};
   }
 
@@ -841,8 +817,8 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
     std::vector<Eigen::Vector3d> points;
     points.reserve(original_of_point.size());
     for (size_t p : original_of_point) points.push_back(mesh.vertices_m[p]);
-    out = CleanManifoldSoup(mesh, colored, options, std::move(points), std::move(soup),
-                            original_of_point, topology, report);
+    out = CleanManifoldSoup(mesh, colored, options, std::move(points), std::move(soup), original_of_point, topology,
+                            report);
   } else {
     std::vector<Point3> points;
     points.reserve(original_of_point.size());
@@ -853,8 +829,8 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
     report.general_path = true;
     std::vector<std::array<size_t, 3>> polygons(soup.size());
     for (size_t i = 0; i < soup.size(); ++i) polygons[i] = {soup[i][0], soup[i][1], soup[i][2]};
-    out = CleanWithSurfaceMesh(mesh, colored, options, std::move(points), std::move(polygons),
-                               faces, std::move(original_of_point), report);
+    out = CleanWithSurfaceMesh(mesh, colored, options, std::move(points), std::move(polygons), faces,
+                               std::move(original_of_point), report);
   }
   if (report_out) *report_out = report;
   return out;

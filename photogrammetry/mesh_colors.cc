@@ -27,8 +27,7 @@ void ColorVerticesFromPoints(TriangleMesh& mesh, const PointCloud& cloud, int ne
       weight_sum += w;
     }
     for (int c = 0; c < 3; ++c) {
-      mesh.colors_rgb[v][c] = static_cast<uint8_t>(
-          std::clamp<long>(std::lround(sum[c] / weight_sum), 0, 255));
+      mesh.colors_rgb[v][c] = static_cast<uint8_t>(std::clamp<long>(std::lround(sum[c] / weight_sum), 0, 255));
     }
   });
 }

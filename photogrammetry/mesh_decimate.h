@@ -13,11 +13,11 @@
 namespace cinepath::photogrammetry {
 
 enum class DecimationMethod {
-  kMeshoptimizer,             // meshopt_simplify (quadric collapse), border locked
-  kMeshoptimizerPartitioned,  // tiles simplified in parallel (borders locked), then one global pass
-  kCgalGarlandHeckbert,       // CGAL SMS edge_collapse, GarlandHeckbert_plane_policies
+  kMeshoptimizer,                     // meshopt_simplify (quadric collapse), border locked
+  kMeshoptimizerPartitioned,          // tiles simplified in parallel (borders locked), then one global pass
+  kCgalGarlandHeckbert,               // CGAL SMS edge_collapse, GarlandHeckbert_plane_policies
   kCgalGarlandHeckbertProbabilistic,  // GarlandHeckbert_probabilistic_plane_policies
-  kOpenMeshQuadric,           // OpenMesh DecimaterT + ModQuadricT
+  kOpenMeshQuadric,                   // OpenMesh DecimaterT + ModQuadricT
 };
 const char* DecimationMethodName(DecimationMethod method);
 // Parses the names DecimationMethodName gives; throws InputError naming `where`.
@@ -25,11 +25,11 @@ DecimationMethod ParseDecimationMethod(const std::string& text, const std::strin
 
 struct DecimateOptions {
   DecimationMethod method = DecimationMethod::kMeshoptimizerPartitioned;
-  int64_t target_faces = 0;   // > 0: stop at (about) this many faces
+  int64_t target_faces = 0;  // > 0: stop at (about) this many faces
   // > 0 (meshoptimizer methods only): also stop before the simplifier's own error estimate
   // exceeds this distance in metres. The pipeline checks the result with a Hausdorff measurement.
   double max_error_m = 0;
-  int partitions = 16;        // kMeshoptimizerPartitioned: tiles (fixed: same mesh on any machine)
+  int partitions = 16;  // kMeshoptimizerPartitioned: tiles (fixed: same mesh on any machine)
 };
 
 struct DecimateStats {
@@ -39,8 +39,7 @@ struct DecimateStats {
 
 // Vertices no face uses are dropped; colours follow their vertices. Deterministic for any thread
 // count (partitions are fixed by geometry, not by threads).
-TriangleMesh DecimateMesh(const TriangleMesh& mesh, const DecimateOptions& options,
-                          DecimateStats* stats = nullptr);
+TriangleMesh DecimateMesh(const TriangleMesh& mesh, const DecimateOptions& options, DecimateStats* stats = nullptr);
 
 namespace internal {
 // In mesh_decimate_cgal.cc (the CGAL translation unit).

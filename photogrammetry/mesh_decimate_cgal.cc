@@ -32,16 +32,14 @@ void Collapse(SurfaceMesh& sm, int64_t target_faces) {
   Policies policies(sm);
   using Placement = SMS::Bounded_normal_change_placement<
       SMS::Constrained_placement<typename Policies::Get_placement, decltype(constrained)>>;
-  const Placement placement(SMS::Constrained_placement<typename Policies::Get_placement,
-                                                       decltype(constrained)>(
+  const Placement placement(SMS::Constrained_placement<typename Policies::Get_placement, decltype(constrained)>(
       constrained, policies.get_placement()));
   // Count_stop_predicate counts edges: a triangle mesh has about 1.5 edges per face.
   const std::size_t target_edges = static_cast<std::size_t>(1.5 * static_cast<double>(target_faces));
   SMS::Count_stop_predicate<SurfaceMesh> stop(target_edges);
-  SMS::edge_collapse(sm, stop,
-                     CGAL::parameters::get_cost(policies.get_cost())
-                         .get_placement(placement)
-                         .edge_is_constrained_map(constrained));
+  SMS::edge_collapse(
+      sm, stop,
+      CGAL::parameters::get_cost(policies.get_cost()).get_placement(placement).edge_is_constrained_map(constrained));
 }
 
 }  // namespace
@@ -67,8 +65,7 @@ TriangleMesh DecimateCgal(const TriangleMesh& mesh, int64_t target_faces, bool p
     }
   }
   if (probabilistic) {
-    Collapse<SMS::GarlandHeckbert_probabilistic_plane_policies<SurfaceMesh, Kernel>>(sm,
-                                                                                    target_faces);
+    Collapse<SMS::GarlandHeckbert_probabilistic_plane_policies<SurfaceMesh, Kernel>>(sm, target_faces);
   } else {
     Collapse<SMS::GarlandHeckbert_plane_policies<SurfaceMesh, Kernel>>(sm, target_faces);
   }

@@ -7,10 +7,10 @@
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
-#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
+#include <Eigen/Geometry>
 
 #include "core/error.h"
 #include "photogrammetry/cgal_mesh_internal.h"
@@ -37,14 +37,12 @@ class FacePrimitive {
   using Datum = Kernel::Triangle_3;
 
   FacePrimitive() = default;
-  FacePrimitive(std::vector<uint32_t>::const_iterator it, const TriangleMesh* mesh)
-      : id_(*it), mesh_(mesh) {}
+  FacePrimitive(std::vector<uint32_t>::const_iterator it, const TriangleMesh* mesh) : id_(*it), mesh_(mesh) {}
   Id id() const { return id_; }
   Datum datum() const { return TriangleOf(*mesh_, id_); }
   static Datum TriangleOf(const TriangleMesh& mesh, Id face) {
     const auto& f = mesh.faces[face];
-    return Datum(ToPoint(mesh.vertices_m[f[0]]), ToPoint(mesh.vertices_m[f[1]]),
-                 ToPoint(mesh.vertices_m[f[2]]));
+    return Datum(ToPoint(mesh.vertices_m[f[0]]), ToPoint(mesh.vertices_m[f[1]]), ToPoint(mesh.vertices_m[f[2]]));
   }
   Point reference_point() const { return ToPoint(mesh_->vertices_m[mesh_->faces[id_][0]]); }
 
@@ -78,8 +76,8 @@ size_t NumChunks(size_t n) { return (n + kChunk - 1) / kChunk; }
 // Closest point on triangle abc to p (Ericson, Real-Time Collision Detection §5.1.5), in plain
 // doubles: used only for upper bounds and hints, never for the reported distance, which always
 // comes from a CGAL query or a bound at most the running maximum.
-Eigen::Vector3d ClosestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                  const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+Eigen::Vector3d ClosestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                  const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return a;
@@ -123,12 +121,10 @@ uint64_t MortonCode(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const E
 }
 
 // Sorts ids by the Morton code of their point (ties by id): neighbouring ids, neighbouring points.
-void SortAlongZCurve(std::vector<uint32_t>& ids, const std::vector<Eigen::Vector3d>& points,
-                     const Eigen::Vector3d& lo, const Eigen::Vector3d& scale) {
+void SortAlongZCurve(std::vector<uint32_t>& ids, const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& lo,
+                     const Eigen::Vector3d& scale) {
   std::vector<std::pair<uint64_t, uint32_t>> keyed(ids.size());
-  tbb::parallel_for(size_t{0}, ids.size(), [&](size_t i) {
-    keyed[i] = {MortonCode(points[i], lo, scale), ids[i]};
-  });
+  tbb::parallel_for(size_t{0}, ids.size(), [&](size_t i) { keyed[i] = {MortonCode(points[i], lo, scale), ids[i]}; });
   tbb::parallel_sort(keyed.begin(), keyed.end());  // keys are unique: the order is deterministic
   for (size_t i = 0; i < ids.size(); ++i) ids[i] = keyed[i].second;
 }
@@ -137,9 +133,9 @@ void SortAlongZCurve(std::vector<uint32_t>& ids, const std::vector<Eigen::Vector
 
 struct MeshDistanceIndex::Impl {
   const TriangleMesh* mesh = nullptr;
-  std::vector<uint32_t> faces;     // valid faces (distinct, in-range corners), in Z-curve order
-  std::vector<uint32_t> vertices;  // vertices the valid faces use, in Z-curve order
-  std::vector<double> chunk_area;  // area of each chunk of `faces`
+  std::vector<uint32_t> faces;            // valid faces (distinct, in-range corners), in Z-curve order
+  std::vector<uint32_t> vertices;         // vertices the valid faces use, in Z-curve order
+  std::vector<double> chunk_area;         // area of each chunk of `faces`
   std::vector<double> chunk_area_before;  // cumulative area before each chunk (fixed order)
   double total_area = 0;
   std::vector<uint32_t> incident_start;  // faces around vertex v: incident[incident_start[v]..]
@@ -147,12 +143,10 @@ struct MeshDistanceIndex::Impl {
   Tree tree;
 
   // Max squared distance from the samples of this mesh to `to`; `samples` receives their count.
-  double MaxSquaredDistanceTo(const Impl& to, const HausdorffOptions& options,
-                              int64_t* samples) const;
+  double MaxSquaredDistanceTo(const Impl& to, const HausdorffOptions& options, int64_t* samples) const;
 };
 
-MeshDistanceIndex::MeshDistanceIndex(const TriangleMesh& mesh, const char* name)
-    : impl_(std::make_unique<Impl>()) {
+MeshDistanceIndex::MeshDistanceIndex(const TriangleMesh& mesh, const char* name) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.mesh = &mesh;
   const size_t n = mesh.num_vertices();
@@ -181,8 +175,7 @@ MeshDistanceIndex::MeshDistanceIndex(const TriangleMesh& mesh, const char* name)
         lo = lo.cwiseMin(mesh.vertices_m[v]);
         hi = hi.cwiseMax(mesh.vertices_m[v]);
       }
-      const Eigen::Vector3d scale =
-          (2097151.0 / (hi - lo).cwiseMax(Eigen::Vector3d::Constant(1e-12)).array()).matrix();
+      const Eigen::Vector3d scale = (2097151.0 / (hi - lo).cwiseMax(Eigen::Vector3d::Constant(1e-12)).array()).matrix();
       std::vector<Eigen::Vector3d> at(m.vertices.size());
       for (size_t i = 0; i < m.vertices.size(); ++i) at[i] = mesh.vertices_m[m.vertices[i]];
       SortAlongZCurve(m.vertices, at, lo, scale);
@@ -208,20 +201,21 @@ MeshDistanceIndex::MeshDistanceIndex(const TriangleMesh& mesh, const char* name)
     }
   }
   m.tree.insert(m.faces.cbegin(), m.faces.cend(), &mesh);
-  tbb::parallel_invoke([&] { m.tree.build(); }, [&] {
-    m.incident_start.assign(n + 1, 0);
-    for (uint32_t f : m.faces) {
-      for (uint32_t v : mesh.faces[f]) ++m.incident_start[v + 1];
-    }
-    for (size_t v = 0; v < n; ++v) m.incident_start[v + 1] += m.incident_start[v];
-    m.incident.resize(m.incident_start.back());
-    {
-      std::vector<uint32_t> fill(m.incident_start.begin(), m.incident_start.end() - 1);
-      for (uint32_t f : m.faces) {
-        for (uint32_t v : mesh.faces[f]) m.incident[fill[v]++] = f;
-      }
-    }
-  });
+  tbb::parallel_invoke([&] { m.tree.build(); },
+                       [&] {
+                         m.incident_start.assign(n + 1, 0);
+                         for (uint32_t f : m.faces) {
+                           for (uint32_t v : mesh.faces[f]) ++m.incident_start[v + 1];
+                         }
+                         for (size_t v = 0; v < n; ++v) m.incident_start[v + 1] += m.incident_start[v];
+                         m.incident.resize(m.incident_start.back());
+                         {
+                           std::vector<uint32_t> fill(m.incident_start.begin(), m.incident_start.end() - 1);
+                           for (uint32_t f : m.faces) {
+                             for (uint32_t v : mesh.faces[f]) m.incident[fill[v]++] = f;
+                           }
+                         }
+                       });
   // Every query below passes a hint (or starts from any primitive): no k-d tree of reference
   // points is needed, and none is built lazily from several threads.
   m.tree.do_not_accelerate_distance_queries();
@@ -229,8 +223,7 @@ MeshDistanceIndex::MeshDistanceIndex(const TriangleMesh& mesh, const char* name)
 
 MeshDistanceIndex::~MeshDistanceIndex() = default;
 
-double MeshDistanceIndex::Impl::MaxSquaredDistanceTo(const Impl& to,
-                                                     const HausdorffOptions& options,
+double MeshDistanceIndex::Impl::MaxSquaredDistanceTo(const Impl& to, const HausdorffOptions& options,
                                                      int64_t* samples) const {
   const size_t vertex_chunks = options.sample_vertices ? NumChunks(vertices.size()) : 0;
   const size_t face_chunks = NumChunks(faces.size());
@@ -255,8 +248,7 @@ double MeshDistanceIndex::Impl::MaxSquaredDistanceTo(const Impl& to,
     const TriangleMesh& target = *to.mesh;
     auto closest_on_face = [&](uint32_t face, const Eigen::Vector3d& p) {
       const auto& f = target.faces[face];
-      return ClosestOnTriangle(p, target.vertices_m[f[0]], target.vertices_m[f[1]],
-                               target.vertices_m[f[2]]);
+      return ClosestOnTriangle(p, target.vertices_m[f[0]], target.vertices_m[f[1]], target.vertices_m[f[2]]);
     };
     auto measure = [&](const Eigen::Vector3d& point) {
       const Point3 p = ToPoint(point);
@@ -331,8 +323,8 @@ double MeshDistanceIndex::Impl::MaxSquaredDistanceTo(const Impl& to,
   return max_sq;
 }
 
-double MeshDistanceIndex::MaxDistanceTo(const MeshDistanceIndex& other,
-                                        const HausdorffOptions& options, int64_t* samples) const {
+double MeshDistanceIndex::MaxDistanceTo(const MeshDistanceIndex& other, const HausdorffOptions& options,
+                                        int64_t* samples) const {
   return std::sqrt(impl_->MaxSquaredDistanceTo(*other.impl_, options, samples));
 }
 
@@ -350,8 +342,7 @@ HausdorffDistance ApproximateHausdorff(const MeshDistanceIndex& a, const MeshDis
   return d;
 }
 
-HausdorffDistance ApproximateHausdorff(const TriangleMesh& a, const TriangleMesh& b,
-                                       const HausdorffOptions& options) {
+HausdorffDistance ApproximateHausdorff(const TriangleMesh& a, const TriangleMesh& b, const HausdorffOptions& options) {
   std::unique_ptr<MeshDistanceIndex> index_a, index_b;
   tbb::parallel_invoke([&] { index_a = std::make_unique<MeshDistanceIndex>(a, "A"); },
                        [&] { index_b = std::make_unique<MeshDistanceIndex>(b, "B"); });

@@ -26,7 +26,7 @@ struct HausdorffOptions {
 };
 
 struct HausdorffDistance {
-  double a_to_b_m = 0;   // max over the samples of A of the distance to B
+  double a_to_b_m = 0;  // max over the samples of A of the distance to B
   double b_to_a_m = 0;
   double symmetric_m = 0;  // max of the two
   int64_t samples_a = 0;   // how many samples were measured on A (vertices + face samples)
@@ -59,7 +59,6 @@ class MeshDistanceIndex {
 HausdorffDistance ApproximateHausdorff(const MeshDistanceIndex& a, const MeshDistanceIndex& b,
                                        const HausdorffOptions& options);
 // Convenience: builds both indexes. Throws InputError if either mesh has no valid face.
-HausdorffDistance ApproximateHausdorff(const TriangleMesh& a, const TriangleMesh& b,
-                                       const HausdorffOptions& options);
+HausdorffDistance ApproximateHausdorff(const TriangleMesh& a, const TriangleMesh& b, const HausdorffOptions& options);
 
 }  // namespace cinepath::photogrammetry

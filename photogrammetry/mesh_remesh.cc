@@ -38,8 +38,7 @@ Json RemeshReport::ToJson() const {
   return j;
 }
 
-TriangleMesh RemeshIsotropic(const TriangleMesh& mesh, const RemeshOptions& options,
-                             RemeshReport* report_out) {
+TriangleMesh RemeshIsotropic(const TriangleMesh& mesh, const RemeshOptions& options, RemeshReport* report_out) {
   options.Check();
   std::vector<internal::Point3> points = internal::PointsOf(mesh);
   std::vector<std::array<std::size_t, 3>> polygons;
@@ -67,12 +66,10 @@ TriangleMesh RemeshIsotropic(const TriangleMesh& mesh, const RemeshOptions& opti
       border.push_back(e);
     }
   }
-  PMP::split_long_edges(border, options.target_edge_m, sm,
-                        CGAL::parameters::edge_is_constrained_map(constrained));
+  PMP::split_long_edges(border, options.target_edge_m, sm, CGAL::parameters::edge_is_constrained_map(constrained));
   // Sequential: CGAL's remeshing has no parallel mode, and its result depends only on the input.
   PMP::isotropic_remeshing(faces(sm), options.target_edge_m, sm,
-                           CGAL::parameters::number_of_iterations(
-                               static_cast<unsigned int>(options.iterations))
+                           CGAL::parameters::number_of_iterations(static_cast<unsigned int>(options.iterations))
                                .edge_is_constrained_map(constrained)
                                .protect_constraints(true));
   sm.collect_garbage();
@@ -84,8 +81,8 @@ TriangleMesh RemeshIsotropic(const TriangleMesh& mesh, const RemeshOptions& opti
   double sum = 0;
   report.edge_min_m = INFINITY;
   for (auto e : sm.edges()) {
-    const double length = std::sqrt(CGAL::squared_distance(sm.point(sm.source(sm.halfedge(e))),
-                                                            sm.point(sm.target(sm.halfedge(e)))));
+    const double length =
+        std::sqrt(CGAL::squared_distance(sm.point(sm.source(sm.halfedge(e))), sm.point(sm.target(sm.halfedge(e)))));
     ++edges;
     sum += length;
     report.edge_min_m = std::min(report.edge_min_m, length);

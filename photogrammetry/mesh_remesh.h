@@ -28,7 +28,6 @@ struct RemeshReport {
 
 // Returns the remeshed mesh (manifold, oriented like the input). Colours, when the input has them,
 // come from the nearest input vertices. Throws InputError when the mesh has no face.
-TriangleMesh RemeshIsotropic(const TriangleMesh& mesh, const RemeshOptions& options,
-                             RemeshReport* report = nullptr);
+TriangleMesh RemeshIsotropic(const TriangleMesh& mesh, const RemeshOptions& options, RemeshReport* report = nullptr);
 
 }  // namespace cinepath::photogrammetry

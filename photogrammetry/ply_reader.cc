@@ -5,8 +5,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <sstream>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 #include "core/error.h"
@@ -33,9 +33,13 @@ std::optional<Type> ParseType(std::string_view s) {
 
 size_t TypeSize(Type t) {
   switch (t) {
-    case Type::kInt8: case Type::kUint8: return 1;
-    case Type::kInt16: case Type::kUint16: return 2;
-    case Type::kInt32: case Type::kUint32: case Type::kFloat32: return 4;
+    case Type::kInt8:
+    case Type::kUint8: return 1;
+    case Type::kInt16:
+    case Type::kUint16: return 2;
+    case Type::kInt32:
+    case Type::kUint32:
+    case Type::kFloat32: return 4;
     case Type::kFloat64: return 8;
   }
   return 0;
@@ -52,7 +56,8 @@ bool FitsType(Type t, double v) {
     case Type::kUint16: return v >= 0 && v <= 65535;
     case Type::kInt32: return v >= -2147483648.0 && v <= 2147483647.0;
     case Type::kUint32: return v >= 0 && v <= 4294967295.0;
-    case Type::kFloat32: case Type::kFloat64: return true;
+    case Type::kFloat32:
+    case Type::kFloat64: return true;
   }
   return false;
 }
@@ -113,7 +118,8 @@ class ValueReader {
       if (ec != std::errc() || ptr != t.data() + t.size()) {
         Fail(std::string(what) + ": '" + std::string(t) + "' is not a number");
       }
-      if (!IsFloat(type) && v != std::floor(v)) Fail(std::string(what) + ": '" + std::string(t) + "' is not an integer");
+      if (!IsFloat(type) && v != std::floor(v))
+        Fail(std::string(what) + ": '" + std::string(t) + "' is not an integer");
       if (!FitsType(type, v)) Fail(std::string(what) + ": '" + std::string(t) + "' is out of range for its type");
       return v;
     }
@@ -128,14 +134,42 @@ class ValueReader {
     const bool swap = (format_ == Format::kBig) == (std::endian::native == std::endian::little);
     if (swap) std::reverse(b, b + n);
     switch (type) {
-      case Type::kInt8: { int8_t v; std::memcpy(&v, b, 1); return v; }
+      case Type::kInt8: {
+        int8_t v;
+        std::memcpy(&v, b, 1);
+        return v;
+      }
       case Type::kUint8: return b[0];
-      case Type::kInt16: { int16_t v; std::memcpy(&v, b, 2); return v; }
-      case Type::kUint16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case Type::kInt32: { int32_t v; std::memcpy(&v, b, 4); return v; }
-      case Type::kUint32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case Type::kFloat32: { float v; std::memcpy(&v, b, 4); return v; }
-      case Type::kFloat64: { double v; std::memcpy(&v, b, 8); return v; }
+      case Type::kInt16: {
+        int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Type::kUint16: {
+        uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Type::kInt32: {
+        int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::kUint32: {
+        uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::kFloat32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::kFloat64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
     }
     return 0;
   }
@@ -185,8 +219,10 @@ class ValueReader {
 
 uint8_t ColorByte(double v, Type t) {
   double c = v;
-  if (IsFloat(t)) c = v * 255.0;
-  else if (t == Type::kUint16) c = v / 257.0;
+  if (IsFloat(t))
+    c = v * 255.0;
+  else if (t == Type::kUint16)
+    c = v / 257.0;
   if (!std::isfinite(c)) c = 0;
   return static_cast<uint8_t>(std::clamp(std::lround(c), 0L, 255L));
 }
@@ -221,16 +257,21 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
     if (t[0] == "comment" || t[0] == "obj_info") continue;
     if (t[0] == "format") {
       if (t.size() != 3) fail_line("format line must be 'format <type> 1.0'");
-      if (t[1] == "ascii") format = Format::kAscii;
-      else if (t[1] == "binary_little_endian") format = Format::kLittle;
-      else if (t[1] == "binary_big_endian") format = Format::kBig;
-      else fail_line("unknown PLY format '" + std::string(t[1]) + "'");
+      if (t[1] == "ascii")
+        format = Format::kAscii;
+      else if (t[1] == "binary_little_endian")
+        format = Format::kLittle;
+      else if (t[1] == "binary_big_endian")
+        format = Format::kBig;
+      else
+        fail_line("unknown PLY format '" + std::string(t[1]) + "'");
     } else if (t[0] == "element") {
       if (t.size() != 3) fail_line("element line must be 'element <name> <count>'");
       Element e;
       e.name = std::string(t[1]);
       const auto [ptr, ec] = std::from_chars(t[2].data(), t[2].data() + t[2].size(), e.count);
-      if (ec != std::errc() || ptr != t[2].data() + t[2].size()) fail_line("bad element count '" + std::string(t[2]) + "'");
+      if (ec != std::errc() || ptr != t[2].data() + t[2].size())
+        fail_line("bad element count '" + std::string(t[2]) + "'");
       elements.push_back(e);
     } else if (t[0] == "property") {
       if (elements.empty()) fail_line("property before any element");
@@ -259,7 +300,8 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
       fail_line("unknown header keyword '" + std::string(t[0]) + "'");
     }
   }
-  if (!ended) throw InputError(Located(source + ": line " + std::to_string(line_number), "truncated header: no end_header"));
+  if (!ended)
+    throw InputError(Located(source + ": line " + std::to_string(line_number), "truncated header: no end_header"));
   if (!format) throw InputError(Located(source, "no format line in the header"));
   const size_t body_offset = std::min(pos, data.size());
 
@@ -288,15 +330,24 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
       for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
         const std::string& n = e.properties[k].name;
         if (e.properties[k].is_list) continue;
-        if (n == "x") ix = k;
-        else if (n == "y") iy = k;
-        else if (n == "z") iz = k;
-        else if (n == "nx") inx = k;
-        else if (n == "ny") iny = k;
-        else if (n == "nz") inz = k;
-        else if (n == "red" || n == "r" || n == "diffuse_red") ir = k;
-        else if (n == "green" || n == "g" || n == "diffuse_green") ig = k;
-        else if (n == "blue" || n == "b" || n == "diffuse_blue") ib = k;
+        if (n == "x")
+          ix = k;
+        else if (n == "y")
+          iy = k;
+        else if (n == "z")
+          iz = k;
+        else if (n == "nx")
+          inx = k;
+        else if (n == "ny")
+          iny = k;
+        else if (n == "nz")
+          inz = k;
+        else if (n == "red" || n == "r" || n == "diffuse_red")
+          ir = k;
+        else if (n == "green" || n == "g" || n == "diffuse_green")
+          ig = k;
+        else if (n == "blue" || n == "b" || n == "diffuse_blue")
+          ib = k;
       }
       if (ix < 0 || iy < 0 || iz < 0) in.Fail("element 'vertex' has no x, y, z properties");
       const bool normals = inx >= 0 && iny >= 0 && inz >= 0;
@@ -321,7 +372,8 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
         out.points.positions_m.push_back(x);
         if (normals) {
           Eigen::Vector3d nrm(values[inx], values[iny], values[inz]);
-          if (!nrm.allFinite()) throw InputError(Located(where, "normal of vertex " + std::to_string(i) + " is not finite"));
+          if (!nrm.allFinite())
+            throw InputError(Located(where, "normal of vertex " + std::to_string(i) + " is not finite"));
           const double len = nrm.norm();
           out.points.normals.push_back(len > 0 ? Eigen::Vector3d(nrm / len) : nrm);
         }
@@ -367,7 +419,8 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
           throw InputError(Located(where, "face " + std::to_string(i) + " has " + std::to_string(polygon.size()) +
                                               " vertices (needs 3 or more)"));
         }
-        for (size_t k = 1; k + 1 < polygon.size(); ++k) out.mesh.faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
+        for (size_t k = 1; k + 1 < polygon.size(); ++k)
+          out.mesh.faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
       }
     } else {
       // Unknown element: skip its instances. Binary instances of an element without properties

@@ -20,8 +20,8 @@
 namespace cinepath::photogrammetry {
 
 struct PlyData {
-  PointCloud points;   // every vertex (positions, and normals/colours when present)
-  TriangleMesh mesh;   // the same vertices + the faces; no faces for a point cloud
+  PointCloud points;  // every vertex (positions, and normals/colours when present)
+  TriangleMesh mesh;  // the same vertices + the faces; no faces for a point cloud
   bool has_faces() const { return !mesh.faces.empty(); }
 };
 

@@ -16,8 +16,8 @@ std::vector<ImageReference> ParseReferences(std::string_view text, const std::st
   ForEachDataLine(text, [&](std::string_view, size_t line_number, const std::vector<std::string_view>& tokens) {
     const std::string where = source + ": line " + std::to_string(line_number);
     if (tokens.size() != 4) {
-      throw InputError(Located(where, "expected 'image_name lat lon alt', found " +
-                                          std::to_string(tokens.size()) + " fields"));
+      throw InputError(
+          Located(where, "expected 'image_name lat lon alt', found " + std::to_string(tokens.size()) + " fields"));
     }
     double values[3];
     const char* names[3] = {"latitude", "longitude", "altitude"};
@@ -25,8 +25,7 @@ std::vector<ImageReference> ParseReferences(std::string_view text, const std::st
       const std::string_view t = tokens[k + 1];
       const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), values[k]);
       if (ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(values[k])) {
-        throw InputError(Located(where, std::string(names[k]) + ": '" + std::string(t) +
-                                            "' is not a finite number"));
+        throw InputError(Located(where, std::string(names[k]) + ": '" + std::string(t) + "' is not a finite number"));
       }
     }
     if (std::abs(values[0]) > 90) throw InputError(Located(where, "latitude outside [-90, 90]"));
@@ -34,8 +33,7 @@ std::vector<ImageReference> ParseReferences(std::string_view text, const std::st
     ImageReference ref{std::string(tokens[0]), values[0], values[1], values[2], where};
     const auto [it, inserted] = seen.emplace(ref.image_name, where);
     if (!inserted) {
-      throw InputError(Located(where, "image '" + ref.image_name + "' already has a reference (" +
-                                          it->second + ")"));
+      throw InputError(Located(where, "image '" + ref.image_name + "' already has a reference (" + it->second + ")"));
     }
     refs.push_back(std::move(ref));
   });

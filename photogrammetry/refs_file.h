@@ -20,8 +20,8 @@ struct ImageReference {
   std::string image_name;
   double lat_deg = 0;
   double lon_deg = 0;
-  double alt_m = 0;     // in the datum the caller states
-  std::string where;    // "refs.txt: line 3" — for messages
+  double alt_m = 0;   // in the datum the caller states
+  std::string where;  // "refs.txt: line 3" — for messages
 };
 
 // InputError naming the file and line for a malformed line, a latitude outside [-90, 90], a longitude

@@ -66,8 +66,7 @@ TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOption
     if (p[i].allFinite()) indices.push_back(i);
   }
   if (indices.size() < 3) {
-    throw InputError("height field: fewer than 3 usable points (" +
-                     std::to_string(indices.size()) + ")");
+    throw InputError("height field: fewer than 3 usable points (" + std::to_string(indices.size()) + ")");
   }
 
   // One point per (e, n) position: equal positions keep the median height (lowest index on ties).
@@ -101,8 +100,7 @@ TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOption
       size_t end = begin + 1;
       while (end < keyed.size() && keyed[end].first == keyed[begin].first) ++end;
       kept.push_back(keyed[begin + (end - begin - 1) / 2].second);
-      (cell_m > 0 ? report.points_thinned : report.duplicate_xy_points) +=
-          static_cast<int64_t>(end - begin - 1);
+      (cell_m > 0 ? report.points_thinned : report.duplicate_xy_points) += static_cast<int64_t>(end - begin - 1);
       begin = end;
     }
     std::sort(kept.begin(), kept.end());
@@ -124,8 +122,10 @@ TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOption
       bool on_hull = false;
       auto c = dt.incident_vertices(v), done = c;
       do {
-        if (dt.is_infinite(c)) on_hull = true;
-        else neighbours.push_back(p[c->info()].z());
+        if (dt.is_infinite(c))
+          on_hull = true;
+        else
+          neighbours.push_back(p[c->info()].z());
       } while (++c != done);
       if (on_hull || neighbours.size() < 3) continue;
       deviation.emplace_back(v->info(), std::abs(p[v->info()].z() - Median(neighbours)));
@@ -141,8 +141,7 @@ TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOption
     if (!spikes.empty()) {
       std::sort(spikes.begin(), spikes.end());
       std::vector<uint32_t> kept;
-      std::set_difference(indices.begin(), indices.end(), spikes.begin(), spikes.end(),
-                          std::back_inserter(kept));
+      std::set_difference(indices.begin(), indices.end(), spikes.begin(), spikes.end(), std::back_inserter(kept));
       report.spikes_removed = static_cast<int64_t>(spikes.size());
       indices.swap(kept);
       Triangulate(cloud, indices, dt);
@@ -158,8 +157,8 @@ TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOption
   report.median_edge_m = Median(edge_lengths);
   if (!edge_lengths.empty()) {
     const double q = std::clamp(options.max_edge_percentile, 0.0, 100.0) / 100.0;
-    const size_t k = std::min(edge_lengths.size() - 1,
-                              static_cast<size_t>(q * static_cast<double>(edge_lengths.size() - 1)));
+    const size_t k =
+        std::min(edge_lengths.size() - 1, static_cast<size_t>(q * static_cast<double>(edge_lengths.size() - 1)));
     std::nth_element(edge_lengths.begin(), edge_lengths.begin() + k, edge_lengths.end());
     report.percentile_edge_m = edge_lengths[k];
   }
@@ -171,8 +170,8 @@ TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOption
     ++report.triangles;
     double longest = 0;
     for (int k = 0; k < 3; ++k) {
-      longest = std::max(longest, std::sqrt(CGAL::squared_distance(f->vertex(k)->point(),
-                                                                   f->vertex((k + 1) % 3)->point())));
+      longest =
+          std::max(longest, std::sqrt(CGAL::squared_distance(f->vertex(k)->point(), f->vertex((k + 1) % 3)->point())));
     }
     if (options.max_edge_factor > 0 && longest > max_edge_m) {
       ++report.long_edge_triangles_trimmed;
@@ -199,8 +198,8 @@ TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOption
   }
   mesh.faces.reserve(faces.size());
   for (const auto& f : faces) {
-    mesh.faces.push_back({static_cast<uint32_t>(remap[f[0]]), static_cast<uint32_t>(remap[f[1]]),
-                          static_cast<uint32_t>(remap[f[2]])});
+    mesh.faces.push_back(
+        {static_cast<uint32_t>(remap[f[0]]), static_cast<uint32_t>(remap[f[1]]), static_cast<uint32_t>(remap[f[2]])});
   }
   report.faces_out = static_cast<int64_t>(mesh.num_faces());
   if (report_out) *report_out = report;

@@ -37,7 +37,6 @@ struct HeightFieldReport {
 
 // Faces are counter-clockwise seen from above (normals up); colours come from the points.
 // Throws InputError with fewer than 3 finite points or when all are collinear in (e, n).
-TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOptions& options,
-                                HeightFieldReport* report);
+TriangleMesh HeightFieldSurface(const PointCloud& cloud, const HeightFieldOptions& options, HeightFieldReport* report);
 
 }  // namespace cinepath::photogrammetry

@@ -29,21 +29,18 @@ namespace {
 // at moderate budgets — on the 2.5 M-face bench terrain at 50 %: 0.042 m vs 0.142 m — and ~15×
 // slower) with 1 M samples. Every preset also measures every vertex of both meshes.
 struct QualityDefaults {
-  int64_t face_budget;           // default decimation target
-  DecimationMethod method;       // simplifier
-  int64_t hausdorff_samples;     // face samples per mesh, for the reported error
-  int64_t height_field_points;   // grid thinning above this many points
-  double poisson_spacing_factor; // > 1: coarser, faster Poisson
+  int64_t face_budget;            // default decimation target
+  DecimationMethod method;        // simplifier
+  int64_t hausdorff_samples;      // face samples per mesh, for the reported error
+  int64_t height_field_points;    // grid thinning above this many points
+  double poisson_spacing_factor;  // > 1: coarser, faster Poisson
 };
 
 QualityDefaults DefaultsFor(Quality quality) {
   switch (quality) {
-    case Quality::kDraft:
-      return {200000, DecimationMethod::kMeshoptimizerPartitioned, 20000, 250000, 2.0};
-    case Quality::kStandard:
-      return {1000000, DecimationMethod::kMeshoptimizerPartitioned, 200000, 1000000, 1.0};
-    case Quality::kFinal:
-      return {2000000, DecimationMethod::kCgalGarlandHeckbert, 1000000, 4000000, 1.0};
+    case Quality::kDraft: return {200000, DecimationMethod::kMeshoptimizerPartitioned, 20000, 250000, 2.0};
+    case Quality::kStandard: return {1000000, DecimationMethod::kMeshoptimizerPartitioned, 200000, 1000000, 1.0};
+    case Quality::kFinal: return {2000000, DecimationMethod::kCgalGarlandHeckbert, 1000000, 4000000, 1.0};
   }
   return {1000000, DecimationMethod::kMeshoptimizerPartitioned, 200000, 1000000, 1.0};
 }
@@ -51,9 +48,7 @@ QualityDefaults DefaultsFor(Quality quality) {
 class StepTimer {
  public:
   StepTimer() : start_(std::chrono::steady_clock::now()) {}
-  double Seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
+  double Seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
  private:
   std::chrono::steady_clock::time_point start_;
@@ -71,10 +66,8 @@ Json BoundsJson(const TriangleMesh& mesh) {
     hi = hi.cwiseMax(v);
   }
   Json j;
-  j["bbox_min_m"] = Json::array({RoundToDecimals(lo.x(), 4), RoundToDecimals(lo.y(), 4),
-                                 RoundToDecimals(lo.z(), 4)});
-  j["bbox_max_m"] = Json::array({RoundToDecimals(hi.x(), 4), RoundToDecimals(hi.y(), 4),
-                                 RoundToDecimals(hi.z(), 4)});
+  j["bbox_min_m"] = Json::array({RoundToDecimals(lo.x(), 4), RoundToDecimals(lo.y(), 4), RoundToDecimals(lo.z(), 4)});
+  j["bbox_max_m"] = Json::array({RoundToDecimals(hi.x(), 4), RoundToDecimals(hi.y(), 4), RoundToDecimals(hi.z(), 4)});
   return j;
 }
 
@@ -109,9 +102,8 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
   auto measure = [&](const TriangleMesh& candidate, Json& step) {
     std::unique_ptr<MeshDistanceIndex> candidate_index;
     if (!input_index) {  // the first measurement builds both trees at once
-      tbb::parallel_invoke(
-          [&] { input_index = std::make_unique<MeshDistanceIndex>(cleaned, "input"); },
-          [&] { candidate_index = std::make_unique<MeshDistanceIndex>(candidate, "output"); });
+      tbb::parallel_invoke([&] { input_index = std::make_unique<MeshDistanceIndex>(cleaned, "input"); },
+                           [&] { candidate_index = std::make_unique<MeshDistanceIndex>(candidate, "output"); });
     } else {
       candidate_index = std::make_unique<MeshDistanceIndex>(candidate, "output");
     }
@@ -315,8 +307,7 @@ void SurfacePipelineOptions::Check() const {
   }
 }
 
-SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points,
-                                             const SurfacePipelineOptions& options) {
+SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const SurfacePipelineOptions& options) {
   options.Check();
   const QualityDefaults defaults = DefaultsFor(options.quality);
   Json report = StartReport(options, "points");

@@ -85,8 +85,7 @@ struct SurfacePipelineResult {
 // Reconstructs a surface from `points` (ENU metres), then cleans, simplifies, colours and encodes
 // it. Throws InputError when the cloud is too small or degenerate to carry a surface, InfeasibleError
 // when no surface survives cleaning.
-SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points,
-                                             const SurfacePipelineOptions& options);
+SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const SurfacePipelineOptions& options);
 
 // Uses a given mesh (ENU metres) as is — no reconstruction — then cleans, simplifies and encodes
 // it. When the mesh has no colours and `color_source` has colours, vertex colours are taken from

@@ -18,8 +18,7 @@ Json PointFilterReport::ToJson() const {
   return j;
 }
 
-PointCloud FilterPoints(const PointCloud& cloud, const PointFilterOptions& options,
-                        PointFilterReport* report_out) {
+PointCloud FilterPoints(const PointCloud& cloud, const PointFilterOptions& options, PointFilterReport* report_out) {
   const size_t n = cloud.size();
   auto check_size = [&](size_t size, const char* what) {
     if (size != 0 && size != n) {
@@ -45,8 +44,7 @@ PointCloud FilterPoints(const PointCloud& cloud, const PointFilterOptions& optio
       ++report.removed_reprojection;
       continue;
     }
-    if (!cloud.observers.empty() &&
-        static_cast<int>(cloud.observers[i].size()) < options.min_track_length) {
+    if (!cloud.observers.empty() && static_cast<int>(cloud.observers[i].size()) < options.min_track_length) {
       ++report.removed_short_track;
       continue;
     }

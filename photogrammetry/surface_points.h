@@ -23,8 +23,7 @@ struct PointFilterReport {
 // Keeps every per-point attribute that is present (colours, normals, errors, observers) aligned
 // with the kept points, and keeps camera_centers_m as is. Criteria whose data is absent (no errors,
 // no observers) are skipped.
-PointCloud FilterPoints(const PointCloud& cloud, const PointFilterOptions& options,
-                        PointFilterReport* report);
+PointCloud FilterPoints(const PointCloud& cloud, const PointFilterOptions& options, PointFilterReport* report);
 
 // True when the cameras look down on the points (nadir / oblique-down capture, see the .cc).
 // Without cameras, true when the cloud is much wider than it is tall.

@@ -39,8 +39,7 @@ Json PoissonReport::ToJson() const {
   return j;
 }
 
-TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options,
-                            PoissonReport* report_out) {
+TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options, PoissonReport* report_out) {
   PoissonReport report;
   std::vector<PointWithNormal> points;
   std::vector<uint32_t> source;
@@ -56,18 +55,16 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
   }
   report.points = static_cast<int64_t>(points.size());
   if (points.size() < 10) {
-    throw InputError("poisson: fewer than 10 usable points (" + std::to_string(points.size()) +
-                     ")");
+    throw InputError("poisson: fewer than 10 usable points (" + std::to_string(points.size()) + ")");
   }
-  const int k = std::max(3, std::min<int>(options.normal_neighbours,
-                                          static_cast<int>(points.size()) - 1));
+  const int k = std::max(3, std::min<int>(options.normal_neighbours, static_cast<int>(points.size()) - 1));
 
   // Normals: estimated by jet fitting when the cloud has none, then oriented toward the cameras
   // that saw each point (mean direction to them), or up when nobody is recorded.
   if (!cloud.has_normals()) {
     report.normals_estimated = true;
-    CGAL::jet_estimate_normals<CGAL::Sequential_tag>(
-        points, k, CGAL::parameters::point_map(PointMap()).normal_map(NormalMap()));
+    CGAL::jet_estimate_normals<CGAL::Sequential_tag>(points, k,
+                                                     CGAL::parameters::point_map(PointMap()).normal_map(NormalMap()));
   }
   for (size_t j = 0; j < points.size(); ++j) {
     const uint32_t i = source[j];
@@ -91,16 +88,16 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     }
   }
 
-  report.average_spacing_m = CGAL::compute_average_spacing<CGAL::Sequential_tag>(
-      points, k, CGAL::parameters::point_map(PointMap()));
+  report.average_spacing_m =
+      CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, k, CGAL::parameters::point_map(PointMap()));
   if (!(report.average_spacing_m > 0)) {
     throw InputError("poisson: the points have no spacing (all coincide)");
   }
   Mesh sm;
-  if (!CGAL::poisson_surface_reconstruction_delaunay(
-          points.begin(), points.end(), PointMap(), NormalMap(), sm,
-          report.average_spacing_m * std::max(options.spacing_factor, 1e-3), options.angle_deg,
-          options.radius_factor, options.distance_factor)) {
+  if (!CGAL::poisson_surface_reconstruction_delaunay(points.begin(), points.end(), PointMap(), NormalMap(), sm,
+                                                     report.average_spacing_m * std::max(options.spacing_factor, 1e-3),
+                                                     options.angle_deg, options.radius_factor,
+                                                     options.distance_factor)) {
     throw RuntimeError("poisson: CGAL's Poisson solver failed");
   }
   report.faces_reconstructed = static_cast<int64_t>(sm.number_of_faces());
@@ -125,8 +122,7 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (auto u : v) centroid += Eigen::Vector3d(sm.point(u).x(), sm.point(u).y(), sm.point(u).z());
     centroid /= 3.0;
-    if (options.trim_factor > 0 &&
-        std::sqrt(search.Nearest(centroid, 1).front().first) > max_distance_m) {
+    if (options.trim_factor > 0 && std::sqrt(search.Nearest(centroid, 1).front().first) > max_distance_m) {
       ++report.faces_trimmed;
       continue;
     }

@@ -36,7 +36,6 @@ struct PoissonReport {
 
 // Throws InputError for fewer than 10 finite points, RuntimeError if the Poisson solver fails.
 // Colours: the vertices take the colour of their nearest input point.
-TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options,
-                            PoissonReport* report);
+TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options, PoissonReport* report);
 
 }  // namespace cinepath::photogrammetry

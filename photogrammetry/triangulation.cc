@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Dense>
 #include <ceres/ceres.h>
+#include <Eigen/Dense>
 
 #include "core/number_format.h"
 #include "photogrammetry/camera_models.h"
@@ -74,9 +74,9 @@ bool Solve(const ColmapModel& model, const std::vector<PixelObservation>& obs, c
   for (int i : use) {
     const ColmapImage& image = model.images.at(obs[i].image_id);
     const ColmapCamera& camera = model.cameras.at(image.camera_id);
-    auto* functor = new PointReprojectionError{camera.model_id, camera.params,
-                                               image.cam_from_world_rotation.toRotationMatrix(),
-                                               image.cam_from_world_translation, obs[i].pixel_px};
+    auto* functor =
+        new PointReprojectionError{camera.model_id, camera.params, image.cam_from_world_rotation.toRotationMatrix(),
+                                   image.cam_from_world_translation, obs[i].pixel_px};
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointReprojectionError, 2, 3>(functor), nullptr, xyz);
   }
   ceres::Solver::Options options;
@@ -182,8 +182,8 @@ Triangulation TriangulatePoint(const ColmapModel& model, const std::vector<Pixel
   }
   if (t.max_angle_deg < options.min_angle_deg) {
     t.ok = false;
-    t.reason = "triangulation angle " + FormatFixed(t.max_angle_deg, 2) + " deg < " + FormatFixed(options.min_angle_deg, 2) +
-               " deg: the rays are nearly parallel, the depth is undetermined";
+    t.reason = "triangulation angle " + FormatFixed(t.max_angle_deg, 2) + " deg < " +
+               FormatFixed(options.min_angle_deg, 2) + " deg: the rays are nearly parallel, the depth is undetermined";
   }
   return t;
 }

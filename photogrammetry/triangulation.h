@@ -41,7 +41,7 @@ struct ObservationResult {
 
 struct Triangulation {
   bool ok = false;
-  std::string reason;  // why not ok
+  std::string reason;                             // why not ok
   Eigen::Vector3d xyz = Eigen::Vector3d::Zero();  // model frame
   std::vector<ObservationResult> observations;    // one per input observation
   int num_used = 0;

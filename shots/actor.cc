@@ -48,8 +48,9 @@ Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, cons
   if (g.Has("height_m") == g.Has("amsl_m")) {
     g.Fail("give exactly one of \"height_m\" (WGS84 ellipsoidal) or \"amsl_m\" (above mean sea level, EGM96)");
   }
-  geo.height_m = g.Has("height_m") ? g["height_m"].AsDouble()
-                                   : Egm96Geoid::Default().EllipsoidalFromAmslM(geo.lat_deg, geo.lon_deg, g["amsl_m"].AsDouble());
+  geo.height_m = g.Has("height_m")
+                     ? g["height_m"].AsDouble()
+                     : Egm96Geoid::Default().EllipsoidalFromAmslM(geo.lat_deg, geo.lon_deg, g["amsl_m"].AsDouble());
   return frame->EnuFromGeodetic(geo);
 }
 
@@ -73,7 +74,8 @@ Actor ParseActor(const JsonField& f, const EnuFrame* frame) {
     for (const auto& k : keys->Elements()) {
       k.RejectUnknownKeys({"time_s", "position_enu_m", "position"});
       const double t = k["time_s"].AsDouble();
-      if (!times.empty() && !(t >= times.back() + 1e-3)) k["time_s"].Fail("keyframe times must increase (by 1 ms or more)");
+      if (!times.empty() && !(t >= times.back() + 1e-3))
+        k["time_s"].Fail("keyframe times must increase (by 1 ms or more)");
       times.push_back(t);
       points.push_back(ParsePosition(k, "position_enu_m", "position", frame));
     }

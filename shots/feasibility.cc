@@ -87,8 +87,26 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
 
   std::vector<LimitTrack> tracks;
   enum {
-    kSpeed, kClimb, kDescent, kAccel, kJerk, kYawRate, kPitchMin, kPitchMax, kPitchRate, kAltMin, kAltMax,
-    kSubject, kFocalMin, kFocalMax, kFocusMin, kFNumberMin, kFNumberMax, kFocalRate, kFocusRate, kApertureRate
+    kSpeed,
+    kClimb,
+    kDescent,
+    kAccel,
+    kJerk,
+    kYawRate,
+    kPitchMin,
+    kPitchMax,
+    kPitchRate,
+    kAltMin,
+    kAltMax,
+    kSubject,
+    kFocalMin,
+    kFocalMax,
+    kFocusMin,
+    kFNumberMin,
+    kFNumberMax,
+    kFocalRate,
+    kFocusRate,
+    kApertureRate
   };
   tracks.emplace_back("horizontal_speed", "m/s", d.max_horizontal_speed_m_s, false);
   tracks.emplace_back("climb_rate", "m/s", d.max_climb_rate_m_s, false);
@@ -168,11 +186,13 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
       double nearest = std::numeric_limits<double>::infinity();
       for (const auto& subj : plan.subjects) {
         const Eigen::Vector3d& base = subj.positions_enu_m[k];
-        nearest = std::min(nearest, DistanceToSegment(s.position_enu_m, base, base + Eigen::Vector3d(0, 0, subj.height_m)));
+        nearest =
+            std::min(nearest, DistanceToSegment(s.position_enu_m, base, base + Eigen::Vector3d(0, 0, subj.height_m)));
       }
       tracks[kSubject].Add(plan, k, nearest);
     }
-    const LensRequest r = requests.empty() ? LensRequest{s.focal_length_mm, s.focus_distance_m, s.f_number} : requests[k];
+    const LensRequest r =
+        requests.empty() ? LensRequest{s.focal_length_mm, s.focus_distance_m, s.f_number} : requests[k];
     tracks[kFocalMin].Add(plan, k, r.focal_length_mm);
     tracks[kFocalMax].Add(plan, k, r.focal_length_mm);
     tracks[kFocusMin].Add(plan, k, r.focus_distance_m);
@@ -184,8 +204,9 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
   for (const auto& t : tracks) {
     report.violations.insert(report.violations.end(), t.violations().begin(), t.violations().end());
   }
-  std::stable_sort(report.violations.begin(), report.violations.end(),
-                   [](const FeasibilityViolation& a, const FeasibilityViolation& b) { return a.start_time_s < b.start_time_s; });
+  std::stable_sort(
+      report.violations.begin(), report.violations.end(),
+      [](const FeasibilityViolation& a, const FeasibilityViolation& b) { return a.start_time_s < b.start_time_s; });
   return report;
 }
 

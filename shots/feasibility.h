@@ -5,7 +5,8 @@
 // an explicit cut: speed and vertical rate by central differences, horizontal acceleration by the
 // second difference, jerk (3-D) by the third difference, yaw / gimbal-pitch / lens rates by backward
 // differences; focus distances are clamped to the hyperfocal distance first (moving focus between
-// the hyperfocal distance and infinity changes nothing visible). The climb to the first sample and the stop after the last are not part of the plan.
+// the hyperfocal distance and infinity changes nothing visible). The climb to the first sample and the stop after the
+// last are not part of the plan.
 #pragma once
 
 #include <vector>

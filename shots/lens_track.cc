@@ -53,20 +53,16 @@ double InterpolateLensKeys(const std::vector<ScalarKey>& keys, double time_s, Le
   CINEPATH_CHECK(!keys.empty());
   if (time_s <= keys.front().time_s) return keys.front().value;
   if (time_s >= keys.back().time_s) return keys.back().value;
-  const auto it = std::upper_bound(keys.begin(), keys.end(), time_s,
-                                   [](double t, const ScalarKey& k) { return t < k.time_s; });
+  const auto it =
+      std::upper_bound(keys.begin(), keys.end(), time_s, [](double t, const ScalarKey& k) { return t < k.time_s; });
   const ScalarKey& b = *it;
   const ScalarKey& a = *(it - 1);
   const double w = (time_s - a.time_s) / (b.time_s - a.time_s);
   switch (quantity) {
-    case LensQuantity::kFocalLength:
-      return InterpolateFocalLengthMm(a.value, b.value, w);
-    case LensQuantity::kFocusDistance:
-      return InterpolateFocusDistanceM(a.value, b.value, w);
-    case LensQuantity::kFNumber:
-      return InterpolateFNumber(a.value, b.value, w);
-    case LensQuantity::kShutter:
-      return InterpolateShutterS(a.value, b.value, w);
+    case LensQuantity::kFocalLength: return InterpolateFocalLengthMm(a.value, b.value, w);
+    case LensQuantity::kFocusDistance: return InterpolateFocusDistanceM(a.value, b.value, w);
+    case LensQuantity::kFNumber: return InterpolateFNumber(a.value, b.value, w);
+    case LensQuantity::kShutter: return InterpolateShutterS(a.value, b.value, w);
   }
   return a.value;
 }

@@ -27,8 +27,7 @@ double StopsBetween(double n0, double n1);
 double FramingFocalLengthMm(double sensor_height_mm, double subject_height_m, double distance_m,
                             double height_fraction);
 // The fraction of the frame height the subject fills with that focal length.
-double ImageHeightFraction(double sensor_height_mm, double focal_length_mm, double subject_height_m,
-                           double distance_m);
+double ImageHeightFraction(double sensor_height_mm, double focal_length_mm, double subject_height_m, double distance_m);
 
 // Keyed scalar track (times in seconds, increasing). Values hold outside the key range.
 enum class LensQuantity { kFocalLength, kFocusDistance, kFNumber, kShutter };

@@ -22,18 +22,23 @@ std::string F(double v) {
 std::string Escape(const std::string& s) {
   std::string out;
   for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }
 
 // Maps a data box into a pixel box (y up in data, down in pixels), keeping the aspect ratio when asked.
 struct Frame {
-  double x0, y0, w, h;               // pixel box
+  double x0, y0, w, h;                // pixel box
   double min_x, max_x, min_y, max_y;  // data box
   double PX(double x) const { return x0 + (x - min_x) / (max_x - min_x) * w; }
   double PY(double y) const { return y0 + h - (y - min_y) / (max_y - min_y) * h; }
@@ -96,8 +101,8 @@ std::string PlanToSvg(const Trajectory& plan) {
   const double t_end = S.back().time_s;
 
   // Extents over cameras and subjects.
-  double min_e = std::numeric_limits<double>::infinity(), max_e = -min_e, min_n = min_e, max_n = -min_e,
-         min_u = min_e, max_u = -min_e;
+  double min_e = std::numeric_limits<double>::infinity(), max_e = -min_e, min_n = min_e, max_n = -min_e, min_u = min_e,
+         max_u = -min_e;
   auto grow = [&](const Eigen::Vector3d& p) {
     min_e = std::min(min_e, p.x()), max_e = std::max(max_e, p.x());
     min_n = std::min(min_n, p.y()), max_n = std::max(max_n, p.y());
@@ -128,12 +133,14 @@ std::string PlanToSvg(const Trajectory& plan) {
   // Subject paths.
   for (const auto& subj : plan.subjects) {
     const auto& P = subj.positions_enu_m;
-    svg += Polyline(top, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].y(); },
-                    "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
-    svg += Polyline(side, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].z(); },
-                    "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
-    svg += "<text x=\"" + F(top.PX(P.front().x()) + 5) + "\" y=\"" + F(top.PY(P.front().y()) - 5) + "\" fill=\"#555\">" +
-           Escape(subj.name) + "</text>\n";
+    svg += Polyline(
+        top, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].y(); },
+        "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
+    svg += Polyline(
+        side, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].z(); },
+        "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
+    svg += "<text x=\"" + F(top.PX(P.front().x()) + 5) + "\" y=\"" + F(top.PY(P.front().y()) - 5) +
+           "\" fill=\"#555\">" + Escape(subj.name) + "</text>\n";
   }
   // Flights, one polyline per shot.
   size_t begin = 0;
@@ -141,10 +148,12 @@ std::string PlanToSvg(const Trajectory& plan) {
     if (i == S.size() || shot_of[i] != shot_of[begin]) {
       const std::string colour = kPalette[shot_of[begin] % 10];
       const std::string style = "stroke=\"" + colour + "\" stroke-width=\"2\"";
-      svg += Polyline(top, begin, i, [&](size_t k) { return S[k].position_enu_m.x(); },
-                      [&](size_t k) { return S[k].position_enu_m.y(); }, style);
-      svg += Polyline(side, begin, i, [&](size_t k) { return S[k].position_enu_m.x(); },
-                      [&](size_t k) { return S[k].position_enu_m.z(); }, style);
+      svg += Polyline(
+          top, begin, i, [&](size_t k) { return S[k].position_enu_m.x(); },
+          [&](size_t k) { return S[k].position_enu_m.y(); }, style);
+      svg += Polyline(
+          side, begin, i, [&](size_t k) { return S[k].position_enu_m.x(); },
+          [&](size_t k) { return S[k].position_enu_m.z(); }, style);
       begin = i;
     }
   }
@@ -161,12 +170,12 @@ std::string PlanToSvg(const Trajectory& plan) {
       return Eigen::Vector3d(c + frustum_len * (s.world_from_camera * Eigen::Vector3d(x, y, 1.0)));
     };
     const Eigen::Vector3d l = corner(-hh, 0), r = corner(hh, 0), u = corner(0, -vh), d = corner(0, vh);
-    svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.15\" stroke=\"" + colour + "\" points=\"" + F(top.PX(c.x())) +
-           "," + F(top.PY(c.y())) + " " + F(top.PX(l.x())) + "," + F(top.PY(l.y())) + " " + F(top.PX(r.x())) + "," +
-           F(top.PY(r.y())) + "\"/>\n";
-    svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.15\" stroke=\"" + colour + "\" points=\"" + F(side.PX(c.x())) +
-           "," + F(side.PY(c.z())) + " " + F(side.PX(u.x())) + "," + F(side.PY(u.z())) + " " + F(side.PX(d.x())) + "," +
-           F(side.PY(d.z())) + "\"/>\n";
+    svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.15\" stroke=\"" + colour + "\" points=\"" +
+           F(top.PX(c.x())) + "," + F(top.PY(c.y())) + " " + F(top.PX(l.x())) + "," + F(top.PY(l.y())) + " " +
+           F(top.PX(r.x())) + "," + F(top.PY(r.y())) + "\"/>\n";
+    svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.15\" stroke=\"" + colour + "\" points=\"" +
+           F(side.PX(c.x())) + "," + F(side.PY(c.z())) + " " + F(side.PX(u.x())) + "," + F(side.PY(u.z())) + " " +
+           F(side.PX(d.x())) + "," + F(side.PY(d.z())) + "\"/>\n";
     for (const auto& subj : plan.subjects) {
       const Eigen::Vector3d& p = subj.positions_enu_m[i];
       svg += "<circle cx=\"" + F(top.PX(p.x())) + "\" cy=\"" + F(top.PY(p.y())) + "\" r=\"3\" fill=\"#555\"/>\n";
@@ -191,8 +200,8 @@ std::string PlanToSvg(const Trajectory& plan) {
   Panel(svg, fnum, "Aperture", "time s", "f-number");
   for (const Frame* fr : {&focal, &focus, &fnum}) {
     for (const auto& shot : plan.shots) {
-      svg += "<line x1=\"" + F(fr->PX(shot.start_time_s)) + "\" y1=\"" + F(fr->y0) + "\" x2=\"" + F(fr->PX(shot.start_time_s)) +
-             "\" y2=\"" + F(fr->y0 + fr->h) + "\" stroke=\"#ccc\"/>\n";
+      svg += "<line x1=\"" + F(fr->PX(shot.start_time_s)) + "\" y1=\"" + F(fr->y0) + "\" x2=\"" +
+             F(fr->PX(shot.start_time_s)) + "\" y2=\"" + F(fr->y0 + fr->h) + "\" stroke=\"#ccc\"/>\n";
     }
     for (const auto& v : plan.feasibility.violations) {
       const double x0 = fr->PX(v.start_time_s), x1 = std::max(fr->PX(v.end_time_s), x0 + 1);
@@ -200,18 +209,22 @@ std::string PlanToSvg(const Trajectory& plan) {
              "\" fill=\"red\" fill-opacity=\"0.12\"/>\n";
     }
   }
-  svg += Polyline(focal, 0, S.size(), [&](size_t i) { return S[i].time_s; },
-                  [&](size_t i) { return std::log(S[i].focal_length_mm); }, "stroke=\"#1f77b4\" stroke-width=\"2\"");
-  svg += Polyline(focus, 0, S.size(), [&](size_t i) { return S[i].time_s; },
-                  [&](size_t i) { return std::isfinite(S[i].focus_distance_m) ? 1.0 / S[i].focus_distance_m : 0.0; },
-                  "stroke=\"#2ca02c\" stroke-width=\"2\"");
-  svg += Polyline(fnum, 0, S.size(), [&](size_t i) { return S[i].time_s; }, [&](size_t i) { return S[i].f_number; },
-                  "stroke=\"#9467bd\" stroke-width=\"2\"");
+  svg += Polyline(
+      focal, 0, S.size(), [&](size_t i) { return S[i].time_s; },
+      [&](size_t i) { return std::log(S[i].focal_length_mm); }, "stroke=\"#1f77b4\" stroke-width=\"2\"");
+  svg += Polyline(
+      focus, 0, S.size(), [&](size_t i) { return S[i].time_s; },
+      [&](size_t i) { return std::isfinite(S[i].focus_distance_m) ? 1.0 / S[i].focus_distance_m : 0.0; },
+      "stroke=\"#2ca02c\" stroke-width=\"2\"");
+  svg += Polyline(
+      fnum, 0, S.size(), [&](size_t i) { return S[i].time_s; }, [&](size_t i) { return S[i].f_number; },
+      "stroke=\"#9467bd\" stroke-width=\"2\"");
   // Legend.
   double lx = 40;
   for (size_t k = 0; k < plan.shots.size(); ++k) {
     const std::string label = plan.shots[k].name + " (" + plan.shots[k].type + ")";
-    svg += "<rect x=\"" + F(lx) + "\" y=\"" + F(height - 18) + "\" width=\"10\" height=\"10\" fill=\"" + kPalette[k % 10] + "\"/>\n";
+    svg += "<rect x=\"" + F(lx) + "\" y=\"" + F(height - 18) + "\" width=\"10\" height=\"10\" fill=\"" +
+           kPalette[k % 10] + "\"/>\n";
     svg += "<text x=\"" + F(lx + 14) + "\" y=\"" + F(height - 9) + "\">" + Escape(label) + "</text>\n";
     lx += 24 + 7.0 * static_cast<double>(label.size());
   }

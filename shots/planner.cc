@@ -31,7 +31,7 @@ struct ShotState {
   Eigen::Vector3d velocity_offset = Eigen::Vector3d::Zero();  // m/s, matched at the join
   Eigen::Quaterniond rotation_offset = Eigen::Quaterniond::Identity();
   double log_focal_offset = 0;  // zoom continuity: log(previous end focal / this shot's start focal)
-  double blend_s = 0;  // 0 = no offset
+  double blend_s = 0;           // 0 = no offset
   FreeShot free;
 };
 
@@ -49,7 +49,8 @@ class Planner {
  private:
   // The pose before the transition offset (position) and before the rotation offset.
   void Prepare();
-  Evaluated Evaluate(size_t shot_index, double tau, double fallback_heading_deg, bool apply_rotation_offset = true) const;
+  Evaluated Evaluate(size_t shot_index, double tau, double fallback_heading_deg,
+                     bool apply_rotation_offset = true) const;
 
   const ShotList& list_;
   std::vector<ShotState> states_;
@@ -108,15 +109,19 @@ void Planner::Prepare() {
     constexpr double h = 1e-4;
     Eigen::Vector3d v_prev = Eigen::Vector3d::Zero(), v_raw = Eigen::Vector3d::Zero();
     if (prev_shot.duration_s >= h) {
-      v_prev = (prev_end.sample.position_enu_m - Evaluate(i - 1, prev_shot.duration_s - h, heading).sample.position_enu_m) / h;
+      v_prev =
+          (prev_end.sample.position_enu_m - Evaluate(i - 1, prev_shot.duration_s - h, heading).sample.position_enu_m) /
+          h;
     }
-    if (shot.duration_s >= h) v_raw = (Evaluate(i, h, heading).sample.position_enu_m - raw_start.sample.position_enu_m) / h;
+    if (shot.duration_s >= h)
+      v_raw = (Evaluate(i, h, heading).sample.position_enu_m - raw_start.sample.position_enu_m) / h;
     st.velocity_offset = v_prev - v_raw;
     st.log_focal_offset = std::log(prev_end.request.focal_length_mm / raw_start.request.focal_length_mm);
     st.blend_s = saved_blend;
     // Then the rotation: the aim from the shifted start, without a rotation offset.
     const Evaluated aimed_start = Evaluate(i, 0.0, heading, /*apply_rotation_offset=*/false);
-    st.rotation_offset = (prev_end.sample.world_from_camera * aimed_start.sample.world_from_camera.conjugate()).normalized();
+    st.rotation_offset =
+        (prev_end.sample.world_from_camera * aimed_start.sample.world_from_camera.conjugate()).normalized();
   }
 }
 
@@ -165,7 +170,7 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
                                                           : EvaluateShotPose(shot, list_, st.start_s, tau);
 
   // Transition offset (position).
-  double blend_w = 0;  // weight of the offset still applied
+  double blend_w = 0;     // weight of the offset still applied
   double velocity_w = 0;  // quintic h(u) = u - 6u^3 + 8u^4 - 3u^5: h(0) = 0, h'(0) = 1, zero h, h', h'' at 1
   if (st.blend_s > 0) {
     const double u = std::clamp(tau / st.blend_s, 0.0, 1.0);
@@ -203,7 +208,8 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
   } else if (!st.free.focal.empty()) {
     focal = InterpolateLensKeys(st.free.focal, lens_time, LensQuantity::kFocalLength);
   } else if (lens.focal_length_mm) {
-    focal = InterpolateFocalLengthMm(*lens.focal_length_mm, lens.focal_length_end_mm.value_or(*lens.focal_length_mm), pose.eased);
+    focal = InterpolateFocalLengthMm(*lens.focal_length_mm, lens.focal_length_end_mm.value_or(*lens.focal_length_mm),
+                                     pose.eased);
   }
   focal *= std::exp(blend_w * st.log_focal_offset);
   out.request.focal_length_mm = focal;
@@ -216,14 +222,16 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
   } else if (pose.aim_point_enu_m) {
     const Eigen::Vector3d to_subject = *pose.aim_point_enu_m - position;
     if (to_subject.norm() < 1e-9) {
-      throw InputError(list_.source + ": shot \"" + shot.name + "\": the camera reaches the subject's aim point at t = " +
-                       std::to_string(t) + " s; nothing to look at");
+      throw InputError(list_.source + ": shot \"" + shot.name +
+                       "\": the camera reaches the subject's aim point at t = " + std::to_string(t) +
+                       " s; nothing to look at");
     }
     const Eigen::Vector2d sp = lens.screen_position;
     if (sp.x() == 0.5 && sp.y() == 0.5) {
       q = LookAt(to_subject, fallback_heading_deg);
     } else {
-      const Eigen::Vector3d ray((sp.x() - 0.5) * cam.sensor_width_mm, (sp.y() - 0.5) * cam.sensor_height_mm, s.focal_length_mm);
+      const Eigen::Vector3d ray((sp.x() - 0.5) * cam.sensor_width_mm, (sp.y() - 0.5) * cam.sensor_height_mm,
+                                s.focal_length_mm);
       q = AimWithScreenOffset(to_subject, ray, fallback_heading_deg);
     }
     if (pose.tilt_start_deg) {

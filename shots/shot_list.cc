@@ -126,7 +126,8 @@ DroneLimits ParseDrone(const JsonField& f) {
   any("max_altitude_m", d.max_altitude_m);
   if (f.Has("min_subject_distance_m")) d.min_subject_distance_m = f["min_subject_distance_m"].AsNonNegative();
   if (d.max_altitude_m <= d.min_altitude_m) f["max_altitude_m"].Fail("must be > min_altitude_m");
-  if (d.max_gimbal_pitch_deg < d.min_gimbal_pitch_deg) f["max_gimbal_pitch_deg"].Fail("must be >= min_gimbal_pitch_deg");
+  if (d.max_gimbal_pitch_deg < d.min_gimbal_pitch_deg)
+    f["max_gimbal_pitch_deg"].Fail("must be >= min_gimbal_pitch_deg");
   return d;
 }
 
@@ -176,11 +177,13 @@ std::vector<ScalarKey> ParseScalarKeys(const JsonField& f, const char* value_key
     keys.push_back({0.0, check(f)});
     return keys;
   }
-  if (!f.IsArray() || f.size() == 0) f.Fail(std::string("expected a number or [{\"time_s\", \"") + value_key + "\"}, ...]");
+  if (!f.IsArray() || f.size() == 0)
+    f.Fail(std::string("expected a number or [{\"time_s\", \"") + value_key + "\"}, ...]");
   for (const auto& k : f.Elements()) {
     k.RejectUnknownKeys({"time_s", value_key});
     const double t = k["time_s"].AsNonNegative();
-    if (!keys.empty() && !(t >= keys.back().time_s + 1e-3)) k["time_s"].Fail("key times must increase (by 1 ms or more)");
+    if (!keys.empty() && !(t >= keys.back().time_s + 1e-3))
+      k["time_s"].Fail("key times must increase (by 1 ms or more)");
     keys.push_back({t, check(k[value_key])});
   }
   return keys;
@@ -236,14 +239,16 @@ LensSpec ParseLens(const JsonField& f, const ShotList& list, const ShotSpec& sho
     }
     if (!l.rack.empty() && l.focus != LensSpec::Focus::kFollow) rack->Fail("rack focus needs \"focus\": \"follow\"");
   }
-  if (auto fn = f.Find("f_number")) l.f_number = ParseScalarKeys(*fn, "f_number", list.camera.min_f_number, list.camera.max_f_number, " (the camera's range)");
+  if (auto fn = f.Find("f_number"))
+    l.f_number =
+        ParseScalarKeys(*fn, "f_number", list.camera.min_f_number, list.camera.max_f_number, " (the camera's range)");
   if (auto sh = f.Find("shutter_s")) l.shutter_s = ParseScalarKeys(*sh, "shutter_s", 1e-6, 60.0, "");
   return l;
 }
 
 // Orientation given on a free keyframe: angles, or a look-at (subject or ENU point).
-std::optional<Eigen::Quaterniond> ParseKeyOrientation(const JsonField& k, const ShotList& list, const Eigen::Vector3d& pos,
-                                                      double key_plan_time_s) {
+std::optional<Eigen::Quaterniond> ParseKeyOrientation(const JsonField& k, const ShotList& list,
+                                                      const Eigen::Vector3d& pos, double key_plan_time_s) {
   const bool has_angles = k.Has("heading_deg") || k.Has("pitch_deg") || k.Has("roll_deg");
   const bool has_look = k.Has("look_at");
   if (has_angles && has_look) k.Fail("give either \"look_at\" or heading/pitch/roll angles, not both");
@@ -297,11 +302,14 @@ ShotSpec ParseShot(const JsonField& f, size_t index, const ShotList& list, doubl
   s.type_name = type_name;
   s.name = f.StringOr("name", "shot" + std::to_string(index + 1));
 
-  std::vector<std::string_view> allowed = {"name", "type", "subject", "duration_s", "easing", "transition", "blend_s", "lens"};
+  std::vector<std::string_view> allowed = {"name",   "type",       "subject", "duration_s",
+                                           "easing", "transition", "blend_s", "lens"};
   auto allow = [&](std::initializer_list<std::string_view> keys) { allowed.insert(allowed.end(), keys); };
   switch (s.type) {
     case ShotType::kChase: allow({"distance_m", "height_m", "lateral_m", "lag_s"}); break;
-    case ShotType::kOrbit: allow({"radius_m", "height_m", "turns", "angular_speed_deg_s", "direction", "start_bearing_deg"}); break;
+    case ShotType::kOrbit:
+      allow({"radius_m", "height_m", "turns", "angular_speed_deg_s", "direction", "start_bearing_deg"});
+      break;
     case ShotType::kHelix:
       allow({"radius_m", "radius_end_m", "height_m", "height_end_m", "turns", "angular_speed_deg_s", "direction",
              "start_bearing_deg"});
@@ -309,7 +317,9 @@ ShotSpec ParseShot(const JsonField& f, size_t index, const ShotList& list, doubl
     case ShotType::kFlyby:
       allow({"closest_distance_m", "side", "height_m", "speed_m_s", "travel_bearing_deg", "closest_at_s"});
       break;
-    case ShotType::kDolly: allow({"distance_m", "side", "height_m", "along_start_m", "along_end_m", "travel_bearing_deg"}); break;
+    case ShotType::kDolly:
+      allow({"distance_m", "side", "height_m", "along_start_m", "along_end_m", "travel_bearing_deg"});
+      break;
     case ShotType::kCrane:
     case ShotType::kDronie:
       allow({"distance_m", "distance_end_m", "height_m", "height_end_m", "bearing_deg", "tilt_start_deg"});
@@ -357,7 +367,8 @@ ShotSpec ParseShot(const JsonField& f, size_t index, const ShotList& list, doubl
     const bool has_turns = f.Has("turns"), has_rate = f.Has("angular_speed_deg_s");
     if (has_turns == has_rate) f.Fail("give exactly one of \"turns\" or \"angular_speed_deg_s\"");
     const double dir = f.Has("direction") ? ParseDirection(f["direction"]) : -1.0;
-    const double deg = has_turns ? 360.0 * f["turns"].AsNonNegative() : f["angular_speed_deg_s"].AsNonNegative() * s.duration_s;
+    const double deg =
+        has_turns ? 360.0 * f["turns"].AsNonNegative() : f["angular_speed_deg_s"].AsNonNegative() * s.duration_s;
     s.total_angle_deg = dir * deg;
     s.start_bearing_deg = number_or("start_bearing_deg", 0.0);
   };
@@ -433,7 +444,8 @@ ShotSpec ParseShot(const JsonField& f, size_t index, const ShotList& list, doubl
       if (f.Has("position_enu_m") || f.Has("position")) {
         s.position_enu_m = ParsePosition(f, "position_enu_m", "position", frame);
       } else {
-        if (s.subject < 0) f.Fail("a LOCKED-OFF shot needs a position, or a subject with distance_m/bearing_deg/height_m");
+        if (s.subject < 0)
+          f.Fail("a LOCKED-OFF shot needs a position, or a subject with distance_m/bearing_deg/height_m");
         s.distance_m = positive("distance_m");
         s.bearing_deg = number_or("bearing_deg", 180.0);
         s.height_m = f["height_m"].AsDouble();
@@ -468,7 +480,8 @@ ShotSpec ParseShot(const JsonField& f, size_t index, const ShotList& list, doubl
                              "focal_length_mm", "focus_distance_m", "f_number", "easing"});
         CameraKey key;
         key.time_s = k["time_s"].AsNonNegative();
-        if (!s.keys.empty() && !(key.time_s >= s.keys.back().time_s + 1e-3)) k["time_s"].Fail("key times must increase (by 1 ms or more)");
+        if (!s.keys.empty() && !(key.time_s >= s.keys.back().time_s + 1e-3))
+          k["time_s"].Fail("key times must increase (by 1 ms or more)");
         key.position_enu_m = ParsePosition(k, "position_enu_m", "position", frame);
         key.world_from_camera = ParseKeyOrientation(k, list, key.position_enu_m, shot_start_s + key.time_s);
         any_orientation = any_orientation || key.world_from_camera.has_value();
@@ -484,8 +497,9 @@ ShotSpec ParseShot(const JsonField& f, size_t index, const ShotList& list, doubl
       if (any_orientation || s.subject < 0) {
         for (size_t i = 0; i < s.keys.size(); ++i) {
           if (!s.keys[i].world_from_camera) {
-            keys.At(i).Fail(s.subject < 0 ? "needs an orientation (look_at or heading/pitch/roll): the shot has no subject"
-                                          : "needs an orientation: when one key gives one, all must");
+            keys.At(i).Fail(s.subject < 0
+                                ? "needs an orientation (look_at or heading/pitch/roll): the shot has no subject"
+                                : "needs an orientation: when one key gives one, all must");
           }
         }
       }
@@ -504,7 +518,8 @@ ShotSpec ParseShot(const JsonField& f, size_t index, const ShotList& list, doubl
     LensSpec l;
     l.focus = s.subject >= 0 ? LensSpec::Focus::kFollow : LensSpec::Focus::kInfinity;
     s.lens = l;
-    if (s.type == ShotType::kDollyZoom) f.Fail("a DOLLY-ZOOM shot needs \"lens\" with frame_height_fraction or focal_length_mm");
+    if (s.type == ShotType::kDollyZoom)
+      f.Fail("a DOLLY-ZOOM shot needs \"lens\" with frame_height_fraction or focal_length_mm");
   }
   if (s.type == ShotType::kDollyZoom && !s.lens.frame_height_fraction && !s.lens.focal_length_mm) {
     f["lens"].Fail("a DOLLY-ZOOM shot needs frame_height_fraction or focal_length_mm");

@@ -36,11 +36,11 @@ struct LensSpec {
   std::optional<double> focal_length_end_mm;
   std::optional<double> frame_height_fraction;  // framing: subject height / frame height
   std::optional<double> frame_height_fraction_end;
-  Eigen::Vector2d screen_position{0.5, 0.5};    // where the subject sits: x right, y down, [0, 1]
+  Eigen::Vector2d screen_position{0.5, 0.5};  // where the subject sits: x right, y down, [0, 1]
   enum class Focus { kFollow, kInfinity, kFixed } focus = Focus::kFollow;
-  double focus_distance_m = 10;                 // kFixed
+  double focus_distance_m = 10;  // kFixed
   std::vector<RackFocus> rack;
-  std::vector<ScalarKey> f_number;              // shot-local keys (one key = constant)
+  std::vector<ScalarKey> f_number;  // shot-local keys (one key = constant)
   std::vector<ScalarKey> shutter_s;
 };
 
@@ -64,8 +64,8 @@ struct ShotSpec {
   int subject = -1;       // index into ShotList::actors, -1 = none
   double duration_s = 0;
   Easing easing = Easing::kLinear;
-  bool cut = false;       // transition from the previous shot: explicit cut (else continuous)
-  double blend_s = 2.0;   // continuous transition: the offset decays over this time (<= duration)
+  bool cut = false;      // transition from the previous shot: explicit cut (else continuous)
+  double blend_s = 2.0;  // continuous transition: the offset decays over this time (<= duration)
   LensSpec lens;
 
   // Geometry (metres, degrees; which apply depends on the type, see docs/plan.md).
@@ -74,11 +74,11 @@ struct ShotSpec {
   double radius_m = 0, radius_end_m = 0;
   double lateral_m = 0;
   double lag_s = 0;
-  double total_angle_deg = 0;  // ORBIT/HELIX sweep (signed: + clockwise seen from above)
+  double total_angle_deg = 0;    // ORBIT/HELIX sweep (signed: + clockwise seen from above)
   double start_bearing_deg = 0;  // compass bearing from the subject to the camera
   double bearing_deg = 0;
   std::optional<double> travel_bearing_deg;
-  double side = 1;              // +1 right of the direction of travel, -1 left
+  double side = 1;  // +1 right of the direction of travel, -1 left
   double speed_m_s = 0;
   double closest_at_s = 0;
   double along_start_m = 0, along_end_m = 0;

@@ -32,7 +32,8 @@ ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double sho
   if (actor) pose.aim_point_enu_m = actor->AimPointAt(t);
 
   auto travel = [&](double time_s) {
-    return HorizontalFromBearing(shot.travel_bearing_deg ? *shot.travel_bearing_deg : actor->TravelHeadingDegAt(time_s));
+    return HorizontalFromBearing(shot.travel_bearing_deg ? *shot.travel_bearing_deg
+                                                         : actor->TravelHeadingDegAt(time_s));
   };
   auto right_of = [](const Eigen::Vector3d& dir) { return Eigen::Vector3d(dir.y(), -dir.x(), 0.0); };
 
@@ -40,7 +41,8 @@ ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double sho
     case ShotType::kChase: {
       const double tl = t - shot.lag_s;
       const Eigen::Vector3d dir = travel(tl);
-      pose.position_enu_m = actor->PositionAt(tl) - shot.distance_m * dir + shot.lateral_m * right_of(dir) + shot.height_m * up;
+      pose.position_enu_m =
+          actor->PositionAt(tl) - shot.distance_m * dir + shot.lateral_m * right_of(dir) + shot.height_m * up;
       break;
     }
     case ShotType::kOrbit:
@@ -54,7 +56,8 @@ ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double sho
     case ShotType::kFlyby: {
       const Eigen::Vector3d dir = travel(t);
       const double along = shot.speed_m_s * (e * d - shot.closest_at_s);
-      pose.position_enu_m = actor->PositionAt(t) + shot.side * shot.distance_m * right_of(dir) + along * dir + shot.height_m * up;
+      pose.position_enu_m =
+          actor->PositionAt(t) + shot.side * shot.distance_m * right_of(dir) + along * dir + shot.height_m * up;
       break;
     }
     case ShotType::kDolly: {
@@ -65,7 +68,8 @@ ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double sho
     }
     case ShotType::kCrane:
     case ShotType::kDronie: {
-      pose.position_enu_m = actor->PositionAt(t) + Lerp(shot.distance_m, shot.distance_end_m, e) * HorizontalFromBearing(shot.bearing_deg) +
+      pose.position_enu_m = actor->PositionAt(t) +
+                            Lerp(shot.distance_m, shot.distance_end_m, e) * HorizontalFromBearing(shot.bearing_deg) +
                             Lerp(shot.height_m, shot.height_end_m, e) * up;
       if (shot.tilt_start_deg) {
         pose.tilt_start_deg = shot.tilt_start_deg;
@@ -79,7 +83,8 @@ ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double sho
       break;
     }
     case ShotType::kDollyZoom: {
-      pose.position_enu_m = actor->PositionAt(t) + Lerp(shot.distance_m, shot.distance_end_m, e) * HorizontalFromBearing(shot.bearing_deg) +
+      pose.position_enu_m = actor->PositionAt(t) +
+                            Lerp(shot.distance_m, shot.distance_end_m, e) * HorizontalFromBearing(shot.bearing_deg) +
                             shot.height_m * up;
       break;
     }
@@ -87,7 +92,8 @@ ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double sho
       if (shot.position_enu_m) {
         pose.position_enu_m = *shot.position_enu_m;
       } else {
-        pose.position_enu_m = actor->PositionAt(shot_start_s) + shot.distance_m * HorizontalFromBearing(shot.bearing_deg) + shot.height_m * up;
+        pose.position_enu_m = actor->PositionAt(shot_start_s) +
+                              shot.distance_m * HorizontalFromBearing(shot.bearing_deg) + shot.height_m * up;
       }
       if (!actor) {
         GimbalAngles g;
@@ -99,8 +105,7 @@ ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double sho
       }
       break;
     }
-    case ShotType::kKeyframes:
-      throw InternalError("EvaluateShotPose: KEYFRAMES shots are evaluated by the planner");
+    case ShotType::kKeyframes: throw InternalError("EvaluateShotPose: KEYFRAMES shots are evaluated by the planner");
   }
   return pose;
 }

@@ -8,13 +8,13 @@ struct Entry {
   std::string_view name;
 };
 constexpr Entry kCanonical[] = {
-    {ShotType::kChase, "CHASE"},         {ShotType::kOrbit, "ORBIT"},         {ShotType::kFlyby, "FLYBY"},
-    {ShotType::kDolly, "DOLLY"},         {ShotType::kCrane, "CRANE"},         {ShotType::kHelix, "HELIX"},
-    {ShotType::kDronie, "DRONIE"},       {ShotType::kTopDown, "TOP-DOWN"},    {ShotType::kDollyZoom, "DOLLY-ZOOM"},
+    {ShotType::kChase, "CHASE"},          {ShotType::kOrbit, "ORBIT"},         {ShotType::kFlyby, "FLYBY"},
+    {ShotType::kDolly, "DOLLY"},          {ShotType::kCrane, "CRANE"},         {ShotType::kHelix, "HELIX"},
+    {ShotType::kDronie, "DRONIE"},        {ShotType::kTopDown, "TOP-DOWN"},    {ShotType::kDollyZoom, "DOLLY-ZOOM"},
     {ShotType::kLockedOff, "LOCKED-OFF"}, {ShotType::kKeyframes, "KEYFRAMES"},
 };
 constexpr Entry kAliases[] = {
-    {ShotType::kDolly, "TRACK"},          {ShotType::kCrane, "REVEAL"},        {ShotType::kTopDown, "TOP_DOWN"},
+    {ShotType::kDolly, "TRACK"},          {ShotType::kCrane, "REVEAL"},         {ShotType::kTopDown, "TOP_DOWN"},
     {ShotType::kDollyZoom, "DOLLY_ZOOM"}, {ShotType::kLockedOff, "LOCKED_OFF"}, {ShotType::kKeyframes, "FREE"},
 };
 

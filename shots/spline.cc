@@ -9,12 +9,9 @@ namespace cinepath {
 
 std::string_view PathInterpolationName(PathInterpolation p) {
   switch (p) {
-    case PathInterpolation::kLinear:
-      return "linear";
-    case PathInterpolation::kCatmullRom:
-      return "catmull_rom";
-    case PathInterpolation::kCubicBSpline:
-      return "cubic_bspline";
+    case PathInterpolation::kLinear: return "linear";
+    case PathInterpolation::kCatmullRom: return "catmull_rom";
+    case PathInterpolation::kCubicBSpline: return "cubic_bspline";
   }
   return "linear";
 }
@@ -127,10 +124,8 @@ Eigen::Vector3d PathSpline::Position(double time_s) const {
   const double h = t_[i + 1] - t_[i];
   const double u = (time_s - t_[i]) / h;
   switch (kind_) {
-    case PathInterpolation::kLinear:
-      return (1.0 - u) * p_[i] + u * p_[i + 1];
-    case PathInterpolation::kCatmullRom:
-      return CatmullRom(i, KnotParameter(i, time_s, nullptr));
+    case PathInterpolation::kLinear: return (1.0 - u) * p_[i] + u * p_[i + 1];
+    case PathInterpolation::kCatmullRom: return CatmullRom(i, KnotParameter(i, time_s, nullptr));
     case PathInterpolation::kCubicBSpline: {
       const double a = 1.0 - u;
       return a * p_[i] + u * p_[i + 1] + (h * h / 6.0) * ((a * a * a - a) * m_[i] + (u * u * u - u) * m_[i + 1]);
@@ -146,8 +141,7 @@ Eigen::Vector3d PathSpline::Velocity(double time_s) const {
   const double h = t_[i + 1] - t_[i];
   const double u = (time_s - t_[i]) / h;
   switch (kind_) {
-    case PathInterpolation::kLinear:
-      return (p_[i + 1] - p_[i]) / h;
+    case PathInterpolation::kLinear: return (p_[i + 1] - p_[i]) / h;
     case PathInterpolation::kCubicBSpline: {
       const double a = 1.0 - u;
       return (p_[i + 1] - p_[i]) / h + (h / 6.0) * (-(3 * a * a - 1) * m_[i] + (3 * u * u - 1) * m_[i + 1]);

@@ -16,10 +16,10 @@ struct EndSlopes {
 
 TEST(Easing, EndpointsAndStatedEndDerivatives) {
   const EndSlopes cases[] = {
-      {Easing::kLinear, 1, 1},          {Easing::kEaseInQuad, 0, 2},        {Easing::kEaseOutQuad, 2, 0},
-      {Easing::kEaseInOutQuad, 0, 0},   {Easing::kEaseInCubic, 0, 3},       {Easing::kEaseOutCubic, 3, 0},
-      {Easing::kEaseInOutCubic, 0, 0},  {Easing::kEaseInSine, 0, kPi / 2},  {Easing::kEaseOutSine, kPi / 2, 0},
-      {Easing::kEaseInOutSine, 0, 0},   {Easing::kSmoothstep, 0, 0},        {Easing::kSmootherstep, 0, 0},
+      {Easing::kLinear, 1, 1},         {Easing::kEaseInQuad, 0, 2},       {Easing::kEaseOutQuad, 2, 0},
+      {Easing::kEaseInOutQuad, 0, 0},  {Easing::kEaseInCubic, 0, 3},      {Easing::kEaseOutCubic, 3, 0},
+      {Easing::kEaseInOutCubic, 0, 0}, {Easing::kEaseInSine, 0, kPi / 2}, {Easing::kEaseOutSine, kPi / 2, 0},
+      {Easing::kEaseInOutSine, 0, 0},  {Easing::kSmoothstep, 0, 0},       {Easing::kSmootherstep, 0, 0},
   };
   ASSERT_EQ(std::size(cases), AllEasings().size());
   for (const auto& c : cases) {

@@ -18,19 +18,24 @@ void ExpectRoundTrip(const Geodetic& origin, const Eigen::Vector3d& enu_m) {
   const Eigen::Vector3d back = frame.EnuFromGeodetic(g);
   // Double-precision ECEF has a spacing of 0.93 nm at the Earth's radius, and LocalCartesian goes
   // through ECEF both ways: the round trip is exact to a few ulps, measured <= 2.6e-9 m here.
-  EXPECT_LT((back - enu_m).norm(), 3e-9) << "origin " << origin.lat_deg << "," << origin.lon_deg
-                                          << " enu " << enu_m.transpose();
+  EXPECT_LT((back - enu_m).norm(), 3e-9) << "origin " << origin.lat_deg << "," << origin.lon_deg << " enu "
+                                         << enu_m.transpose();
   const Eigen::Vector3d via_ecef = frame.EnuFromEcef(frame.EcefFromEnu(enu_m));
   EXPECT_LT((via_ecef - enu_m).norm(), 3e-9);
 }
 
 TEST(Geodesy, LocalCartesianRoundTrips) {
-  const Geodetic origins[] = {{46.842583, -91.993884, 161.94}, {0, 0, 0}, {-33.9, 151.2, 50},
-                              {89.9999, 10, 0},  {-90, 0, 0},   {90, 0, 0},
-                              {10, 180, 0},      {10, -180, 0}, {45, 179.9999, -500},
+  const Geodetic origins[] = {{46.842583, -91.993884, 161.94},
+                              {0, 0, 0},
+                              {-33.9, 151.2, 50},
+                              {89.9999, 10, 0},
+                              {-90, 0, 0},
+                              {90, 0, 0},
+                              {10, 180, 0},
+                              {10, -180, 0},
+                              {45, 179.9999, -500},
                               {-45, -179.9999, 10000}};
-  const Eigen::Vector3d points[] = {{0, 0, 0}, {100, -50, 20}, {-3000, 4000, 500}, {1, 1, -500},
-                                    {20000, 0, 10000}};
+  const Eigen::Vector3d points[] = {{0, 0, 0}, {100, -50, 20}, {-3000, 4000, 500}, {1, 1, -500}, {20000, 0, 10000}};
   for (const auto& o : origins) {
     for (const auto& p : points) ExpectRoundTrip(o, p);
   }
@@ -94,8 +99,8 @@ TEST(Geodesy, AgreesWithCartConvert) {
   const EnuFrame frame(origin);
   const Geodetic p{46.85, -92.0, 200.5};
   char cmd[256];
-  std::snprintf(cmd, sizeof cmd, "echo '%.9f %.9f %.6f' | CartConvert -p 9 -l %.9f %.9f %.6f",
-                p.lat_deg, p.lon_deg, p.height_m, origin.lat_deg, origin.lon_deg, origin.height_m);
+  std::snprintf(cmd, sizeof cmd, "echo '%.9f %.9f %.6f' | CartConvert -p 9 -l %.9f %.9f %.6f", p.lat_deg, p.lon_deg,
+                p.height_m, origin.lat_deg, origin.lon_deg, origin.height_m);
   FILE* pipe = popen(cmd, "r");
   ASSERT_NE(pipe, nullptr);
   double x, y, z;

@@ -14,8 +14,8 @@ namespace {
 TEST(Geoid, Egm96KnownAnswers) {
   const Egm96Geoid& geoid = Egm96Geoid::Default();
   EXPECT_NEAR(geoid.UndulationM(0, 0), 17.16, 0.05);
-  EXPECT_NEAR(geoid.UndulationM(47.3977, 8.5456), 47.34, 0.05);    // Zurich (PX4 SITL home)
-  EXPECT_NEAR(geoid.UndulationM(27.988, 86.925), -28.87, 0.05);    // Everest
+  EXPECT_NEAR(geoid.UndulationM(47.3977, 8.5456), 47.34, 0.05);       // Zurich (PX4 SITL home)
+  EXPECT_NEAR(geoid.UndulationM(27.988, 86.925), -28.87, 0.05);       // Everest
   EXPECT_NEAR(geoid.UndulationM(46.842583, -91.993884), -28.7, 0.1);  // Brighton Beach, Duluth
 }
 

@@ -32,8 +32,7 @@ TEST(Optics, BlurAtInfinityFocusIsFSquaredOverND) {
       const double f_m = f / 1000;
       if (d <= f_m) continue;
       const double expect = 1000 * f_m * f_m / (2.8 * d);
-      EXPECT_NEAR(BlurCircleMm(f, 2.8, kInf, d), expect, 1e-14 * expect)
-          << "f=" << f << " d=" << d;
+      EXPECT_NEAR(BlurCircleMm(f, 2.8, kInf, d), expect, 1e-14 * expect) << "f=" << f << " d=" << d;
     }
   }
 }
@@ -96,11 +95,11 @@ TEST(Optics, Extremes) {
 }
 
 TEST(Optics, DomainErrorsAreExplicit) {
-  EXPECT_THROW(BlurCircleMm(50, 2.8, 10, 0.05), InputError);       // d <= f
-  EXPECT_THROW(BlurCircleMm(50, 2.8, 0.04, 10), InputError);       // s <= f
-  EXPECT_THROW(BlurCircleMm(50, 0, 10, 10), InputError);           // N <= 0
+  EXPECT_THROW(BlurCircleMm(50, 2.8, 10, 0.05), InputError);  // d <= f
+  EXPECT_THROW(BlurCircleMm(50, 2.8, 0.04, 10), InputError);  // s <= f
+  EXPECT_THROW(BlurCircleMm(50, 0, 10, 10), InputError);      // N <= 0
   EXPECT_THROW(BlurCircleMm(50, -2, 10, 10), InputError);
-  EXPECT_THROW(BlurCircleMm(NAN, 2.8, 10, 10), InputError);         // non-finite
+  EXPECT_THROW(BlurCircleMm(NAN, 2.8, 10, 10), InputError);  // non-finite
   EXPECT_THROW(BlurCircleMm(50, 2.8, NAN, 10), InputError);
   EXPECT_THROW(BlurCircleMm(50, 2.8, 10, NAN), InputError);
   EXPECT_THROW(BlurCircleMm(kInf, 2.8, 10, 10), InputError);

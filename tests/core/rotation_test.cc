@@ -96,8 +96,8 @@ TEST(LookAt, ForwardAxisHitsTargetWithLevelHorizon) {
   const Vector3d dir(3, -4, -2);
   const Quaterniond q = LookAt(dir);
   EXPECT_NEAR((q * Vector3d::UnitZ() - dir.normalized()).norm(), 0.0, 1e-15);
-  EXPECT_NEAR((q * Vector3d::UnitX()).z(), 0.0, 1e-15);        // camera x horizontal
-  EXPECT_GT((q * -Vector3d::UnitY()).z(), 0.0);                 // image top points upward
+  EXPECT_NEAR((q * Vector3d::UnitX()).z(), 0.0, 1e-15);  // camera x horizontal
+  EXPECT_GT((q * -Vector3d::UnitY()).z(), 0.0);          // image top points upward
 }
 
 TEST(LookAt, StraightDownFollowsTheFallbackHeading) {
@@ -162,8 +162,7 @@ TEST(Gimbal, RoundTrips) {
     }
   }
   // With the drone's heading fixed, the gimbal yaw takes the difference.
-  const GimbalAngles out =
-      GimbalFromWorldFromCamera(WorldFromCameraFromGimbal(GimbalAngles{10, -20, 0, 0}), 350.0);
+  const GimbalAngles out = GimbalFromWorldFromCamera(WorldFromCameraFromGimbal(GimbalAngles{10, -20, 0, 0}), 350.0);
   EXPECT_NEAR(out.drone_heading_deg, 350.0, 1e-12);
   EXPECT_NEAR(out.gimbal_yaw_deg, 20.0, 1e-9);
 }

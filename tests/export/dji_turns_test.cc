@@ -33,9 +33,10 @@ TEST(DjiTurns, ArcOfAQuarterTurnPassesDTanDeltaOver4FromTheCorner) {
   // The turn starts 2 m before the corner: a point on the leg 3 m before it lies on the path.
   EXPECT_NEAR(DistanceToTurnPath(corners, damping, 0, Eigen::Vector3d(-3, 0, 20)), 0, 1e-12);
   // The arc's end points are on the legs, and a point on the arc is at the radius from the centre.
-  EXPECT_NEAR(DistanceToTurnPath(corners, damping, 0, Eigen::Vector3d(-2 + 2 * std::cos(RadFromDeg(-30)),
-                                                                     2 + 2 * std::sin(RadFromDeg(-30)), 20)),
-              0, 2 * (1 - std::cos(kPi / 2 / 32 / 2)) + 1e-12);
+  EXPECT_NEAR(
+      DistanceToTurnPath(corners, damping, 0,
+                         Eigen::Vector3d(-2 + 2 * std::cos(RadFromDeg(-30)), 2 + 2 * std::sin(RadFromDeg(-30)), 20)),
+      0, 2 * (1 - std::cos(kPi / 2 / 32 / 2)) + 1e-12);
   // Without damping the path is the corner itself.
   EXPECT_NEAR(DistanceToTurnPath(corners, {0, 0, 0}, 0, corners[1]), 0, 1e-12);
 }
@@ -82,8 +83,7 @@ TEST(DjiTurns, DampingOnASegmentSumsToLessThanItsLength) {
   stop.front() = stop.back() = true;
   const TurnFit fit = FitCoordinatedTurns(samples, waypoints, stop, 1.0);
   for (size_t w = 0; w + 1 < waypoints.size(); ++w) {
-    const double length =
-        (samples[waypoints[w + 1]].position_enu_m - samples[waypoints[w]].position_enu_m).norm();
+    const double length = (samples[waypoints[w + 1]].position_enu_m - samples[waypoints[w]].position_enu_m).norm();
     EXPECT_LT(fit.damping_m[w] + fit.damping_m[w + 1], length);
     if (w > 0) EXPECT_GT(fit.damping_m[w], 0);  // gentle turns at a loose tolerance: all turn
   }

@@ -10,7 +10,7 @@ namespace {
 
 ExportOptions AllFormats() {
   ExportOptions o;
-  o.formats = {Format::kQgcPlan, Format::kQgcWpl, Format::kMavlinkBin,
+  o.formats = {Format::kQgcPlan, Format::kQgcWpl,      Format::kMavlinkBin,
                Format::kDjiWpml, Format::kDjiMsdkJson, Format::kLitchiCsv};
   return o;
 }

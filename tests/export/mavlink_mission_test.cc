@@ -90,7 +90,8 @@ TEST(MavlinkMission, RecordingFollowsEachFirmwaresDoItemTiming) {
   auto sequence = [](const MavMission& m) {
     std::vector<std::pair<int, int>> out;  // (command, waypoint) of NAV_WAYPOINT and video items
     for (const auto& i : m.items) {
-      if (i.command == mav::kNavWaypoint || i.command == mav::kVideoStartCapture || i.command == mav::kVideoStopCapture) {
+      if (i.command == mav::kNavWaypoint || i.command == mav::kVideoStartCapture ||
+          i.command == mav::kVideoStopCapture) {
         out.emplace_back(i.command, i.command == mav::kNavWaypoint ? i.waypoint : -1);
       }
     }

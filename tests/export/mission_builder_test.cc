@@ -76,8 +76,8 @@ TEST(MissionBuilder, CutsSplitTheSelectionAndInsertATransit) {
   EXPECT_EQ(m.waypoints[2].sample_index, 21);
   EXPECT_TRUE(m.waypoints[0].record_start && m.waypoints[1].record_stop && m.waypoints[1].transit_after);
   EXPECT_TRUE(m.waypoints[2].record_start && m.waypoints[3].record_stop && !m.waypoints[2].transit_after);
-  EXPECT_EQ(m.waypoints[1].speed_mps, 5.0);           // transit, not the 1000 m/s jump
-  EXPECT_NEAR(m.waypoints[2].speed_mps, 5.0, 1e-9);   // 9.5 m in 1.9 s
+  EXPECT_EQ(m.waypoints[1].speed_mps, 5.0);          // transit, not the 1000 m/s jump
+  EXPECT_NEAR(m.waypoints[2].speed_mps, 5.0, 1e-9);  // 9.5 m in 1.9 s
   EXPECT_NEAR(m.max_deviation_reached_m, 0, 1e-9);
   // A "continuous" transition is one run.
   t.shots[1].transition = "continuous";

@@ -21,10 +21,10 @@ TEST(MsdkSpacing, MergesCloseWaypointsIntoHolds) {
   const Mission out = MergeCloseWaypoints(m, 0.5, notes);
   ASSERT_EQ(out.waypoints.size(), 3u);
   EXPECT_EQ(out.waypoints[1].position_enu_m.x(), 5);
-  EXPECT_EQ(out.waypoints[1].hold_s, 2.0);               // holds at x = 5 until t = 3
-  EXPECT_NEAR(out.waypoints[1].speed_mps, 5.0, 1e-12);   // then 5 m in 1 s
+  EXPECT_EQ(out.waypoints[1].hold_s, 2.0);              // holds at x = 5 until t = 3
+  EXPECT_NEAR(out.waypoints[1].speed_mps, 5.0, 1e-12);  // then 5 m in 1 s
   EXPECT_EQ(out.waypoints[2].position_enu_m.x(), 10);
-  EXPECT_TRUE(out.waypoints[2].record_stop);             // the stop of the merged last waypoint survives
+  EXPECT_TRUE(out.waypoints[2].record_stop);  // the stop of the merged last waypoint survives
   EXPECT_EQ(out.waypoints[2].hold_s, 1.0);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("2 waypoint(s)"), std::string::npos) << notes[0];

@@ -24,7 +24,8 @@ TEST(QgcPlan, LoadingRulesAndRoundTrip) {
   for (const auto& item : plan["mission"]["items"]) {
     EXPECT_EQ(item["params"].size(), 7u);
     EXPECT_TRUE(item["autoContinue"].is_boolean());
-    const int alt_keys = item.contains("AltitudeMode") + item.contains("Altitude") + item.contains("AMSLAltAboveTerrain");
+    const int alt_keys =
+        item.contains("AltitudeMode") + item.contains("Altitude") + item.contains("AMSLAltAboveTerrain");
     EXPECT_TRUE(alt_keys == 0 || alt_keys == 3);
   }
   // Round trip through the reader `cinepath info` uses: positions within 1 cm.
@@ -38,8 +39,8 @@ TEST(QgcPlan, LoadingRulesAndRoundTrip) {
     EXPECT_EQ(item.frame, mav::kFrameGlobalRelativeAlt);
     // Relative altitude → ellipsoidal through the home AMSL and the geoid.
     const double amsl = back.home_amsl_m + item.params[6];
-    const Eigen::Vector3d enu = frame.EnuFromGeodetic(
-        Geodetic{item.params[4], item.params[5], amsl + (wp.ellipsoidal_height_m - wp.amsl_m)});
+    const Eigen::Vector3d enu =
+        frame.EnuFromGeodetic(Geodetic{item.params[4], item.params[5], amsl + (wp.ellipsoidal_height_m - wp.amsl_m)});
     EXPECT_LT((enu - wp.position_enu_m).norm(), 0.01);
   }
   EXPECT_EQ(w, mission.waypoints.size());

@@ -75,8 +75,8 @@ inline Trajectory ChasePlan(double duration_s = 8, double rate_hz = 30) {
   const int n = static_cast<int>(std::round(duration_s * rate_hz)) + 1;
   for (int i = 0; i < n; ++i) {
     const double time = i / rate_hz;
-    const double north = 2.0 * time + 0.4 * time * time;           // 2 m/s → 8.4 m/s
-    const double east = 6.0 * std::sin(time * 0.5);                  // gentle weave
+    const double north = 2.0 * time + 0.4 * time * time;  // 2 m/s → 8.4 m/s
+    const double east = 6.0 * std::sin(time * 0.5);       // gentle weave
     const Eigen::Vector3d p(east - 5, north - 12, 8 + 0.5 * time);
     const double heading = NormalizeDeg360(DegFromRad(std::atan2(3.0 * std::cos(time * 0.5), 2.0 + 0.8 * time)));
     AddSample(t, time, p, heading, -12 + 0.5 * time, 24 + 26 * time / duration_s, 12, 2.8 + 0.2 * time);

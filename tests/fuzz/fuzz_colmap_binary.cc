@@ -19,7 +19,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       default: cinepath::photogrammetry::ParseColmapPoints3DBinary(body, "points3D.bin", model, &where); break;
     }
     cinepath::photogrammetry::ValidateColmapModel(model, where);
-  } catch (const cinepath::InputError&) {
-  }
+  } catch (const cinepath::InputError&) {}
   return 0;
 }

@@ -19,7 +19,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       default: cinepath::photogrammetry::ParseColmapPoints3DText(body, "points3D.txt", model, &where); break;
     }
     cinepath::photogrammetry::ValidateColmapModel(model, where);
-  } catch (const cinepath::InputError&) {
-  }
+  } catch (const cinepath::InputError&) {}
   return 0;
 }

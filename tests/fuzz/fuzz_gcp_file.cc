@@ -10,7 +10,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     cinepath::photogrammetry::ParseGcpFile(std::string_view(reinterpret_cast<const char*>(data), size), "gcp_list.txt");
-  } catch (const cinepath::InputError&) {
-  }
+  } catch (const cinepath::InputError&) {}
   return 0;
 }

@@ -9,7 +9,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     cinepath::photogrammetry::ParsePly(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.ply");
-  } catch (const cinepath::InputError&) {
-  }
+  } catch (const cinepath::InputError&) {}
   return 0;
 }

@@ -9,7 +9,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     cinepath::photogrammetry::ParseReferences(std::string_view(reinterpret_cast<const char*>(data), size), "refs.txt");
-  } catch (const cinepath::InputError&) {
-  }
+  } catch (const cinepath::InputError&) {}
   return 0;
 }

@@ -41,7 +41,7 @@ TEST(BundleAdjust, FocalPriorAndGpsPutTheGroundBackAfterAFocalDrift) {
   const auto scene = testing::MakeSyntheticScene(o);
   ColmapModel model = Drifted(scene.model_enu, 1.25);
   EXPECT_LT(MedianHeightError(model, scene.model_enu), -8.0);  // the drift: ground ~10 m low
-  EXPECT_LT(RmsReprojectionErrorPx(model), 10.0);             // ... while the images still nearly fit
+  EXPECT_LT(RmsReprojectionErrorPx(model), 10.0);              // ... while the images still nearly fit
   std::map<uint32_t, Eigen::Vector3d> gps;
   for (size_t i = 0; i < scene.camera_centers_enu_m.size(); ++i) gps[i + 1] = scene.camera_centers_enu_m[i];
   const BundleAdjustReport r = BundleAdjustEnu(model, gps, {{1, 900.0}}, BundleAdjustOptions());
@@ -63,7 +63,8 @@ TEST(BundleAdjust, ObliqueViewsOfReliefAreRecognizedAsResolvingTheFocalLength) {
   for (auto& [id, im] : model.images) {
     if (id % 2) continue;
     const Eigen::Vector3d c = im.ProjectionCenter();
-    im.cam_from_world_rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX())) * im.cam_from_world_rotation;
+    im.cam_from_world_rotation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX())) * im.cam_from_world_rotation;
     im.cam_from_world_translation = -(im.cam_from_world_rotation * c);
   }
   // Observations must match the new poses: re-project each track element.
@@ -103,8 +104,8 @@ TEST(BundleAdjust, ControlPointsAloneHoldTheSceneWhereTheSurveySaysIt) {
   for (auto& [id, p] : model.points3d) p.xyz = offset(p.xyz);
   // Four surveyed ground points with exact pixels in every image that sees them; no GPS at all.
   std::vector<ControlPointPrior> control;
-  for (const Eigen::Vector2d en : {Eigen::Vector2d(-30, -10), Eigen::Vector2d(30, -10), Eigen::Vector2d(-25, 12),
-                                   Eigen::Vector2d(28, 11)}) {
+  for (const Eigen::Vector2d en :
+       {Eigen::Vector2d(-30, -10), Eigen::Vector2d(30, -10), Eigen::Vector2d(-25, 12), Eigen::Vector2d(28, 11)}) {
     ControlPointPrior c;
     c.target_enu_m = {en.x(), en.y(), testing::SyntheticGroundHeight(en.x(), en.y(), o.terrain_relief_m)};
     c.initial_enu_m = offset(c.target_enu_m);

@@ -12,10 +12,17 @@ namespace cinepath::photogrammetry {
 namespace {
 
 TEST(CameraModels, IdsNamesAndParameterCountsAreCOLMAP38s) {
-  const std::pair<const char*, int> expected[] = {
-      {"SIMPLE_PINHOLE", 3}, {"PINHOLE", 4},         {"SIMPLE_RADIAL", 4},         {"RADIAL", 5},
-      {"OPENCV", 8},         {"OPENCV_FISHEYE", 8},  {"FULL_OPENCV", 12},          {"FOV", 5},
-      {"SIMPLE_RADIAL_FISHEYE", 4}, {"RADIAL_FISHEYE", 5}, {"THIN_PRISM_FISHEYE", 12}};
+  const std::pair<const char*, int> expected[] = {{"SIMPLE_PINHOLE", 3},
+                                                  {"PINHOLE", 4},
+                                                  {"SIMPLE_RADIAL", 4},
+                                                  {"RADIAL", 5},
+                                                  {"OPENCV", 8},
+                                                  {"OPENCV_FISHEYE", 8},
+                                                  {"FULL_OPENCV", 12},
+                                                  {"FOV", 5},
+                                                  {"SIMPLE_RADIAL_FISHEYE", 4},
+                                                  {"RADIAL_FISHEYE", 5},
+                                                  {"THIN_PRISM_FISHEYE", 12}};
   for (int id = 0; id < 11; ++id) {
     EXPECT_EQ(CameraModelName(id), expected[id].first);
     EXPECT_EQ(CameraModelNumParams(id), expected[id].second);

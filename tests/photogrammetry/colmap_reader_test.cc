@@ -103,7 +103,8 @@ TEST(ColmapReader, FindsTheModelInAWorkspace) {
             std::string::npos)
       << msg;
   const auto empty = testing::ScratchDir("empty_workspace");
-  EXPECT_NE(ErrorOf([&] { FindColmapModelDir(empty); }).find("or in sparse/0 as COLMAP writes them"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { FindColmapModelDir(empty); }).find("or in sparse/0 as COLMAP writes them"),
+            std::string::npos);
 }
 
 TEST(ColmapReader, EveryTruncationOfBinaryFilesIsAnInputErrorWithAByteOffset) {
@@ -146,11 +147,9 @@ TEST(ColmapReader, UnknownCameraModelIdIsRejectedWithItsOffset) {
   const std::string msg = ErrorOf([&] { ParseColmapCamerasBinary(data, "cameras.bin", out); });
   EXPECT_NE(msg.find("cameras.bin: byte 12: unknown camera model id 11"), std::string::npos) << msg;
 
-  const std::string text_msg = ErrorOf([&] {
-    ParseColmapCamerasText("# header\n1 RAD_TAN_THIN_PRISM_FISHEYE 10 10 1 2 3\n", "cameras.txt", out);
-  });
-  EXPECT_NE(text_msg.find("cameras.txt: line 2: unknown camera model 'RAD_TAN_THIN_PRISM_FISHEYE'"),
-            std::string::npos)
+  const std::string text_msg = ErrorOf(
+      [&] { ParseColmapCamerasText("# header\n1 RAD_TAN_THIN_PRISM_FISHEYE 10 10 1 2 3\n", "cameras.txt", out); });
+  EXPECT_NE(text_msg.find("cameras.txt: line 2: unknown camera model 'RAD_TAN_THIN_PRISM_FISHEYE'"), std::string::npos)
       << text_msg;
 }
 

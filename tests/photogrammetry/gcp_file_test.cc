@@ -97,7 +97,8 @@ TEST(GcpFile, UnsupportedCoordinateSystemsAreRefused) {
   ExpectInputError("WGS84 UTM XN\n1 2 3 4 5 a.jpg\n", {"line 1", "WGS84 UTM <zone>N"});
   ExpectInputError("NAD83\n1 2 3 4 5 a.jpg\n", {"line 1", "unsupported coordinate system 'NAD83'"});
   // The coordinate-system line comes first: a GCP line there is refused as a system.
-  ExpectInputError("# comment\n\n544256.7 5320919.9 5 3044 2622 IMG_0525.jpg\n", {"line 3", "unsupported coordinate system"});
+  ExpectInputError("# comment\n\n544256.7 5320919.9 5 3044 2622 IMG_0525.jpg\n",
+                   {"line 3", "unsupported coordinate system"});
 }
 
 TEST(GcpFile, BadLinesNameTheLine) {

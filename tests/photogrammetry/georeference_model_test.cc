@@ -12,8 +12,8 @@
 
 #include "core/error.h"
 #include "core/geoid.h"
-#include "photogrammetry/colmap_reader.h"
 #include "photogrammetry/camera_models.h"
+#include "photogrammetry/colmap_reader.h"
 #include "photogrammetry/gcp_file.h"
 #include "synthetic_colmap.h"
 #include "test_paths.h"
@@ -68,7 +68,8 @@ TEST(GeoreferenceModel, SyntheticSurveyRecoversTheTransform) {
   EXPECT_NEAR(r.enu_from_colmap.scale / truth.scale, 1, 0.01);
   EXPECT_LT(Eigen::AngleAxisd(r.enu_from_colmap.rotation.conjugate() * truth.rotation).angle(), 0.5 * M_PI / 180);
   double worst = 0;
-  for (const auto& [id, p] : r.model_enu.points3d) worst = std::max(worst, (p.xyz - s.scene.model_enu.points3d.at(id).xyz).norm());
+  for (const auto& [id, p] : r.model_enu.points3d)
+    worst = std::max(worst, (p.xyz - s.scene.model_enu.points3d.at(id).xyz).norm());
   EXPECT_LT(worst, 0.8);
   EXPECT_EQ(r.final_fit.num_inliers, 18);
 }
@@ -84,7 +85,8 @@ TEST(GeoreferenceModel, SyntheticSurveyWithThirtyPercentWrongGpsAndBundleAdjustm
   EXPECT_EQ(r.bundle_adjustment->num_gps_priors, 13);
   EXPECT_LT(r.bundle_adjustment->rms_reprojection_after_px, 0.6);
   std::vector<double> err;
-  for (const auto& [id, p] : r.model_enu.points3d) err.push_back((p.xyz - s.scene.model_enu.points3d.at(id).xyz).norm());
+  for (const auto& [id, p] : r.model_enu.points3d)
+    err.push_back((p.xyz - s.scene.model_enu.points3d.at(id).xyz).norm());
   std::sort(err.begin(), err.end());
   EXPECT_LT(err[err.size() / 2], 0.5);
   EXPECT_NEAR(r.bundle_adjustment->focal[0].after_px, 900, 9);
@@ -238,10 +240,12 @@ TEST(GeoreferenceModel, BrightonBeachBundleAdjustmentPutsTheGroundWithinOneMetre
   // COLMAP's 31 % focal drift is reported.
   ASSERT_FALSE(r.warnings.empty());
   EXPECT_NE(r.warnings.back().find("COLMAP's focal length (1200.3 px) differs from the prior (914.4 px) by 31.3 %"),
-            std::string::npos) << r.warnings.back();
+            std::string::npos)
+      << r.warnings.back();
   EXPECT_LT(r.final_fit.rmse_m, 1.5);
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
-  std::cerr << "iterations " << r.bundle_adjustment->iterations << " time " << r.bundle_adjustment->time_s << " converged " << r.bundle_adjustment->converged << "\n";
+  std::cerr << "iterations " << r.bundle_adjustment->iterations << " time " << r.bundle_adjustment->time_s
+            << " converged " << r.bundle_adjustment->converged << "\n";
   std::cerr << "median dz " << dz << " m over " << n << " points; focal " << f.after_px << " px; images sigma "
             << f.images_sigma_ratio.value_or(-1) << "; preferred " << f.images_preferred_px.value_or(-1) << "\n"
             << DumpJson(GeoreferenceJson(r, options, true)).substr(0, 0);
@@ -368,10 +372,11 @@ TEST(GeoreferenceModelGcp, GcpsAloneRecoverTheTransform) {
     EXPECT_GT(u.triangulation.max_angle_deg, 10.0) << u.gcp.name;
   }
   EXPECT_LT(r.gcp_check_rmse_m, 0.05);
-  std::printf("GCP only (0.5 px noise, 6 GCPs): scale error %.2e, rotation %.4f deg, translation %.4f m, worst camera "
-              "%.3f m, GCP check RMSE %.3f m\n",
-              scale_error, rotation_error_deg, translation_error_m, WorstCameraErrorM(r.model_enu, s.scene),
-              r.gcp_check_rmse_m);
+  std::printf(
+      "GCP only (0.5 px noise, 6 GCPs): scale error %.2e, rotation %.4f deg, translation %.4f m, worst camera "
+      "%.3f m, GCP check RMSE %.3f m\n",
+      scale_error, rotation_error_deg, translation_error_m, WorstCameraErrorM(r.model_enu, s.scene),
+      r.gcp_check_rmse_m);
 
   // With the bundle adjustment (GCPs as priors, no GPS at all), the scene stays put.
   options.bundle_adjust = true;
@@ -405,7 +410,8 @@ TEST(GeoreferenceModelGcp, GcpsCorrectBiasedCameraGps) {
   std::normal_distribution<double> noise(0, 0.5);
   std::vector<ImageReference> refs;
   for (const auto& [id, image] : s.scene.model.images) {
-    const Eigen::Vector3d p = s.scene.camera_centers_enu_m[id - 1] + bias + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    const Eigen::Vector3d p =
+        s.scene.camera_centers_enu_m[id - 1] + bias + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
     const Geodetic g = frame.GeodeticFromEnu(p);
     refs.push_back({image.name, g.lat_deg, g.lon_deg, g.height_m, "synthetic"});
   }
@@ -427,9 +433,10 @@ TEST(GeoreferenceModelGcp, GcpsCorrectBiasedCameraGps) {
   for (const auto& [i, residual] : r.camera_residuals_m) EXPECT_NEAR(residual, bias.norm(), 1.5);
   // The GPS is 6.2 m off, beyond the 5 m inlier threshold: no GPS prior pulls against the GCPs.
   EXPECT_LT(r.bundle_adjustment->num_gps_priors, 18);
-  std::printf("camera GPS biased by %.1f m: GPS only median point error %.2f m; with 6 GCPs %.3f m (GCP check RMSE "
-              "%.3f m)\n",
-              bias.norm(), gps_only_error, error, r.gcp_check_rmse_m);
+  std::printf(
+      "camera GPS biased by %.1f m: GPS only median point error %.2f m; with 6 GCPs %.3f m (GCP check RMSE "
+      "%.3f m)\n",
+      bias.norm(), gps_only_error, error, r.gcp_check_rmse_m);
 }
 
 TEST(GeoreferenceModelGcp, UnusableGcpsAreReportedAndSkipped) {
@@ -446,8 +453,10 @@ TEST(GeoreferenceModelGcp, UnusableGcpsAreReportedAndSkipped) {
   std::ostringstream extra;
   extra.precision(12);
   extra << x + 5 << " " << y << " " << z << " 100 100 " << image << " GCP7\n";
-  extra << x << " " << y + 5 << " NaN 100 100 IMG_1001.JPG GCP8\n" << x << " " << y + 5 << " NaN 200 100 IMG_1002.JPG GCP8\n";
-  extra << x << " " << y - 5 << " " << z << " 100 100 other1.jpg GCP9\n" << x << " " << y - 5 << " " << z << " 100 100 other2.jpg GCP9\n";
+  extra << x << " " << y + 5 << " NaN 100 100 IMG_1001.JPG GCP8\n"
+        << x << " " << y + 5 << " NaN 200 100 IMG_1002.JPG GCP8\n";
+  extra << x << " " << y - 5 << " " << z << " 100 100 other1.jpg GCP9\n"
+        << x << " " << y - 5 << " " << z << " 100 100 other2.jpg GCP9\n";
   const GcpFile gcps = ParseGcpFile(s.gcp_text + extra.str(), "gcp_list.txt");
   ModelGeoreferenceOptions options;
   options.origin = s.origin;

@@ -126,11 +126,9 @@ TEST(WriteGlb, DracoGlbDecodesToTheSameMesh) {
   EXPECT_EQ(out.num_faces(), mesh.num_faces());
   EXPECT_EQ(out.num_points(), mesh.num_vertices());
   EXPECT_EQ(positions["count"].get<size_t>(), out.num_points());
-  EXPECT_EQ(j["accessors"][primitive["indices"].get<int>()]["count"].get<size_t>(),
-            3 * mesh.num_faces());
+  EXPECT_EQ(j["accessors"][primitive["indices"].get<int>()]["count"].get<size_t>(), 3 * mesh.num_faces());
   // Decoded positions are within the 16-bit quantization step of the glTF-frame input.
-  const auto* attribute =
-      out.GetAttributeByUniqueId(ext["attributes"]["POSITION"].get<uint32_t>());
+  const auto* attribute = out.GetAttributeByUniqueId(ext["attributes"]["POSITION"].get<uint32_t>());
   ASSERT_NE(attribute, nullptr);
   const double extent_m = 78.0;  // largest side of the 78 m × 58 m grid
   float first[3];

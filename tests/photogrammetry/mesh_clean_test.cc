@@ -31,8 +31,8 @@ int CountBoundaryEdges(const TriangleMesh& mesh) {
       ++undirected[{std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])}];
     }
   }
-  return static_cast<int>(std::count_if(undirected.begin(), undirected.end(),
-                                        [](const auto& e) { return e.second == 1; }));
+  return static_cast<int>(
+      std::count_if(undirected.begin(), undirected.end(), [](const auto& e) { return e.second == 1; }));
 }
 
 double NormalUp(const TriangleMesh& mesh, const std::array<uint32_t, 3>& f) {
@@ -59,9 +59,9 @@ TEST(CleanMesh, RepairsEveryDefectKind) {
   const size_t grid_faces = mesh.num_faces();
   auto id = [](int i, int j) { return static_cast<uint32_t>(j * 10 + i); };
   // A hole: drop the two triangles of cell (4, 4).
-  mesh.faces.erase(std::remove_if(mesh.faces.begin(), mesh.faces.end(),
-                                  [&](const auto& f) { return f[0] == id(4, 4); }),
-                   mesh.faces.end());
+  mesh.faces.erase(
+      std::remove_if(mesh.faces.begin(), mesh.faces.end(), [&](const auto& f) { return f[0] == id(4, 4); }),
+      mesh.faces.end());
   ASSERT_EQ(mesh.num_faces(), grid_faces - 2);
   // A duplicate vertex (copy of (2, 2)) used by one face instead of the original.
   mesh.vertices_m.push_back(mesh.vertices_m[id(2, 2)]);
@@ -110,7 +110,7 @@ TEST(CleanMesh, RepairsEveryDefectKind) {
   EXPECT_EQ(report.invalid_faces_removed, 1);
   EXPECT_EQ(report.degenerate_faces_removed, 1);
   EXPECT_GE(report.non_manifold_vertices_split, 2);
-  EXPECT_TRUE(report.general_path);  // the fin is a non-manifold edge
+  EXPECT_TRUE(report.general_path);               // the fin is a non-manifold edge
   EXPECT_EQ(report.small_components_removed, 2);  // the blob and the split-off fin
   EXPECT_EQ(report.faces_in_small_components, 9);
   EXPECT_EQ(report.components_kept, 1);
@@ -142,14 +142,11 @@ TEST(CleanMesh, InconsistentOrientationIsRepairedTowardTheMajority) {
 TEST(CleanMesh, LargeHolesStayOpen) {
   TriangleMesh mesh = testing::TerrainGrid(20, 20, 1.0);
   // Remove a 6 × 6-cell block: its border has 24 edges and a perimeter of ~24 m.
-  auto in_block = [](const Eigen::Vector3d& v) {
-    return v.x() > 5 && v.x() < 12 && v.y() > 5 && v.y() < 12;
-  };
+  auto in_block = [](const Eigen::Vector3d& v) { return v.x() > 5 && v.x() < 12 && v.y() > 5 && v.y() < 12; };
   mesh.faces.erase(std::remove_if(mesh.faces.begin(), mesh.faces.end(),
                                   [&](const auto& f) {
-                                    const Eigen::Vector3d c = (mesh.vertices_m[f[0]] +
-                                                               mesh.vertices_m[f[1]] +
-                                                               mesh.vertices_m[f[2]]) / 3.0;
+                                    const Eigen::Vector3d c =
+                                        (mesh.vertices_m[f[0]] + mesh.vertices_m[f[1]] + mesh.vertices_m[f[2]]) / 3.0;
                                     return c.x() > 6 && c.x() < 12 && c.y() > 6 && c.y() < 12;
                                   }),
                    mesh.faces.end());
@@ -166,7 +163,6 @@ TEST(CleanMesh, LargeHolesStayOpen) {
   EXPECT_EQ(report.holes_filled, 1);
 }
 
-
 // A manifold soup (after merging duplicates) takes the fast path: no Surface_mesh of the whole
 // mesh. Same repairs as the general path: small components dropped, small holes filled (on a local
 // Surface_mesh), duplicates and degenerate faces removed, isolated vertices dropped.
@@ -176,9 +172,9 @@ TEST(CleanMesh, ManifoldSoupFastPathRepairsHolesBlobsAndDuplicates) {
   auto id = [](int i, int j) { return static_cast<uint32_t>(j * 20 + i); };
   // Three separate one-cell holes and a 2 × 1-cell hole.
   auto drop_cell = [&](int i, int j) {
-    mesh.faces.erase(std::remove_if(mesh.faces.begin(), mesh.faces.end(),
-                                    [&](const auto& f) { return f[0] == id(i, j); }),
-                     mesh.faces.end());
+    mesh.faces.erase(
+        std::remove_if(mesh.faces.begin(), mesh.faces.end(), [&](const auto& f) { return f[0] == id(i, j); }),
+        mesh.faces.end());
   };
   drop_cell(4, 4);
   drop_cell(10, 4);
@@ -254,9 +250,9 @@ TEST(CleanMesh, ManifoldSoupFastPathRepairsHolesBlobsAndDuplicates) {
 // general path is forced by one inconsistently oriented face far from the holes.
 TEST(CleanMesh, FastAndGeneralPathsFillTheSameHole) {
   TriangleMesh mesh = testing::TerrainGrid(12, 12, 1.0);
-  mesh.faces.erase(std::remove_if(mesh.faces.begin(), mesh.faces.end(),
-                                  [](const auto& f) { return f[0] == 5 * 12 + 5; }),
-                   mesh.faces.end());
+  mesh.faces.erase(
+      std::remove_if(mesh.faces.begin(), mesh.faces.end(), [](const auto& f) { return f[0] == 5 * 12 + 5; }),
+      mesh.faces.end());
   MeshCleanReport fast_report, general_report;
   const TriangleMesh fast = CleanMesh(mesh, MeshCleanOptions{}, &fast_report);
   TriangleMesh flipped = mesh;
@@ -300,7 +296,8 @@ TEST(CleanMesh, BowtieOnTerrainFastAndGeneralPathsAgree) {
   const uint32_t pinch = 6 * 12 + 6;  // an interior vertex: its own fan is closed
   const uint32_t a = static_cast<uint32_t>(mesh.num_vertices());
   const Eigen::Vector3d p = mesh.vertices_m[pinch];
-  for (const Eigen::Vector3d& d : {Eigen::Vector3d(0.3, 0, 2), Eigen::Vector3d(0, 0.3, 2), Eigen::Vector3d(-0.3, 0, 2)}) {
+  for (const Eigen::Vector3d& d :
+       {Eigen::Vector3d(0.3, 0, 2), Eigen::Vector3d(0, 0.3, 2), Eigen::Vector3d(-0.3, 0, 2)}) {
     mesh.vertices_m.push_back(p + d);
     mesh.colors_rgb.push_back({7, 7, 7});
   }

@@ -1,8 +1,8 @@
 #include "photogrammetry/mesh_decimate.h"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <Eigen/Geometry>
 
 #include "core/error.h"
 #include "photogrammetry/mesh_distance.h"
@@ -47,13 +47,13 @@ TEST_P(DecimateEveryMethod, ReachesTheBudgetKeepsTheBorderAndStaysClose) {
   EXPECT_EQ(DecimateMesh(grid, options).faces, out.faces);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Methods, DecimateEveryMethod,
-    ::testing::Values(DecimationMethod::kMeshoptimizer, DecimationMethod::kMeshoptimizerPartitioned,
-                      DecimationMethod::kCgalGarlandHeckbert,
-                      DecimationMethod::kCgalGarlandHeckbertProbabilistic,
-                      DecimationMethod::kOpenMeshQuadric),
-    [](const auto& info) { return std::string(DecimationMethodName(info.param)); });
+INSTANTIATE_TEST_SUITE_P(Methods, DecimateEveryMethod,
+                         ::testing::Values(DecimationMethod::kMeshoptimizer,
+                                           DecimationMethod::kMeshoptimizerPartitioned,
+                                           DecimationMethod::kCgalGarlandHeckbert,
+                                           DecimationMethod::kCgalGarlandHeckbertProbabilistic,
+                                           DecimationMethod::kOpenMeshQuadric),
+                         [](const auto& info) { return std::string(DecimationMethodName(info.param)); });
 
 TEST(DecimateMesh, ErrorBoundStopsEarlier) {
   const TriangleMesh grid = testing::TerrainGrid(101, 101, 1.0);
@@ -77,11 +77,9 @@ TEST(DecimateMesh, NoGoalOrABudgetAboveTheInputKeepsEveryFace) {
 }
 
 TEST(DecimationMethod, NamesRoundTrip) {
-  EXPECT_EQ(ParseDecimationMethod("openmesh_quadric", "--decimator"),
-            DecimationMethod::kOpenMeshQuadric);
+  EXPECT_EQ(ParseDecimationMethod("openmesh_quadric", "--decimator"), DecimationMethod::kOpenMeshQuadric);
   EXPECT_THROW(ParseDecimationMethod("qslim", "--decimator"), InputError);
 }
-
 
 TEST(DecimateMesh, TiledResultDoesNotDependOnTheThreadCount) {
   const TriangleMesh grid = testing::TerrainGrid(121, 121, 0.5);  // 28,800 faces

@@ -54,7 +54,6 @@ TEST(ApproximateHausdorff, NonManifoldInputIsAccepted) {
   EXPECT_THROW(ApproximateHausdorff(a, TriangleMesh{}, HausdorffOptions{}), InputError);
 }
 
-
 TEST(ApproximateHausdorff, RecordsTheSampleCountAndDoesNotDependOnTheThreadCount) {
   TriangleMesh a = testing::TerrainGrid(60, 50, 1.0);
   TriangleMesh b = a;
@@ -91,8 +90,7 @@ TEST(ApproximateHausdorff, AnIndexIsReusedAcrossMeasurements) {
   HausdorffOptions options;
   options.samples_per_mesh = 5000;
   EXPECT_NEAR(ApproximateHausdorff(index, MeshDistanceIndex(up), options).symmetric_m, 0.5, 0.02);
-  EXPECT_NEAR(ApproximateHausdorff(index, MeshDistanceIndex(down), options).symmetric_m, 0.125,
-              0.01);
+  EXPECT_NEAR(ApproximateHausdorff(index, MeshDistanceIndex(down), options).symmetric_m, 0.125, 0.01);
   EXPECT_EQ(ApproximateHausdorff(index, MeshDistanceIndex(up), options).symmetric_m,
             ApproximateHausdorff(a, up, options).symmetric_m);
   // A point 2 m above a vertex of the flat-ish grid is about 2 m away.

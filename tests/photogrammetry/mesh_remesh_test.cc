@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "core/error.h"
 #include "photogrammetry/mesh_distance.h"
@@ -57,9 +57,8 @@ TEST(RemeshIsotropic, EdgesApproachTheTargetAndTheSurfaceStaysPut) {
     const double median = lengths[lengths.size() / 2];
     EXPECT_GT(median, 0.8 * target_m) << target_m;
     EXPECT_LT(median, 4.0 / 3.0 * target_m) << target_m;
-    const auto in_band = std::count_if(lengths.begin(), lengths.end(), [&](double l) {
-      return l >= 0.7 * target_m && l <= 1.4 * target_m;
-    });
+    const auto in_band = std::count_if(lengths.begin(), lengths.end(),
+                                       [&](double l) { return l >= 0.7 * target_m && l <= 1.4 * target_m; });
     EXPECT_GT(static_cast<double>(in_band) / lengths.size(), 0.7) << target_m;
     EXPECT_GT(report.edges_in_band_fraction, 0.5) << target_m;  // all edges, border included
     // Finer target → more faces than the input; coarser → fewer.

@@ -66,8 +66,9 @@ std::string ErrorOf(const std::string& data) {
 }
 
 TEST(PlyReader, ErrorsNameLineOrByteOffset) {
-  const std::string head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
-                           "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   EXPECT_EQ(ErrorOf(head + "0 0 0\n1 1 nan\n3 0 1 1\n"), "x.ply: line 11: vertex 1 is not finite");
   EXPECT_EQ(ErrorOf(head + "0 0 0\n1 1 1\n3 0 1 2\n"), "x.ply: line 12: face 0 refers to vertex 2, but there are 2");
   EXPECT_EQ(ErrorOf(head + "0 0 0\n1 1 1\n2 0 1\n"), "x.ply: line 12: face 0 has 2 vertices (needs 3 or more)");
@@ -100,10 +101,12 @@ TEST(PlyReader, ErrorsNameLineOrByteOffset) {
             "x.ply: line 7: truncated: element 'vertex' declares 5555555553 lines, 6 bytes left");
   EXPECT_EQ(ErrorOf(head + "0 0 0\n1 1 1\n3 0 1 1e127\n"),
             "x.ply: line 12: vertex index: '1e127' is out of range for its type");
-  EXPECT_EQ(ErrorOf(head + "0 0 0\n1 1 1\n256 0 1\n"), "x.ply: line 12: list count: '256' is out of range for its type");
+  EXPECT_EQ(ErrorOf(head + "0 0 0\n1 1 1\n256 0 1\n"),
+            "x.ply: line 12: list count: '256' is out of range for its type");
   std::string long_list = head;
   long_list.replace(long_list.find("uchar int"), 9, "uint int");
-  EXPECT_EQ(ErrorOf(long_list + "0 0 0\n1 1 1\n4 0 1 1\n"), "x.ply: line 12: list count 4 exceeds the values left on the line");
+  EXPECT_EQ(ErrorOf(long_list + "0 0 0\n1 1 1\n4 0 1 1\n"),
+            "x.ply: line 12: list count 4 exceeds the values left on the line");
 }
 
 }  // namespace

@@ -35,7 +35,8 @@ TEST(RefsFile, ErrorsNameTheLine) {
   EXPECT_EQ(ErrorOf("a.jpg 91 2 3\n"), "refs.txt: line 1: latitude outside [-90, 90]");
   EXPECT_EQ(ErrorOf("a.jpg 1 nan 3\n"), "refs.txt: line 1: longitude: 'nan' is not a finite number");
   EXPECT_EQ(ErrorOf("a.jpg 1 2 x\n"), "refs.txt: line 1: altitude: 'x' is not a finite number");
-  EXPECT_EQ(ErrorOf("a.jpg 1 2 3\na.jpg 1 2 3"), "refs.txt: line 2: image 'a.jpg' already has a reference (refs.txt: line 1)");
+  EXPECT_EQ(ErrorOf("a.jpg 1 2 3\na.jpg 1 2 3"),
+            "refs.txt: line 2: image 'a.jpg' already has a reference (refs.txt: line 1)");
 }
 
 }  // namespace

@@ -48,8 +48,7 @@ TEST(HeightFieldSurface, DropsSpikesAndTrimsTrianglesAcrossGaps) {
     EXPECT_NEAR(v.z(), testing::TerrainHeightM(v.x(), v.y()), 1e-12);
   }
   for (const auto& f : mesh.faces) {
-    const Eigen::Vector3d c =
-        (mesh.vertices_m[f[0]] + mesh.vertices_m[f[1]] + mesh.vertices_m[f[2]]) / 3.0;
+    const Eigen::Vector3d c = (mesh.vertices_m[f[0]] + mesh.vertices_m[f[1]] + mesh.vertices_m[f[2]]) / 3.0;
     EXPECT_FALSE(c.x() > 31 && c.y() > 12 && c.y() < 18) << "a triangle spans the notch";
   }
 }

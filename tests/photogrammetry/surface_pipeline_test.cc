@@ -98,7 +98,6 @@ TEST(BuildSurfaceFromPoints, TooFewPointsIsBadInput) {
   EXPECT_THROW(BuildSurfaceFromPoints(cloud, SurfacePipelineOptions{}), InputError);
 }
 
-
 TEST(BuildSurfaceFromMesh, RecordsTheHausdorffSamplingAndThePresetsMethod) {
   const TriangleMesh mesh = testing::TerrainGrid(80, 80, 0.5);  // 12,482 faces
   int64_t draft_samples = 0, final_samples = 0;
@@ -116,8 +115,7 @@ TEST(BuildSurfaceFromMesh, RecordsTheHausdorffSamplingAndThePresetsMethod) {
     // Every face sample and every vertex of both meshes.
     EXPECT_EQ((*decimate)["hausdorff_points_measured"].get<int64_t>(),
               2 * samples + static_cast<int64_t>(mesh.num_vertices() + result.mesh.num_vertices()));
-    EXPECT_LE((*decimate)["hausdorff_in_to_out_m"].get<double>(),
-              (*decimate)["hausdorff_m"].get<double>());
+    EXPECT_LE((*decimate)["hausdorff_in_to_out_m"].get<double>(), (*decimate)["hausdorff_m"].get<double>());
     EXPECT_EQ(std::max((*decimate)["hausdorff_in_to_out_m"].get<double>(),
                        (*decimate)["hausdorff_out_to_in_m"].get<double>()),
               (*decimate)["hausdorff_m"].get<double>());

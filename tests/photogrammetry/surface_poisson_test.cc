@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "core/error.h"
 
@@ -17,8 +17,7 @@ PointCloud SphereCloud(int n, double r, const Eigen::Vector3d& c) {
   for (int i = 0; i < n; ++i) {
     const double z = 1.0 - 2.0 * (i + 0.5) / n;
     const double rho = std::sqrt(1.0 - z * z);
-    cloud.positions_m.push_back(c + r * Eigen::Vector3d(rho * std::cos(golden * i),
-                                                        rho * std::sin(golden * i), z));
+    cloud.positions_m.push_back(c + r * Eigen::Vector3d(rho * std::cos(golden * i), rho * std::sin(golden * i), z));
     cloud.colors_rgb.push_back({static_cast<uint8_t>(z > 0 ? 250 : 10), 100, 100});
   }
   for (int axis = 0; axis < 3; ++axis) {

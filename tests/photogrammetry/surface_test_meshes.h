@@ -12,9 +12,7 @@
 namespace cinepath::photogrammetry::testing {
 
 // Smooth rolling terrain height (metres) at (e, n).
-inline double TerrainHeightM(double e, double n) {
-  return 3.0 * std::sin(e * 0.05) * std::cos(n * 0.04) + 0.02 * e;
-}
+inline double TerrainHeightM(double e, double n) { return 3.0 * std::sin(e * 0.05) * std::cos(n * 0.04) + 0.02 * e; }
 
 // A (cols × rows)-vertex grid with spacing_m, heights from TerrainHeightM, two CCW (seen from above)
 // triangles per cell, colours varying with position.
@@ -52,8 +50,8 @@ inline PointCloud TerrainCloud(int cols, int rows, double spacing_m) {
     }
   }
   for (int c = 0; c < 4; ++c) {
-    cloud.camera_centers_m.emplace_back((c % 2 + 0.5) * cols * spacing_m / 2,
-                                        (c / 2 + 0.5) * rows * spacing_m / 2, 50.0);
+    cloud.camera_centers_m.emplace_back((c % 2 + 0.5) * cols * spacing_m / 2, (c / 2 + 0.5) * rows * spacing_m / 2,
+                                        50.0);
   }
   cloud.observers.assign(cloud.size(), {0, 1, 2, 3});
   return cloud;

@@ -64,8 +64,8 @@ inline std::string ColmapPoints3DText(const ColmapModel& m) {
   os << std::setprecision(17);
   os << "# 3D point list with one line of data per point:\n";
   for (const auto& [id, p] : m.points3d) {
-    os << id << " " << p.xyz.x() << " " << p.xyz.y() << " " << p.xyz.z() << " " << int(p.rgb[0]) << " "
-       << int(p.rgb[1]) << " " << int(p.rgb[2]) << " " << p.error_px;
+    os << id << " " << p.xyz.x() << " " << p.xyz.y() << " " << p.xyz.z() << " " << int(p.rgb[0]) << " " << int(p.rgb[1])
+       << " " << int(p.rgb[2]) << " " << p.error_px;
     for (const auto& e : p.track) os << " " << e.image_id << " " << e.point2d_idx;
     os << "\n";
   }
@@ -156,10 +156,10 @@ struct SyntheticOptions {
   int model_id = static_cast<int>(CameraModelId::kSimpleRadial);
   std::vector<double> params = {900, 800, 450, -0.02};  // for a 1600 x 900 camera
   int width_px = 1600, height_px = 900;
-  int rows = 3, cols = 6;            // camera grid (flight lines x photos per line)
-  double spacing_m = 15;             // between photos and lines
-  double flying_height_m = 40;       // above the mean ground
-  double terrain_relief_m = 3;       // amplitude of the ground bumps
+  int rows = 3, cols = 6;       // camera grid (flight lines x photos per line)
+  double spacing_m = 15;        // between photos and lines
+  double flying_height_m = 40;  // above the mean ground
+  double terrain_relief_m = 3;  // amplitude of the ground bumps
   int num_points = 1500;
   double pixel_noise_px = 0.3;
   uint64_t seed = 7;
@@ -168,8 +168,8 @@ struct SyntheticOptions {
 };
 
 struct SyntheticScene {
-  ColmapModel model;                  // in the COLMAP frame
-  ColmapModel model_enu;              // the truth in ENU
+  ColmapModel model;                                  // in the COLMAP frame
+  ColmapModel model_enu;                              // the truth in ENU
   std::vector<Eigen::Vector3d> camera_centers_enu_m;  // by image index (image id = index + 1)
 };
 
@@ -246,7 +246,8 @@ inline SyntheticScene MakeSyntheticScene(const SyntheticOptions& o) {
     }
     if (point.track.size() < 2) {
       // Keep the keypoints but unlink them (COLMAP keeps unmatched keypoints with id -1).
-      for (const auto& e2 : point.track) scene.model_enu.images[e2.image_id].point3d_ids[e2.point2d_idx] = kInvalidPoint3DId;
+      for (const auto& e2 : point.track)
+        scene.model_enu.images[e2.image_id].point3d_ids[e2.point2d_idx] = kInvalidPoint3DId;
       continue;
     }
     scene.model_enu.points3d[point_id] = point;

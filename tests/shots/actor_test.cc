@@ -19,14 +19,15 @@ TEST(Actor, StaticAndKeyframed) {
   EXPECT_EQ(a.TravelHeadingDegAt(5), 270.0);  // still: its stated heading
   const Actor b = ParseActor(f.At(1), nullptr);
   EXPECT_NEAR((b.PositionAt(5) - Eigen::Vector3d(0, 25, 0)).norm(), 0.0, 1e-12);
-  EXPECT_NEAR(b.TravelHeadingDegAt(5), 0.0, 1e-9);    // moving north
-  EXPECT_NEAR(b.TravelHeadingDegAt(-3), 0.0, 1e-9);   // before the first key: the start heading holds
-  EXPECT_NEAR(b.PositionAt(20).y(), 50.0, 1e-12);     // holds after the last key
+  EXPECT_NEAR(b.TravelHeadingDegAt(5), 0.0, 1e-9);   // moving north
+  EXPECT_NEAR(b.TravelHeadingDegAt(-3), 0.0, 1e-9);  // before the first key: the start heading holds
+  EXPECT_NEAR(b.PositionAt(20).y(), 50.0, 1e-12);    // holds after the last key
   EXPECT_DOUBLE_EQ(b.height_m(), 1.8);
 }
 
 TEST(Actor, LatLonNeedsAnOriginAndConverts) {
-  const Json doc = Json::parse(R"({"name": "c", "position": {"lat_deg": 46.8427, "lon_deg": -91.99445, "height_m": 160}})");
+  const Json doc =
+      Json::parse(R"({"name": "c", "position": {"lat_deg": 46.8427, "lon_deg": -91.99445, "height_m": 160}})");
   const JsonField f(doc, "shots.json", "actors[0]");
   EXPECT_THROW(ParseActor(f, nullptr), InputError);
   const EnuFrame frame(Geodetic{46.8426, -91.99445, 150});
@@ -61,7 +62,8 @@ TEST(Actor, AmslHeightsGoThroughEgm96) {
   const Json doc = Json::parse(R"({"name": "e", "position": {"lat_deg": 47.3977, "lon_deg": 8.5456, "amsl_m": 460}})");
   const Actor e = ParseActor(JsonField(doc, "shots.json", "actors[0]"), &frame);
   EXPECT_NEAR(e.PositionAt(0).z(), 460 + 47.34 - 500, 0.05);  // N(47.3977, 8.5456) ~ 47.34 m
-  const Json both = Json::parse(R"({"name": "e", "position": {"lat_deg": 47.3977, "lon_deg": 8.5456, "amsl_m": 1, "height_m": 2}})");
+  const Json both =
+      Json::parse(R"({"name": "e", "position": {"lat_deg": 47.3977, "lon_deg": 8.5456, "amsl_m": 1, "height_m": 2}})");
   EXPECT_THROW(ParseActor(JsonField(both, "shots.json", "actors[0]"), &frame), InputError);
 }
 

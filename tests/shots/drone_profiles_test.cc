@@ -20,14 +20,14 @@ TEST(DroneProfiles, Px4DefaultQuadFigures) {
 TEST(DroneProfiles, DjiClassFiguresFromDjiSources) {
   const DroneLimits d = DjiClassLimits();
   EXPECT_EQ(d.name, "dji_class");
-  EXPECT_EQ(d.max_horizontal_speed_m_s, 15);     // missions.md: DJI mission speeds <= 15 m/s
-  EXPECT_EQ(d.max_climb_rate_m_s, 5);            // MSDK v4 VERTICAL_CONTROL_MAX_VELOCITY
-  EXPECT_EQ(d.max_descent_rate_m_s, 4);          // MSDK v4 VERTICAL_CONTROL_MIN_VELOCITY = -4
-  EXPECT_EQ(d.max_yaw_rate_deg_s, 100);          // MSDK v4 yaw angular velocity limit
-  EXPECT_EQ(d.max_gimbal_pitch_rate_deg_s, 120); // DJIGimbalSpeedRotation [0, 120] deg/s
+  EXPECT_EQ(d.max_horizontal_speed_m_s, 15);      // missions.md: DJI mission speeds <= 15 m/s
+  EXPECT_EQ(d.max_climb_rate_m_s, 5);             // MSDK v4 VERTICAL_CONTROL_MAX_VELOCITY
+  EXPECT_EQ(d.max_descent_rate_m_s, 4);           // MSDK v4 VERTICAL_CONTROL_MIN_VELOCITY = -4
+  EXPECT_EQ(d.max_yaw_rate_deg_s, 100);           // MSDK v4 yaw angular velocity limit
+  EXPECT_EQ(d.max_gimbal_pitch_rate_deg_s, 120);  // DJIGimbalSpeedRotation [0, 120] deg/s
   EXPECT_EQ(d.min_gimbal_pitch_deg, -90);
   EXPECT_EQ(d.max_gimbal_pitch_deg, 0);
-  EXPECT_EQ(d.max_altitude_m, 500);              // MSDK v4 waypoint altitude
+  EXPECT_EQ(d.max_altitude_m, 500);  // MSDK v4 waypoint altitude
 }
 
 TEST(DroneProfiles, LookupByName) {

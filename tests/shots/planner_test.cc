@@ -22,8 +22,8 @@ Json ShotsDoc(const std::string& shots, const std::string& actors = "", double f
       actors.empty() ? R"([{"name": "hero", "height_m": 1.8, "position_enu_m": [5, -3, 2]}])" : actors;
   return Json::parse(R"({"schema": "cinepath.shots/1", "frame_rate_hz": )" + std::to_string(fps) +
                      R"(, "camera": {"filmback": "super35", "min_focal_length_mm": 12, "max_focal_length_mm": 1200)" +
-                     camera_extra + R"(}, "drone": "px4_default_quad", "actors": )" + actor_list +
-                     R"(, "shots": )" + shots + "}");
+                     camera_extra + R"(}, "drone": "px4_default_quad", "actors": )" + actor_list + R"(, "shots": )" +
+                     shots + "}");
 }
 
 Trajectory Plan(const std::string& shots, const std::string& actors = "", double fps = 30) {
@@ -86,7 +86,8 @@ TEST(PlanLookAt, ZeroErrorForEveryAimedShotType) {
       {"name": "e", "type": "DRONIE", "subject": "hero", "duration_s": 6, "distance_m": 5, "distance_end_m": 60, "height_m": 3, "height_end_m": 40, "transition": "cut"},
       {"name": "f", "type": "HELIX", "subject": "hero", "duration_s": 6, "radius_m": 10, "radius_end_m": 20, "height_m": 3, "height_end_m": 30, "turns": 1, "transition": "cut"},
       {"name": "g", "type": "LOCKED-OFF", "subject": "hero", "duration_s": 6, "position_enu_m": [200, -40, 30], "pan": true, "transition": "cut"}
-  ])", car);
+  ])",
+                               car);
   for (const auto& s : plan.samples) {
     const Vector3d aim = plan.subjects[0].positions_enu_m[&s - &plan.samples[0]] + Vector3d(0, 0, 0.75);
     EXPECT_LT(LookAtErrorRad(s, aim), 1e-12) << s.shot << " t=" << s.time_s;
@@ -150,7 +151,8 @@ TEST(PlanExtremes, SubjectStraightBelowTheCamera) {
 
 TEST(PlanExtremes, ZeroLengthShots) {
   // A zero-length plan has one sample; a zero-length shot inside a plan owns no sample.
-  const Trajectory still = Plan(R"([{"type": "ORBIT", "subject": "hero", "duration_s": 0, "radius_m": 10, "height_m": 5, "turns": 1}])");
+  const Trajectory still =
+      Plan(R"([{"type": "ORBIT", "subject": "hero", "duration_s": 0, "radius_m": 10, "height_m": 5, "turns": 1}])");
   ASSERT_EQ(still.samples.size(), 1u);
   EXPECT_NEAR(still.samples[0].time_s, 0.0, 0.0);
   const Trajectory mixed = Plan(R"([
@@ -167,7 +169,8 @@ TEST(PlanExtremes, ZeroLengthShots) {
 TEST(PlanExtremes, HundredThousandSecondOrbit) {
   const Trajectory plan = Plan(
       R"([{"type": "ORBIT", "subject": "hero", "duration_s": 100000, "radius_m": 50, "height_m": 20,
-           "angular_speed_deg_s": 3}])", "", 1.0);
+           "angular_speed_deg_s": 3}])",
+      "", 1.0);
   ASSERT_EQ(plan.samples.size(), 100001u);
   const Vector3d subject(5, -3, 2);
   for (size_t i = 0; i < plan.samples.size(); i += 997) {
@@ -177,9 +180,10 @@ TEST(PlanExtremes, HundredThousandSecondOrbit) {
   }
   EXPECT_EQ(plan.samples.back().time_s, 100000.0);
   // Samples per frame rate x duration beyond the guard: a clean error, not an allocation failure.
-  EXPECT_THROW(Plan(R"([{"type": "ORBIT", "subject": "hero", "duration_s": 1e7, "radius_m": 50, "height_m": 20, "turns": 1}])",
-                    "", 1000.0),
-               InputError);
+  EXPECT_THROW(
+      Plan(R"([{"type": "ORBIT", "subject": "hero", "duration_s": 1e7, "radius_m": 50, "height_m": 20, "turns": 1}])",
+           "", 1000.0),
+      InputError);
 }
 
 TEST(PlanExtremes, Framing1200mmAt2km) {
@@ -188,7 +192,8 @@ TEST(PlanExtremes, Framing1200mmAt2km) {
   const double fraction = ImageHeightFraction(18.67, target_focal, 1.8, 2000.0);
   const Trajectory plan = Plan(
       R"([{"type": "LOCKED-OFF", "subject": "hero", "duration_s": 1, "bearing_deg": 0, "distance_m": 2000, "height_m": 0.9,
-           "lens": {"frame_height_fraction": )" + Json(fraction).dump() + R"(}}])");
+           "lens": {"frame_height_fraction": )" +
+      Json(fraction).dump() + R"(}}])");
   for (const auto& s : plan.samples) {
     EXPECT_NEAR(s.focal_length_mm, target_focal, 1e-3);
     EXPECT_NEAR(s.focus_distance_m, 2000.0, 1e-6);
@@ -198,7 +203,8 @@ TEST(PlanExtremes, Framing1200mmAt2km) {
   // Asking for 20 % more than the lens has is clamped and reported.
   const Trajectory over = Plan(
       R"([{"type": "LOCKED-OFF", "subject": "hero", "duration_s": 1, "bearing_deg": 0, "distance_m": 2000, "height_m": 0.9,
-           "lens": {"frame_height_fraction": )" + Json(fraction * 1.2).dump() + R"(}}])");
+           "lens": {"frame_height_fraction": )" +
+      Json(fraction * 1.2).dump() + R"(}}])");
   EXPECT_NEAR(over.samples[0].focal_length_mm, 1200.0, 1e-9);
   ASSERT_FALSE(over.feasibility.feasible());
   EXPECT_EQ(over.feasibility.violations[0].limit, "focal_length_max");
@@ -215,7 +221,8 @@ TEST(PlanTransitions, ContinuousInPositionAndOrientation) {
   for (size_t i = 1; i < plan.samples.size(); ++i) {
     if (i == 120) continue;
     max_step = std::max(max_step, (plan.samples[i].position_enu_m - plan.samples[i - 1].position_enu_m).norm());
-    max_turn = std::max(max_turn, AngleBetweenRad(plan.samples[i].world_from_camera, plan.samples[i - 1].world_from_camera));
+    max_turn =
+        std::max(max_turn, AngleBetweenRad(plan.samples[i].world_from_camera, plan.samples[i - 1].world_from_camera));
   }
   EXPECT_LE((plan.samples[120].position_enu_m - plan.samples[119].position_enu_m).norm(), max_step * 1.5);
   EXPECT_LE(AngleBetweenRad(plan.samples[120].world_from_camera, plan.samples[119].world_from_camera), max_turn * 1.5);
@@ -248,7 +255,8 @@ TEST(PlanLens, RackFocusInDioptresAndApertureInStops) {
 }
 
 TEST(PlanKeyframes, SquadThroughKeysAndLensInLogSpace) {
-  const Trajectory plan = Plan(R"([{"type": "KEYFRAMES", "interpolation": "cubic_bspline", "orientation": "squad", "keys": [
+  const Trajectory plan =
+      Plan(R"([{"type": "KEYFRAMES", "interpolation": "cubic_bspline", "orientation": "squad", "keys": [
       {"time_s": 0, "position_enu_m": [0, 0, 10], "heading_deg": 0, "pitch_deg": -10, "focal_length_mm": 20},
       {"time_s": 2, "position_enu_m": [10, 5, 12], "heading_deg": 60, "pitch_deg": -30},
       {"time_s": 4, "position_enu_m": [20, 0, 15], "heading_deg": 120, "pitch_deg": -20, "focal_length_mm": 80}]}])");
@@ -279,12 +287,14 @@ TEST(PlanFeasibility, SpeedViolationsAreTimeRanges) {
   // A slow orbit with smootherstep easing breaks nothing.
   const Trajectory slow = Plan(
       R"([{"type": "ORBIT", "subject": "hero", "duration_s": 40, "radius_m": 30, "height_m": 10, "turns": 0.5, "easing": "smootherstep"}])");
-  EXPECT_TRUE(slow.feasibility.feasible()) << slow.feasibility.violations.size() << " "
-                                           << (slow.feasibility.violations.empty() ? "" : slow.feasibility.violations[0].limit);
+  EXPECT_TRUE(slow.feasibility.feasible())
+      << slow.feasibility.violations.size() << " "
+      << (slow.feasibility.violations.empty() ? "" : slow.feasibility.violations[0].limit);
 }
 
 TEST(PlanGeodesy, OriginFillsLatLonHeight) {
-  Json doc = ShotsDoc(R"([{"type": "ORBIT", "subject": "hero", "duration_s": 1, "radius_m": 10, "height_m": 5, "turns": 0.1}])");
+  Json doc = ShotsDoc(
+      R"([{"type": "ORBIT", "subject": "hero", "duration_s": 1, "radius_m": 10, "height_m": 5, "turns": 0.1}])");
   doc["origin"] = Json::parse(R"({"lat_deg": 46.84265, "lon_deg": -91.99445, "height_m": 153.0})");
   const Trajectory plan = PlanShots(ParseShotList(doc, "shots.json"));
   ASSERT_TRUE(plan.origin.has_value());

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "shots/drone_profiles.h"
 #include "core/plan_file.h"
+#include "shots/drone_profiles.h"
 #include "shots/planner.h"
 
 #include <cmath>
@@ -44,46 +44,75 @@ TEST(ShotList, ParsesTheBaseDocumentWithDefaults) {
 }
 
 TEST(ShotList, BadSpecsNameTheJsonPath) {
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 0, "height_m": 5, "turns": 1}]})"),
-            "shots.json: shots[0].radius_m: must be > 0");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "raduis_m": 3, "height_m": 5, "turns": 1}]})"),
-            "shots.json: shots[0].raduis_m: unknown key for a ORBIT shot");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "SPIRAL", "duration_s": 5}]})").rfind("shots.json: shots[0].type: unknown shot type \"SPIRAL\" (CHASE, ORBIT", 0), 0u);
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "villain", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1}]})"),
-            "shots.json: shots[0].subject: no actor named \"villain\"");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": -1, "radius_m": 3, "height_m": 5, "turns": 1}]})"),
-            "shots.json: shots[0].duration_s: must be >= 0");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5}]})"),
-            "shots.json: shots[0]: give exactly one of \"turns\" or \"angular_speed_deg_s\"");
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 0, "height_m": 5, "turns": 1}]})"),
+      "shots.json: shots[0].radius_m: must be > 0");
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "raduis_m": 3, "height_m": 5, "turns": 1}]})"),
+      "shots.json: shots[0].raduis_m: unknown key for a ORBIT shot");
+  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "SPIRAL", "duration_s": 5}]})")
+                .rfind("shots.json: shots[0].type: unknown shot type \"SPIRAL\" (CHASE, ORBIT", 0),
+            0u);
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "ORBIT", "subject": "villain", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1}]})"),
+      "shots.json: shots[0].subject: no actor named \"villain\"");
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": -1, "radius_m": 3, "height_m": 5, "turns": 1}]})"),
+      "shots.json: shots[0].duration_s: must be >= 0");
+  EXPECT_EQ(
+      ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5}]})"),
+      "shots.json: shots[0]: give exactly one of \"turns\" or \"angular_speed_deg_s\"");
   EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1}]})"),
             "shots.json: shots[0]: a ORBIT shot needs a \"subject\"");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1, "easing": "bouncy"}]})").rfind("shots.json: shots[0].easing: unknown easing \"bouncy\" (linear", 0), 0u);
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1, "easing": "bouncy"}]})")
+          .rfind("shots.json: shots[0].easing: unknown easing \"bouncy\" (linear", 0),
+      0u);
   EXPECT_EQ(ErrorFor(R"({"schema": "cinepath.shots/2"})"),
             "shots.json: schema: unsupported shot-list version \"cinepath.shots/2\" (expected \"cinepath.shots/1\")");
-  EXPECT_EQ(ErrorFor(R"({"camera": {"filmback": "imax"}})").rfind("shots.json: camera.filmback: unknown filmback \"imax\" (", 0), 0u);
+  EXPECT_EQ(ErrorFor(R"({"camera": {"filmback": "imax"}})")
+                .rfind("shots.json: camera.filmback: unknown filmback \"imax\" (", 0),
+            0u);
   EXPECT_EQ(ErrorFor(R"({"drone": "mavic9"})"),
             "shots.json: drone: unknown drone profile \"mavic9\" (px4_default_quad, dji_class)");
-  EXPECT_EQ(ErrorFor(R"({"actors": [{"name": "hero", "position": {"lat_deg": 1, "lon_deg": 2, "height_m": 3}}]})"),
-            "shots.json: actors[0].position: a lat/lon position needs a WGS84 origin (shots.json \"origin\" or --scene)");
-  EXPECT_EQ(ErrorFor(R"({"origin": {"lat_deg": 91, "lon_deg": 0, "height_m": 0}})"), "shots.json: origin.lat_deg: must be in [-90, 90]");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "DOLLY-ZOOM", "subject": "hero", "duration_s": 5, "distance_m": 3, "distance_end_m": 9}]})"),
-            "shots.json: shots[0]: a DOLLY-ZOOM shot needs \"lens\" with frame_height_fraction or focal_length_mm");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1,
+  EXPECT_EQ(
+      ErrorFor(R"({"actors": [{"name": "hero", "position": {"lat_deg": 1, "lon_deg": 2, "height_m": 3}}]})"),
+      "shots.json: actors[0].position: a lat/lon position needs a WGS84 origin (shots.json \"origin\" or --scene)");
+  EXPECT_EQ(ErrorFor(R"({"origin": {"lat_deg": 91, "lon_deg": 0, "height_m": 0}})"),
+            "shots.json: origin.lat_deg: must be in [-90, 90]");
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "DOLLY-ZOOM", "subject": "hero", "duration_s": 5, "distance_m": 3, "distance_end_m": 9}]})"),
+      "shots.json: shots[0]: a DOLLY-ZOOM shot needs \"lens\" with frame_height_fraction or focal_length_mm");
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1,
                          "lens": {"f_number": 1.2}}]})"),
-            "shots.json: shots[0].lens.f_number: must be in [2.8, 16] (the camera's range)");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "KEYFRAMES", "keys": [{"time_s": 0, "position_enu_m": [0, 0, 1]}]}]})"),
-            "shots.json: shots[0].keys[0]: needs an orientation (look_at or heading/pitch/roll): the shot has no subject");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "KEYFRAMES", "subject": "hero", "keys": [{"time_s": 2, "position_enu_m": [0, 0, 1]},
+      "shots.json: shots[0].lens.f_number: must be in [2.8, 16] (the camera's range)");
+  EXPECT_EQ(
+      ErrorFor(R"({"shots": [{"type": "KEYFRAMES", "keys": [{"time_s": 0, "position_enu_m": [0, 0, 1]}]}]})"),
+      "shots.json: shots[0].keys[0]: needs an orientation (look_at or heading/pitch/roll): the shot has no subject");
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "KEYFRAMES", "subject": "hero", "keys": [{"time_s": 2, "position_enu_m": [0, 0, 1]},
                          {"time_s": 1, "position_enu_m": [0, 0, 1]}]}]})"),
-            "shots.json: shots[0].keys[1].time_s: key times must increase (by 1 ms or more)");
-  EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "DRONIE", "subject": "hero", "duration_s": 5, "distance_m": 30, "distance_end_m": 10,
+      "shots.json: shots[0].keys[1].time_s: key times must increase (by 1 ms or more)");
+  EXPECT_EQ(
+      ErrorFor(
+          R"({"shots": [{"type": "DRONIE", "subject": "hero", "duration_s": 5, "distance_m": 30, "distance_end_m": 10,
                          "height_m": 2, "height_end_m": 20}]})"),
-            "shots.json: shots[0].distance_end_m: a DRONIE flies away: must be > distance_m");
+      "shots.json: shots[0].distance_end_m: a DRONIE flies away: must be > distance_m");
 }
 
 TEST(ShotList, OriginFromTheSceneAndLatLonActors) {
   Json doc = Json::parse(kBase);
-  doc["actors"][0] = Json::parse(R"({"name": "hero", "position": {"lat_deg": 46.8427, "lon_deg": -91.9944, "height_m": 160}})");
+  doc["actors"][0] =
+      Json::parse(R"({"name": "hero", "position": {"lat_deg": 46.8427, "lon_deg": -91.9944, "height_m": 160}})");
   const Geodetic origin{46.8426, -91.9945, 150};
   const ShotList list = ParseShotList(doc, "shots.json", origin);
   ASSERT_TRUE(list.origin.has_value());
@@ -137,42 +166,42 @@ void Visit(Json& node, const std::function<void(Json&)>& f) {
 TEST(ShotList, HostileNumbersAreCleanErrors) {
   for (const char* example : {"orbit_shots.json", "flyby_chase_track_shots.json", "keyframes_shots.json",
                               "crane_dronie_shots.json", "topdown_lockedoff_shots.json", "dolly_zoom_shots.json"}) {
-  SCOPED_TRACE(example);
-  const Json original = ParseJsonFile(std::string(CINEPATH_SOURCE_DIR) + "/examples/" + example);
-  size_t numbers = 0;
-  {
-    Json copy = original;
-    Visit(copy, [&](Json& n) { numbers += n.is_number() ? 1 : 0; });
-  }
-  ASSERT_GT(numbers, 20u);
-  PlanOptions options;
-  options.max_samples = 200000;
-  size_t planned = 0, refused = 0;
-  for (const double hostile : {0.0, -1.0, 1e308, -1e308, 1e-300, 1e7}) {
-    for (size_t target = 0; target < numbers; ++target) {
-      Json doc = original;
-      size_t i = 0;
-      Visit(doc, [&](Json& n) {
-        if (n.is_number() && i++ == target) n = hostile;
-      });
-      try {
-        const Trajectory plan = PlanShots(ParseShotList(doc, "shots.json"), options);
-        for (const auto& s : plan.samples) {
-          ASSERT_TRUE(s.position_enu_m.allFinite() && s.world_from_camera.coeffs().allFinite() &&
-                      std::isfinite(s.focal_length_mm) && std::isfinite(s.drone_heading_deg))
-              << "number #" << target << " = " << hostile;
+    SCOPED_TRACE(example);
+    const Json original = ParseJsonFile(std::string(CINEPATH_SOURCE_DIR) + "/examples/" + example);
+    size_t numbers = 0;
+    {
+      Json copy = original;
+      Visit(copy, [&](Json& n) { numbers += n.is_number() ? 1 : 0; });
+    }
+    ASSERT_GT(numbers, 20u);
+    PlanOptions options;
+    options.max_samples = 200000;
+    size_t planned = 0, refused = 0;
+    for (const double hostile : {0.0, -1.0, 1e308, -1e308, 1e-300, 1e7}) {
+      for (size_t target = 0; target < numbers; ++target) {
+        Json doc = original;
+        size_t i = 0;
+        Visit(doc, [&](Json& n) {
+          if (n.is_number() && i++ == target) n = hostile;
+        });
+        try {
+          const Trajectory plan = PlanShots(ParseShotList(doc, "shots.json"), options);
+          for (const auto& s : plan.samples) {
+            ASSERT_TRUE(s.position_enu_m.allFinite() && s.world_from_camera.coeffs().allFinite() &&
+                        std::isfinite(s.focal_length_mm) && std::isfinite(s.drone_heading_deg))
+                << "number #" << target << " = " << hostile;
+          }
+          EXPECT_FALSE(PlanToText(plan).empty());  // no NaN reaches the writer (InternalError)
+          ++planned;
+        } catch (const InputError&) {
+          ++refused;
+        } catch (const std::exception& e) {
+          ADD_FAILURE() << "number #" << target << " = " << hostile << ": " << e.what();
         }
-        EXPECT_FALSE(PlanToText(plan).empty());  // no NaN reaches the writer (InternalError)
-        ++planned;
-      } catch (const InputError&) {
-        ++refused;
-      } catch (const std::exception& e) {
-        ADD_FAILURE() << "number #" << target << " = " << hostile << ": " << e.what();
       }
     }
-  }
-  EXPECT_GT(planned, 0u);
-  EXPECT_GT(refused, 0u);
+    EXPECT_GT(planned, 0u);
+    EXPECT_GT(refused, 0u);
   }
 }
 

@@ -7,10 +7,10 @@
 #include <fstream>
 #include <string>
 
+#include "../../photogrammetry/surface_test_meshes.h"
 #include "core/json.h"
 #include "photogrammetry/gltf_writer.h"
 #include "photogrammetry/surface_pipeline.h"
-#include "../../photogrammetry/surface_test_meshes.h"
 
 namespace pg = cinepath::photogrammetry;
 
@@ -31,8 +31,7 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = argv[1];
   std::filesystem::create_directories(dir);
   cinepath::Json manifest = cinepath::Json::array();
-  auto add = [&](const std::string& name, const std::string& bytes, const pg::TriangleMesh& mesh,
-                 bool draco) {
+  auto add = [&](const std::string& name, const std::string& bytes, const pg::TriangleMesh& mesh, bool draco) {
     Write(dir / name, bytes);
     manifest.push_back({{"file", name},
                         {"vertices", mesh.num_vertices()},
