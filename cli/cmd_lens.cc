@@ -38,6 +38,9 @@ class LensCommand : public Command {
     auto* sensor_mm = app.add_option("--sensor-mm", sensor_mm_text_, "Sensor size WxH in mm, e.g. 36x24");
     sensor->excludes(sensor_mm);
     app.add_option("--width-px", width_px_, "Image width in pixels (default 3840)");
+    app.add_option("--height-px", height_px_,
+                   "Image height in pixels (default 2160); the image spans the sensor width and "
+                   "width x H/W of its height (sensor fit, docs/optics.md)");
     app.add_option("--coc-mm", coc_mm_,
                    "Acceptable blur on the sensor, mm (default: 0.03 mm scaled by the sensor "
                    "diagonal relative to full frame)");
@@ -64,6 +67,8 @@ class LensCommand : public Command {
       filmback = {"custom", "custom", w, h};
     }
     if (width_px_ <= 0) throw InputError("--width-px: must be > 0, got " + std::to_string(width_px_));
+    if (height_px_ <= 0) throw InputError("--height-px: must be > 0, got " + std::to_string(height_px_));
+    const ImageExtentMm image = ImageExtentOnSensorMm(filmback.width_mm, width_px_, height_px_);
     const bool coc_given = coc_mm_ >= 0;
     const double coc_mm = coc_given ? coc_mm_ : DefaultCocMm(filmback.width_mm, filmback.height_mm);
     if (coc_given && !(coc_mm > 0 && std::isfinite(coc_mm))) {
@@ -79,8 +84,8 @@ class LensCommand : public Command {
     }
 
     const DepthOfField dof = DepthOfFieldLimits(focal_length_mm_, f_number_, focus_m, coc_mm);
-    const double hfov_deg = FieldOfViewRad(filmback.width_mm, focal_length_mm_) * 180.0 / M_PI;
-    const double vfov_deg = FieldOfViewRad(filmback.height_mm, focal_length_mm_) * 180.0 / M_PI;
+    const double hfov_deg = FieldOfViewRad(image.width_mm, focal_length_mm_) * 180.0 / M_PI;
+    const double vfov_deg = FieldOfViewRad(image.height_mm, focal_length_mm_) * 180.0 / M_PI;
     struct Blur {
       double distance_m, coc_mm, coc_px;
     };
@@ -104,7 +109,9 @@ class LensCommand : public Command {
       j["sensor"] = {{"name", filmback.name},
                      {"width_mm", num(filmback.width_mm, 6)},
                      {"height_mm", num(filmback.height_mm, 6)},
-                     {"width_px", width_px_}};
+                     {"width_px", width_px_},
+                     {"height_px", height_px_},
+                     {"image_height_mm", num(image.height_mm, 6)}};
       j["coc_limit_mm"] = num(coc_mm, 6);
       j["hyperfocal_m"] = num(dof.hyperfocal_m, 6);
       j["near_m"] = num(dof.near_m, 6);
@@ -121,7 +128,9 @@ class LensCommand : public Command {
       report += "lens        " + Fmt("%g mm", focal_length_mm_) + " at f/" + Fmt("%g", f_number_) + ", focused at " +
                 (std::isinf(focus_m) ? std::string("infinity") : Fmt("%g m", focus_m)) + "\n";
       report += "sensor      " + filmback.label + " " + Fmt("%g", filmback.width_mm) + " x " +
-                Fmt("%g mm", filmback.height_mm) + ", " + std::to_string(width_px_) + " px wide\n";
+                Fmt("%g mm", filmback.height_mm) + ", image " + std::to_string(width_px_) + " x " +
+                std::to_string(height_px_) + " px on " + Fmt("%g", image.width_mm) + " x " +
+                Fmt("%.2f mm", image.height_mm) + "\n";
       report += "blur limit  " + Fmt("%.4f mm", coc_mm) + " (" +
                 Fmt("%.2f px", MmToPixels(coc_mm, filmback.width_mm, width_px_)) + ")" +
                 (coc_given ? "" : ", from the sensor diagonal") + "\n";
@@ -154,6 +163,7 @@ class LensCommand : public Command {
   std::string sensor_name_;
   std::string sensor_mm_text_;
   int width_px_ = 3840;
+  int height_px_ = 2160;
   double coc_mm_ = -1;
   std::vector<std::string> at_text_;
   bool json_ = false;

@@ -126,6 +126,13 @@ DepthOfField DepthOfFieldLimits(double focal_length_mm, double f_number, double 
   return dof;
 }
 
+ImageExtentMm ImageExtentOnSensorMm(double sensor_width_mm, int width_px, int height_px) {
+  if (!(sensor_width_mm > 0) || !std::isfinite(sensor_width_mm) || width_px <= 0 || height_px <= 0) {
+    throw InputError("sensor fit: the sensor width and the image size must be > 0");
+  }
+  return {sensor_width_mm, sensor_width_mm * static_cast<double>(height_px) / static_cast<double>(width_px)};
+}
+
 double FieldOfViewRad(double sensor_extent_mm, double focal_length_mm) {
   ValidateFocalLengthMm(focal_length_mm);
   if (!std::isfinite(sensor_extent_mm) || !(sensor_extent_mm > 0)) {

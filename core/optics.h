@@ -67,6 +67,18 @@ double FieldOfViewRad(double sensor_extent_mm, double focal_length_mm);
 // Inverse: the focal length giving that angle of view across the extent.
 double FocalLengthForFieldOfViewMm(double sensor_extent_mm, double field_of_view_rad);
 
+// Sensor fit: the one rule every stage uses (plan's framing and subjects_in_frame, lens, render,
+// view). The image spans the full sensor width; its height covers width_mm * height_px / width_px of
+// the sensor, centred. This is Blender Cycles' HORIZONTAL sensor fit, and Unreal's CineCamera also
+// takes the horizontal angle of view from the filmback width (docs/optics.md, "Sensor fit"). A 4:3
+// Super 35 filmback (24.89 x 18.67 mm) with a 3840 x 2160 image uses 24.89 x 14.00 mm.
+struct ImageExtentMm {
+  double width_mm = 0;
+  double height_mm = 0;
+};
+// InputError when the sensor width or a pixel count is not positive.
+ImageExtentMm ImageExtentOnSensorMm(double sensor_width_mm, int width_px, int height_px);
+
 // Lateral magnification of an object at distance d: m = f / (d - f) (image size / object size).
 double MagnificationAt(double focal_length_mm, double subject_distance_m);
 

@@ -16,6 +16,7 @@
 #include <Eigen/Geometry>
 
 #include "core/geodesy.h"
+#include "core/optics.h"
 
 namespace cinepath {
 
@@ -35,6 +36,10 @@ struct CameraSpec {
   double max_focal_rate_mm_s = 20;       // zoom speed
   double max_focus_rate_m_s = 15;        // follow-focus speed
   double max_aperture_rate_stops_s = 3;  // iris speed
+
+  // The part of the sensor the image covers (core/optics.h, sensor fit): the full width, and
+  // width * height_px / width_px of the height. Framing and angles of view use this, not the filmback.
+  ImageExtentMm image_extent_mm() const { return ImageExtentOnSensorMm(sensor_width_mm, width_px, height_px); }
 };
 
 // The flight limits a plan is checked against (profiles in shots/drone_profiles.h). Altitudes are

@@ -34,18 +34,18 @@ double InterpolateShutterS(double t0_s, double t1_s, double w) { return Interpol
 
 double StopsBetween(double n0, double n1) { return 2.0 * std::log2(n1 / n0); }
 
-double FramingFocalLengthMm(double sensor_height_mm, double subject_height_m, double distance_m,
+double FramingFocalLengthMm(double image_height_mm, double subject_height_m, double distance_m,
                             double height_fraction) {
-  if (!(subject_height_m > 0) || !(distance_m > 0) || !(height_fraction > 0) || !(sensor_height_mm > 0)) {
-    throw InputError("framing: subject height, distance, frame fraction and sensor height must be > 0");
+  if (!(subject_height_m > 0) || !(distance_m > 0) || !(height_fraction > 0) || !(image_height_mm > 0)) {
+    throw InputError("framing: subject height, distance, frame fraction and image height must be > 0");
   }
   const double vfov = 2.0 * std::atan(subject_height_m / (2.0 * distance_m * height_fraction));
-  return FocalLengthForFieldOfViewMm(sensor_height_mm, vfov);
+  return FocalLengthForFieldOfViewMm(image_height_mm, vfov);
 }
 
-double ImageHeightFraction(double sensor_height_mm, double focal_length_mm, double subject_height_m,
+double ImageHeightFraction(double image_height_mm, double focal_length_mm, double subject_height_m,
                            double distance_m) {
-  const double vfov = FieldOfViewRad(sensor_height_mm, focal_length_mm);
+  const double vfov = FieldOfViewRad(image_height_mm, focal_length_mm);
   return subject_height_m / (2.0 * distance_m * std::tan(vfov / 2.0));
 }
 

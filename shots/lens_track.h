@@ -6,7 +6,9 @@
 //   shutter       interpolated in log space (stops of exposure time)
 // Framing uses the vertical angle of view from core/optics.h (pinhole, focus at infinity, no
 // breathing): a subject of height H at distance d fills the fraction k = H / (2 d tan(vfov / 2)) of
-// the frame height, so f = FocalLengthForFieldOfViewMm(sensor_height, 2 atan(H / (2 d k))).
+// the frame height, so f = FocalLengthForFieldOfViewMm(image_height, 2 atan(H / (2 d k))). The image
+// height is the part of the sensor the image covers (CameraSpec::image_extent_mm, the sensor-fit rule),
+// not the filmback's height.
 #pragma once
 
 #include <string>
@@ -24,10 +26,10 @@ double StopsBetween(double n0, double n1);
 
 // The focal length that makes a subject of `subject_height_m` at `distance_m` fill
 // `height_fraction` of the frame height (0 < fraction). InputError for non-positive input.
-double FramingFocalLengthMm(double sensor_height_mm, double subject_height_m, double distance_m,
+double FramingFocalLengthMm(double image_height_mm, double subject_height_m, double distance_m,
                             double height_fraction);
 // The fraction of the frame height the subject fills with that focal length.
-double ImageHeightFraction(double sensor_height_mm, double focal_length_mm, double subject_height_m, double distance_m);
+double ImageHeightFraction(double image_height_mm, double focal_length_mm, double subject_height_m, double distance_m);
 
 // Keyed scalar track (times in seconds, increasing). Values hold outside the key range.
 enum class LensQuantity { kFocalLength, kFocusDistance, kFNumber, kShutter };

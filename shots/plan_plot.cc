@@ -163,8 +163,9 @@ std::string PlanToSvg(const Trajectory& plan) {
   for (size_t i = 0; i < S.size(); i += stride) {
     const auto& s = S[i];
     const std::string colour = kPalette[shot_of[i] % 10];
-    const double hh = std::tan(FieldOfViewRad(plan.camera.sensor_width_mm, s.focal_length_mm) / 2);
-    const double vh = std::tan(FieldOfViewRad(plan.camera.sensor_height_mm, s.focal_length_mm) / 2);
+    const ImageExtentMm image = plan.camera.image_extent_mm();
+    const double hh = std::tan(FieldOfViewRad(image.width_mm, s.focal_length_mm) / 2);
+    const double vh = std::tan(FieldOfViewRad(image.height_mm, s.focal_length_mm) / 2);
     const Eigen::Vector3d c = s.position_enu_m;
     auto corner = [&](double x, double y) {
       return Eigen::Vector3d(c + frustum_len * (s.world_from_camera * Eigen::Vector3d(x, y, 1.0)));

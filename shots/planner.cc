@@ -197,14 +197,14 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
       // Keep the image size the start focal length gives at the start distance.
       const ShotPose start = EvaluateShotPose(shot, list_, st.start_s, 0.0);
       const double d0 = (*start.aim_point_enu_m - start.position_enu_m).norm();
-      fraction = ImageHeightFraction(cam.sensor_height_mm, *lens.focal_length_mm, actor->height_m(), d0);
+      fraction = ImageHeightFraction(cam.image_extent_mm().height_mm, *lens.focal_length_mm, actor->height_m(), d0);
     }
-    focal = FramingFocalLengthMm(cam.sensor_height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
+    focal = FramingFocalLengthMm(cam.image_extent_mm().height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
   } else if (lens.frame_height_fraction && actor) {
     const double k0 = *lens.frame_height_fraction;
     const double k1 = lens.frame_height_fraction_end.value_or(k0);
     const double fraction = std::exp((1 - pose.eased) * std::log(k0) + pose.eased * std::log(k1));
-    focal = FramingFocalLengthMm(cam.sensor_height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
+    focal = FramingFocalLengthMm(cam.image_extent_mm().height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
   } else if (!st.free.focal.empty()) {
     focal = InterpolateLensKeys(st.free.focal, lens_time, LensQuantity::kFocalLength);
   } else if (lens.focal_length_mm) {
@@ -230,8 +230,8 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
     if (sp.x() == 0.5 && sp.y() == 0.5) {
       q = LookAt(to_subject, fallback_heading_deg);
     } else {
-      const Eigen::Vector3d ray((sp.x() - 0.5) * cam.sensor_width_mm, (sp.y() - 0.5) * cam.sensor_height_mm,
-                                s.focal_length_mm);
+      const ImageExtentMm image = cam.image_extent_mm();
+      const Eigen::Vector3d ray((sp.x() - 0.5) * image.width_mm, (sp.y() - 0.5) * image.height_mm, s.focal_length_mm);
       q = AimWithScreenOffset(to_subject, ray, fallback_heading_deg);
     }
     if (pose.tilt_start_deg) {
@@ -296,8 +296,9 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
 
   // Subjects in frame: the aim point projects inside the image.
   const Eigen::Quaterniond camera_from_world = q.conjugate();
-  const double half_w = cam.sensor_width_mm / (2.0 * s.focal_length_mm);
-  const double half_h = cam.sensor_height_mm / (2.0 * s.focal_length_mm);
+  const ImageExtentMm image = cam.image_extent_mm();
+  const double half_w = image.width_mm / (2.0 * s.focal_length_mm);
+  const double half_h = image.height_mm / (2.0 * s.focal_length_mm);
   for (const auto& a : list_.actors) {
     const Eigen::Vector3d c = camera_from_world * (a.AimPointAt(t) - position);
     if (c.z() > 1e-9 && std::fabs(c.x() / c.z()) <= half_w && std::fabs(c.y() / c.z()) <= half_h) {

@@ -134,5 +134,17 @@ TEST(Optics, FocalLengthForFieldOfViewInvertsFieldOfView) {
   EXPECT_NEAR(MmToPixels(0.03, 36, 3840), 3.2, 1e-12);
 }
 
+TEST(Optics, SensorFitSpansTheWidthAndScalesTheHeightByTheImageAspect) {
+  // 16:9 on the 4:3 Super 35 filmback: 24.89 x 14.000625 mm (Cycles' HORIZONTAL fit).
+  const ImageExtentMm e = ImageExtentOnSensorMm(24.89, 3840, 2160);
+  EXPECT_DOUBLE_EQ(e.width_mm, 24.89);
+  EXPECT_NEAR(e.height_mm, 14.000625, 1e-12);
+  // A 4:3 image on the same filmback uses its full height.
+  EXPECT_NEAR(ImageExtentOnSensorMm(24.89, 4000, 3000).height_mm, 18.6675, 1e-12);
+  EXPECT_THROW(ImageExtentOnSensorMm(0, 3840, 2160), InputError);
+  EXPECT_THROW(ImageExtentOnSensorMm(24.89, 0, 2160), InputError);
+  EXPECT_THROW(ImageExtentOnSensorMm(24.89, 3840, -1), InputError);
+}
+
 }  // namespace
 }  // namespace cinepath

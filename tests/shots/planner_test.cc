@@ -99,7 +99,8 @@ TEST(PlanLookAt, ScreenPositionPutsTheSubjectOnTheThird) {
   const Trajectory plan = Plan(
       R"([{"type": "ORBIT", "subject": "hero", "duration_s": 4, "radius_m": 20, "height_m": 8, "turns": 0.25,
            "lens": {"focal_length_mm": 35, "screen_position": "upper_left_third"}}])");
-  const double w = 24.89, h = 18.67;
+  // The 16:9 image covers 24.89 x 14.0006 mm of the 4:3 Super 35 filmback (sensor fit, core/optics.h).
+  const double w = 24.89, h = 24.89 * 2160.0 / 3840.0;
   for (const auto& s : plan.samples) {
     const Vector3d c = s.world_from_camera.conjugate() * (Vector3d(5, -3, 2.9) - s.position_enu_m);
     const double x_mm = c.x() / c.z() * s.focal_length_mm, y_mm = c.y() / c.z() * s.focal_length_mm;
@@ -108,12 +109,32 @@ TEST(PlanLookAt, ScreenPositionPutsTheSubjectOnTheThird) {
   }
 }
 
+// The sensor-fit rule: a subject planned at a frame-height fraction fills that fraction of the image's
+// rows, measured by projecting its feet and head to pixels (a 16:9 image on a 4:3 filmback, where
+// framing by the filmback's height would give 0.4 instead of 0.3).
+TEST(PlanFraming, SubjectFillsThePlannedFractionOfTheImageRows) {
+  const Trajectory plan = Plan(
+      R"([{"type": "ORBIT", "subject": "hero", "duration_s": 2, "radius_m": 30, "height_m": 0,
+           "turns": 0.1, "lens": {"frame_height_fraction": 0.3}}])");
+  ASSERT_EQ(plan.camera.width_px, 3840);
+  ASSERT_EQ(plan.camera.height_px, 2160);
+  const Vector3d base(5, -3, 2), top = base + Vector3d(0, 0, 1.8);
+  for (const auto& s : plan.samples) {
+    // Pixels per unit of x/z: fx = f * W / sensor width; square pixels, so fy = fx.
+    const double f_px = s.focal_length_mm * plan.camera.width_px / plan.camera.sensor_width_mm;
+    const auto q = s.world_from_camera.conjugate();
+    const Vector3d a = q * (base - s.position_enu_m), b = q * (top - s.position_enu_m);
+    const double rows = std::fabs(a.y() / a.z() - b.y() / b.z()) * f_px;
+    EXPECT_NEAR(rows / plan.camera.height_px, 0.3, 1e-3) << "t=" << s.time_s;
+  }
+}
+
 TEST(PlanDollyZoom, ImageHeightConstantWithinATenthOfAPercent) {
   const Trajectory plan = Plan(
       R"([{"type": "DOLLY-ZOOM", "subject": "hero", "duration_s": 8, "distance_m": 8, "distance_end_m": 40,
            "bearing_deg": 200, "easing": "smootherstep", "lens": {"focal_length_mm": 24}}])");
   const Vector3d base(5, -3, 2), top = base + Vector3d(0, 0, 1.8);
-  const double sensor_h = 18.67;
+  const double sensor_h = 24.89 * 2160.0 / 3840.0;  // the image's height on the sensor
   double first = 0;
   double f_min = 1e9, f_max = 0;
   for (const auto& s : plan.samples) {
@@ -187,9 +208,9 @@ TEST(PlanExtremes, HundredThousandSecondOrbit) {
 }
 
 TEST(PlanExtremes, Framing1200mmAt2km) {
-  // A 1.8 m subject 2 km away filling 5.44 % of a Super 35 frame height needs ~1200 mm.
+  // A 1.8 m subject 2 km away filling 7.7 % of a 16:9 frame on Super 35 (14.0 mm high) needs ~1200 mm.
   const double target_focal = 1200.0;
-  const double fraction = ImageHeightFraction(18.67, target_focal, 1.8, 2000.0);
+  const double fraction = ImageHeightFraction(24.89 * 2160.0 / 3840.0, target_focal, 1.8, 2000.0);
   const Trajectory plan = Plan(
       R"([{"type": "LOCKED-OFF", "subject": "hero", "duration_s": 1, "bearing_deg": 0, "distance_m": 2000, "height_m": 0.9,
            "lens": {"frame_height_fraction": )" +
