@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/geodetic_json.h"
 #include "core/version.h"
 
 namespace cinepath {
@@ -38,13 +39,6 @@ Json Focus(double focus_m) {
   return Json(R(focus_m, kMetres));
 }
 
-Json GeodeticJson(const Geodetic& g) {
-  Json j = Json::object();
-  j["lat_deg"] = R(g.lat_deg, kLatLon);
-  j["lon_deg"] = R(g.lon_deg, kLatLon);
-  j["height_m"] = R(g.height_m, kMetres);
-  return j;
-}
 
 Json CameraJson(const CameraSpec& c) {
   Json j = Json::object();
@@ -107,14 +101,6 @@ double ReadFocus(const JsonField& parent, const char* key) {
   return parent[key].AsPositive();
 }
 
-Geodetic ReadGeodetic(const JsonField& f) {
-  Geodetic g;
-  g.lat_deg = f["lat_deg"].AsDouble();
-  g.lon_deg = f["lon_deg"].AsDouble();
-  g.height_m = f["height_m"].AsDouble();
-  if (g.lat_deg < -90 || g.lat_deg > 90) f["lat_deg"].Fail("must be in [-90, 90]");
-  return g;
-}
 
 CameraSpec ReadCamera(const JsonField& f) {
   CameraSpec c;
@@ -170,7 +156,7 @@ Json PlanToJson(const Trajectory& plan) {
   Json doc = Json::object();
   doc["schema"] = kPlanSchema;
   doc["generator"] = std::string("cinepath ") + kVersion;
-  doc["origin"] = plan.origin ? GeodeticJson(*plan.origin) : Json(nullptr);
+  doc["origin"] = plan.origin ? GeodeticToJson(*plan.origin) : Json(nullptr);
   doc["frame_rate_hz"] = plan.frame_rate_hz;
   doc["camera"] = CameraJson(plan.camera);
   doc["drone"] = DroneJson(plan.drone);
@@ -268,7 +254,7 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
     root["schema"].Fail("unsupported plan version \"" + schema + "\" (this cinepath reads \"" + kPlanSchema + "\")");
   }
   Trajectory plan;
-  if (auto o = root.Find("origin")) plan.origin = ReadGeodetic(*o);
+  if (auto o = root.Find("origin")) plan.origin = GeodeticFromJson(*o);
   plan.frame_rate_hz = root["frame_rate_hz"].AsPositive();
   plan.camera = ReadCamera(root["camera"]);
   if (auto d = root.Find("drone")) plan.drone = ReadDrone(*d);

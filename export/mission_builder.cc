@@ -10,6 +10,7 @@
 #include "core/file_io.h"
 #include "core/geoid.h"
 #include "core/json.h"
+#include "core/scene_file.h"
 #include "export/dji_turns.h"
 #include "export/roi.h"
 
@@ -51,13 +52,7 @@ void SetGeoPosition(const EnuFrame& frame, const Egm96Geoid& geoid, double home_
 }  // namespace
 
 Geodetic ReadSceneOriginFile(const std::filesystem::path& scene_json) {
-  const std::string source = scene_json.string();
-  const Json doc = ParseJsonText(ReadFileToString(scene_json), source);
-  const JsonField root(doc, source);
-  const JsonField o = root["origin"];
-  Geodetic g{o["lat_deg"].AsDouble(), o["lon_deg"].AsDouble(), o["height_m"].AsDouble()};
-  if (g.lat_deg < -90 || g.lat_deg > 90) o["lat_deg"].Fail("must be in [-90, 90]");
-  return g;
+  return ReadSceneFile(scene_json).RequireOrigin();
 }
 
 HomeSpec ParseHomeSpec(const std::string& text, const std::string& option) {

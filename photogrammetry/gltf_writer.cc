@@ -12,12 +12,8 @@
 #include <draco/compression/encode.h>
 #include <draco/core/encoder_buffer.h>
 #include <draco/mesh/mesh.h>
-// The same configuration as tinygltf_impl.cc (no image I/O): the header's inline constructor
-// refers to the image callbacks only when they are compiled in.
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
+
+#include "scene/tinygltf_config.h"  // the one tinygltf configuration (scene/tinygltf_impl.cc)
 
 #include "core/error.h"
 

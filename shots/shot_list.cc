@@ -7,6 +7,8 @@
 #include "core/angles.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/geodetic_json.h"
+#include "core/scene_file.h"
 #include "core/optics.h"
 #include "core/rotation.h"
 #include "shots/drone_profiles.h"
@@ -16,14 +18,7 @@ namespace {
 
 Geodetic ParseOrigin(const JsonField& f) {
   f.RejectUnknownKeys({"lat_deg", "lon_deg", "height_m"});
-  Geodetic g;
-  g.lat_deg = f["lat_deg"].AsDouble();
-  g.lon_deg = f["lon_deg"].AsDouble();
-  g.height_m = f["height_m"].AsDouble();
-  if (g.lat_deg < -90 || g.lat_deg > 90) f["lat_deg"].Fail("must be in [-90, 90]");
-  if (g.lon_deg < -180 || g.lon_deg > 180) f["lon_deg"].Fail("must be in [-180, 180]");
-  if (g.height_m < -12000 || g.height_m > 100000) f["height_m"].Fail("must be in [-12000, 100000] m");
-  return g;
+  return GeodeticFromJson(f);
 }
 
 // Every number in a shot list must be within +-1e7 (m, s, deg, mm ...): far beyond any real shot,
@@ -598,17 +593,7 @@ ShotList ReadShotListFile(const std::filesystem::path& path, const std::optional
 }
 
 std::optional<Geodetic> ReadSceneOrigin(const std::filesystem::path& scene_json) {
-  const Json doc = ParseJsonText(ReadFileToString(scene_json), scene_json.filename().string());
-  const JsonField root(doc, scene_json.filename().string());
-  if (!root.IsObject()) root.Fail("expected a scene (a JSON object)");
-  auto o = root.Find("origin");
-  if (!o) return std::nullopt;
-  Geodetic g;
-  g.lat_deg = (*o)["lat_deg"].AsDouble();
-  g.lon_deg = (*o)["lon_deg"].AsDouble();
-  g.height_m = (*o)["height_m"].AsDouble();
-  if (g.lat_deg < -90 || g.lat_deg > 90) (*o)["lat_deg"].Fail("must be in [-90, 90]");
-  return g;
+  return ReadSceneFile(scene_json).origin;
 }
 
 }  // namespace cinepath

@@ -13,10 +13,7 @@
 // installs it; a silent skip would hide a broken photos-only path).
 #include <gtest/gtest.h>
 
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
+#include "scene/glb_reader.h"
 
 #include <algorithm>
 #include <chrono>
@@ -57,27 +54,10 @@ std::string ReadText(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
 
-// glTF y (up) of every vertex of the first primitive's POSITION accessor (float32 VEC3).
+// ENU up (glTF y) of every vertex of the mesh.
 std::vector<double> GlbUpValues(const fs::path& glb) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, glb.string())) << err;
   std::vector<double> up;
-  if (model.meshes.empty() || model.meshes[0].primitives.empty()) return up;
-  const auto& prim = model.meshes[0].primitives[0];
-  const auto it = prim.attributes.find("POSITION");
-  if (it == prim.attributes.end()) return up;
-  const tinygltf::Accessor& acc = model.accessors[it->second];
-  if (acc.bufferView < 0) return up;  // Draco-compressed: not used here
-  const tinygltf::BufferView& view = model.bufferViews[acc.bufferView];
-  const unsigned char* base = model.buffers[view.buffer].data.data() + view.byteOffset + acc.byteOffset;
-  const size_t stride = view.byteStride ? view.byteStride : 3 * sizeof(float);
-  for (size_t i = 0; i < acc.count; ++i) {
-    float xyz[3];
-    std::memcpy(xyz, base + i * stride, sizeof(xyz));
-    up.push_back(xyz[1]);
-  }
+  for (const auto& p : cinepath::scene::ReadGlbFile(glb).positions_enu_m) up.push_back(p.z());
   return up;
 }
 
