@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/command.h"
+#include "core/drone_profiles.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
@@ -29,8 +30,8 @@ class ExportCommand : public Command {
         ->required();
     app.add_option("--firmware", firmware_name_, "MAVLink target firmware: px4 (default) or ardupilot");
     app.add_option("--drone", drone_name_,
-                   "Drone profile for the limits: px4-multirotor, ardupilot-copter, dji-m30, dji-mini4pro "
-                   "(default: the firmware's)");
+                   "Drone profile to check the missions against: px4-multirotor, ardupilot-copter, dji-m30, "
+                   "dji-mini4pro (docs/drones.md; default: the plan's drone block)");
     app.add_option("--altitude-ref", altitude_ref_name_, "relative (default, to home), amsl (EGM96) or ellipsoid");
     app.add_option("--home", home_text_, "Home / take-off point LAT,LON,ALT (ALT metres AMSL); default: the origin");
     app.add_option("--max-deviation-m", max_deviation_m_, "Largest distance of the flown legs from the plan (0.5)");
@@ -45,7 +46,7 @@ class ExportCommand : public Command {
     exporter::ExportOptions options;
     for (const auto& name : format_names_) options.formats.push_back(exporter::ParseFormat(name));
     options.firmware = exporter::ParseFirmware(firmware_name_);
-    options.drone_profile = drone_name_;
+    if (!drone_name_.empty()) options.build.drone = RequireDroneProfile(drone_name_, "--drone");
     if (altitude_ref_name_ == "relative") {
       options.altitude_ref = AltitudeRef::kRelative;
     } else if (altitude_ref_name_ == "amsl") {

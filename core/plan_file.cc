@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/drone_profiles.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/geodetic_json.h"
@@ -59,23 +60,6 @@ Json CameraJson(const CameraSpec& c) {
   return j;
 }
 
-Json DroneJson(const DroneLimits& d) {
-  Json j = Json::object();
-  j["name"] = d.name;
-  j["max_horizontal_speed_m_s"] = d.max_horizontal_speed_m_s;
-  j["max_climb_rate_m_s"] = d.max_climb_rate_m_s;
-  j["max_descent_rate_m_s"] = d.max_descent_rate_m_s;
-  j["max_acceleration_m_s2"] = d.max_acceleration_m_s2;
-  j["max_jerk_m_s3"] = d.max_jerk_m_s3;
-  j["max_yaw_rate_deg_s"] = d.max_yaw_rate_deg_s;
-  j["min_gimbal_pitch_deg"] = d.min_gimbal_pitch_deg;
-  j["max_gimbal_pitch_deg"] = d.max_gimbal_pitch_deg;
-  j["max_gimbal_pitch_rate_deg_s"] = d.max_gimbal_pitch_rate_deg_s;
-  j["min_altitude_m"] = d.min_altitude_m;
-  j["max_altitude_m"] = d.max_altitude_m;
-  j["min_subject_distance_m"] = d.min_subject_distance_m;
-  return j;
-}
 
 // ---- reading -------------------------------------------------------------------------------
 
@@ -123,21 +107,14 @@ CameraSpec ReadCamera(const JsonField& f) {
   return c;
 }
 
-DroneLimits ReadDrone(const JsonField& f) {
-  DroneLimits d;
-  d.name = f.StringOr("name", d.name);
-  d.max_horizontal_speed_m_s = f.DoubleOr("max_horizontal_speed_m_s", d.max_horizontal_speed_m_s);
-  d.max_climb_rate_m_s = f.DoubleOr("max_climb_rate_m_s", d.max_climb_rate_m_s);
-  d.max_descent_rate_m_s = f.DoubleOr("max_descent_rate_m_s", d.max_descent_rate_m_s);
-  d.max_acceleration_m_s2 = f.DoubleOr("max_acceleration_m_s2", d.max_acceleration_m_s2);
-  d.max_jerk_m_s3 = f.DoubleOr("max_jerk_m_s3", d.max_jerk_m_s3);
-  d.max_yaw_rate_deg_s = f.DoubleOr("max_yaw_rate_deg_s", d.max_yaw_rate_deg_s);
-  d.min_gimbal_pitch_deg = f.DoubleOr("min_gimbal_pitch_deg", d.min_gimbal_pitch_deg);
-  d.max_gimbal_pitch_deg = f.DoubleOr("max_gimbal_pitch_deg", d.max_gimbal_pitch_deg);
-  d.max_gimbal_pitch_rate_deg_s = f.DoubleOr("max_gimbal_pitch_rate_deg_s", d.max_gimbal_pitch_rate_deg_s);
-  d.min_altitude_m = f.DoubleOr("min_altitude_m", d.min_altitude_m);
-  d.max_altitude_m = f.DoubleOr("max_altitude_m", d.max_altitude_m);
-  d.min_subject_distance_m = f.DoubleOr("min_subject_distance_m", d.min_subject_distance_m);
+// The drone block: the registry's profile of that name (or the default one) with every field the
+// file gives applied, so plans written before a field existed read the same limits.
+DroneProfile ReadDrone(const JsonField& f) {
+  const std::string name = f.StringOr("name", DefaultDroneProfile().name);
+  const std::optional<DroneProfile> found = FindDroneProfile(name);  // an old name reads as its new one
+  DroneProfile d = found.value_or(DroneProfile{});
+  ApplyDroneProfileJson(f, &d);
+  d.name = found ? found->name : name;
   return d;
 }
 
@@ -159,7 +136,7 @@ Json PlanToJson(const Trajectory& plan) {
   doc["origin"] = plan.origin ? GeodeticToJson(*plan.origin) : Json(nullptr);
   doc["frame_rate_hz"] = plan.frame_rate_hz;
   doc["camera"] = CameraJson(plan.camera);
-  doc["drone"] = DroneJson(plan.drone);
+  doc["drone"] = DroneProfileToJson(plan.drone);
 
   Json shots = Json::array();
   for (const auto& s : plan.shots) {

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/drone_profile.h"
 #include "core/geodesy.h"
 #include "core/optics.h"
 
@@ -42,23 +43,6 @@ struct CameraSpec {
   ImageExtentMm image_extent_mm() const { return ImageExtentOnSensorMm(sensor_width_mm, width_px, height_px); }
 };
 
-// The flight limits a plan is checked against (profiles in shots/drone_profiles.h). Altitudes are
-// ENU z (metres above the origin); rates are magnitudes.
-struct DroneLimits {
-  std::string name = "custom";
-  double max_horizontal_speed_m_s = 12;
-  double max_climb_rate_m_s = 3;
-  double max_descent_rate_m_s = 1.5;
-  double max_acceleration_m_s2 = 5;
-  double max_jerk_m_s3 = 4;
-  double max_yaw_rate_deg_s = 45;
-  double min_gimbal_pitch_deg = -90;
-  double max_gimbal_pitch_deg = 30;
-  double max_gimbal_pitch_rate_deg_s = 90;
-  double min_altitude_m = 1;
-  double max_altitude_m = 120;
-  double min_subject_distance_m = 2;  // keep-out radius around every subject
-};
 
 struct TrajectorySample {
   double time_s = 0;
@@ -128,7 +112,7 @@ struct Trajectory {
   std::vector<ShotSpan> shots;
   std::vector<TrajectorySample> samples;  // one per frame, increasing time
   // Added by `cinepath plan` (core/plan_file.h); empty for trajectories built elsewhere.
-  DroneLimits drone;
+  DroneProfile drone;  // the aircraft the plan is checked against (core/drone_profiles.h)
   std::vector<Keyframe> keyframes;
   std::vector<SubjectTrack> subjects;
   FeasibilityReport feasibility;

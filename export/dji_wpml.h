@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/drone_profile.h"
 #include "export/mission.h"
 #include "export/platform.h"
 

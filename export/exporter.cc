@@ -46,8 +46,7 @@ bool ExportResult::has_violations() const {
 
 ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& options) {
   options.Check();
-  const DroneProfile& profile = FindDroneProfile(
-      options.drone_profile.empty() ? std::string(DefaultProfileName(options.firmware)) : options.drone_profile);
+  const DroneProfile& profile = options.build.drone ? *options.build.drone : trajectory.drone;
   MissionBuildOptions build = options.build;
   build.absolute_altitudes = options.altitude_ref != AltitudeRef::kRelative;
 
@@ -123,6 +122,7 @@ ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& op
     result.reports.push_back(std::move(report));
   }
   result.mission = result.missions[result.reports.front().mission];
+  result.drone_name = profile.name;
 
   if (result.has_violations() && !options.force) {
     std::string message = "the mission breaks platform limits (nothing written; --force writes it anyway):";
@@ -147,7 +147,7 @@ Json ReportJson(const ExportResult& result, const ExportOptions& options) {
   const Mission& m = result.mission;
   Json j;
   j["firmware"] = FirmwareName(options.firmware);
-  j["drone"] = options.drone_profile.empty() ? DefaultProfileName(options.firmware) : options.drone_profile;
+  j["drone"] = result.drone_name;
   j["altitude_ref"] = AltitudeRefName(options.altitude_ref);
   j["home"] = Json{{"lat_deg", m.home.lat_deg},
                    {"lon_deg", m.home.lon_deg},

@@ -23,11 +23,10 @@ enum class RoiMode { kAuto, kOff };
 struct ExportOptions {
   std::vector<Format> formats;
   Firmware firmware = Firmware::kPx4;
-  std::string drone_profile;  // empty: the firmware's default profile
   AltitudeRef altitude_ref = AltitudeRef::kRelative;
   bool force = false;  // write even when a limit is broken (still reported)
   RoiMode roi = RoiMode::kAuto;
-  MissionBuildOptions build;  // origin/home/selection
+  MissionBuildOptions build;  // origin/home/drone/selection
   void Check() const;         // InputError: no format, duplicate format, a format that cannot hold altitude_ref
 };
 
@@ -53,6 +52,7 @@ struct ExportResult {
   std::vector<Mission> missions;
   std::vector<ExportFile> files;
   std::vector<FormatReport> reports;
+  std::string drone_name;  // the drone profile the missions were checked against
   bool has_violations() const;
 };
 

@@ -123,10 +123,11 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
   mission.max_focal_length_mm = camera.max_focal_length_mm;
   mission.sensor_diagonal_mm = std::hypot(camera.sensor_width_mm, camera.sensor_height_mm);
   mission.plan_sample_count = static_cast<int>(samples.size());
-  mission.fence_min_up_m = trajectory.drone.min_altitude_m;
-  mission.fence_max_up_m = trajectory.drone.max_altitude_m;
-  mission.plan_max_horizontal_speed_mps = trajectory.drone.max_horizontal_speed_m_s;
-  mission.plan_drone_name = trajectory.drone.name;
+  const DroneProfile& drone = options.drone ? *options.drone : trajectory.drone;
+  mission.fence_min_up_m = drone.min_altitude_m;
+  mission.fence_max_up_m = drone.max_altitude_m;
+  mission.plan_max_horizontal_speed_mps = drone.max_horizontal_speed_m_s;
+  mission.plan_drone_name = drone.name;
 
   // Continuous runs of samples, split where a shot with transition "cut" begins.
   std::vector<std::pair<int, int>> runs;  // [first, last] sample indices

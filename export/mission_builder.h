@@ -30,6 +30,7 @@ struct MissionBuildOptions {
   std::string plan_name = "plan.json";   // for messages
   std::optional<Geodetic> scene_origin;  // from --scene, used when the plan has none
   std::optional<HomeSpec> home;          // default: the origin
+  std::optional<DroneProfile> drone;     // the aircraft checked against; default: the plan's drone block
   bool absolute_altitudes = false;       // some requested output needs AMSL/ellipsoidal heights
   SelectionOptions selection;            // tolerances and roi_tracking (its `rois` are filled here)
   double transit_speed_mps = 5;          // legs across a "cut" between shots (recording off)

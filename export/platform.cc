@@ -20,24 +20,6 @@ constexpr FormatInfo kFormats[] = {
     {Format::kLitchiCsv, "litchi-csv", "mission.litchi.csv"},
 };
 
-std::vector<DroneProfile> MakeProfiles() {
-  std::vector<DroneProfile> p;
-  // PX4 multicopter defaults: MPC_XY_VEL_MAX 12 m/s; NUM_MISSIONS_SUPPORTED 2000 on NuttX.
-  p.push_back({"px4-multirotor", 12, -200, 500, -90, 30, 2000, 67, 0, 52});
-  // ArduCopter: WPNAV_SPEED up to 20 m/s; ~724 items on common STM32 boards (15-byte records).
-  p.push_back({"ardupilot-copter", 20, -200, 500, -90, 30, 724, 67, 0, 52});
-  // DJI Matrice 30 (WPML droneEnumValue 67/0, payload 52); gimbal tilt −120..+45 (UNVERIFIED spec sheet).
-  p.push_back({"dji-m30", 15, -200, 1500, -120, 45, 65535, 67, 0, 52});
-  // DJI Mini 4 Pro (droneEnumValue 68/0 per missions.md 4.1).
-  p.push_back({"dji-mini4pro", 15, -200, 500, -90, 60, 65535, 68, 0, 0});
-  return p;
-}
-
-const std::vector<DroneProfile>& Profiles() {
-  static const std::vector<DroneProfile> profiles = MakeProfiles();
-  return profiles;
-}
-
 }  // namespace
 
 const char* FormatName(Format format) {
@@ -73,25 +55,6 @@ Firmware ParseFirmware(const std::string& name) {
   if (name == "px4") return Firmware::kPx4;
   if (name == "ardupilot") return Firmware::kArduPilot;
   throw InputError("--firmware: unknown firmware '" + name + "' (known: px4, ardupilot)");
-}
-
-const DroneProfile& FindDroneProfile(const std::string& name) {
-  for (const auto& p : Profiles()) {
-    if (p.name == name) return p;
-  }
-  std::string known;
-  for (const auto& p : Profiles()) known += (known.empty() ? "" : ", ") + p.name;
-  throw InputError("--drone: unknown profile '" + name + "' (known: " + known + ")");
-}
-
-std::vector<std::string> DroneProfileNames() {
-  std::vector<std::string> names;
-  for (const auto& p : Profiles()) names.push_back(p.name);
-  return names;
-}
-
-const char* DefaultProfileName(Firmware firmware) {
-  return firmware == Firmware::kPx4 ? "px4-multirotor" : "ardupilot-copter";
 }
 
 FormatLimits LimitsOf(Format format) {

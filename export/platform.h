@@ -18,23 +18,6 @@ bool IsMavlinkFormat(Format format);
 const char* FirmwareName(Firmware firmware);  // "px4" | "ardupilot"
 Firmware ParseFirmware(const std::string& name);
 
-// A drone (and its flight controller / app) as far as a mission cares.
-struct DroneProfile {
-  std::string name;
-  double max_speed_mps = 15;
-  double min_relative_alt_m = -200;
-  double max_relative_alt_m = 500;
-  double min_gimbal_pitch_deg = -90;
-  double max_gimbal_pitch_deg = 30;
-  int max_mission_items = 2000;  // MAVLink items (flight controller storage)
-  int dji_drone_enum = 67;       // WPML droneInfo (M30 by default)
-  int dji_drone_sub_enum = 0;
-  int dji_payload_enum = 52;  // WPML payloadInfo
-};
-const DroneProfile& FindDroneProfile(const std::string& name);  // InputError listing known names
-std::vector<std::string> DroneProfileNames();
-// Default profile for a firmware: "px4-multirotor" or "ardupilot-copter".
-const char* DefaultProfileName(Firmware firmware);
 
 // What a file format itself allows (independent of the drone).
 struct FormatLimits {

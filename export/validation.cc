@@ -59,9 +59,9 @@ std::vector<Violation> ValidateMission(const Mission& mission, Format format, co
   const auto tighter_min = [&](double format_v, double profile_v) {
     return format_v >= profile_v ? std::make_pair(format_v, fname) : std::make_pair(profile_v, drone);
   };
-  const auto [max_speed, max_speed_src] = tighter_max(limits.max_speed_mps, profile.max_speed_mps);
-  const auto [min_alt_v, min_alt_src] = tighter_min(limits.min_relative_alt_m, profile.min_relative_alt_m);
-  const auto [max_alt_v, max_alt_src] = tighter_max(limits.max_relative_alt_m, profile.max_relative_alt_m);
+  const auto [max_speed, max_speed_src] = tighter_max(limits.max_speed_mps, profile.max_horizontal_speed_m_s);
+  const auto [min_alt_v, min_alt_src] = tighter_min(limits.min_relative_alt_m, profile.min_relative_altitude_m);
+  const auto [max_alt_v, max_alt_src] = tighter_max(limits.max_relative_alt_m, profile.max_relative_altitude_m);
   const auto [min_pitch_v, min_pitch_src] = tighter_min(limits.min_gimbal_pitch_deg, profile.min_gimbal_pitch_deg);
   const auto [max_pitch_v, max_pitch_src] = tighter_max(limits.max_gimbal_pitch_deg, profile.max_gimbal_pitch_deg);
   const double min_alt = min_alt_v, max_alt = max_alt_v, min_pitch = min_pitch_v, max_pitch = max_pitch_v;
@@ -91,16 +91,16 @@ std::vector<Violation> ValidateMission(const Mission& mission, Format format, co
     }
     const double up_m = wp.position_enu_m.z();
     if (up_m < mission.fence_min_up_m || up_m > mission.fence_max_up_m) {
-      out.Add(w, "plan geofence altitude",
-              fmt::format("height {:.2f} m above the origin outside the plan's fence [{:g}, {:g}] m", up_m,
+      out.Add(w, "drone altitude band",
+              fmt::format("height {:.2f} m above the origin outside the drone's altitude band [{:g}, {:g}] m", up_m,
                           mission.fence_min_up_m, mission.fence_max_up_m));
     }
     if (is_leg_start && n > 1 && !wp.transit_after) {
       const Eigen::Vector3d leg = wps[w + 1].position_enu_m - wp.position_enu_m;
       const double horizontal_mps = leg.head<2>().norm() / (wps[w + 1].time_s - wp.time_s);
       if (horizontal_mps > mission.plan_max_horizontal_speed_mps) {
-        out.Add(w, "plan drone max horizontal speed",
-                fmt::format("horizontal speed {:.2f} m/s above the plan drone's ({}) limit {:g} m/s", horizontal_mps,
+        out.Add(w, "drone max horizontal speed",
+                fmt::format("horizontal speed {:.2f} m/s above the drone's ({}) limit {:g} m/s", horizontal_mps,
                             mission.plan_drone_name, mission.plan_max_horizontal_speed_mps));
       }
     }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/drone_profile.h"
 #include "export/mission.h"
 #include "export/platform.h"
 

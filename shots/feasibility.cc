@@ -73,7 +73,7 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
   const size_t n = S.size();
   CINEPATH_CHECK(cut_before.size() == n);
   CINEPATH_CHECK(requests.empty() || requests.size() == n);
-  const DroneLimits& d = plan.drone;
+  const DroneProfile& d = plan.drone;
   const CameraSpec& c = plan.camera;
   const double dt = 1.0 / plan.frame_rate_hz;
 

@@ -5,13 +5,14 @@
 #include <limits>
 
 #include "core/angles.h"
+#include "core/drone_profiles.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/geodetic_json.h"
-#include "core/scene_file.h"
+#include "core/number_format.h"
 #include "core/optics.h"
 #include "core/rotation.h"
-#include "shots/drone_profiles.h"
+#include "core/scene_file.h"
 
 namespace cinepath {
 namespace {
@@ -90,40 +91,37 @@ CameraSpec ParseCamera(const JsonField& f) {
   return c;
 }
 
-DroneLimits ParseDrone(const JsonField& f) {
-  auto profile = [&](const JsonField& name_field) {
-    auto d = FindDroneProfile(name_field.AsString());
-    if (!d) name_field.Fail("unknown drone profile \"" + name_field.AsString() + "\" (px4_default_quad, dji_class)");
-    return *d;
-  };
-  if (f.IsString()) return profile(f);
-  f.RejectUnknownKeys({"profile", "max_horizontal_speed_m_s", "max_climb_rate_m_s", "max_descent_rate_m_s",
-                       "max_acceleration_m_s2", "max_jerk_m_s3", "max_yaw_rate_deg_s", "min_gimbal_pitch_deg",
-                       "max_gimbal_pitch_deg", "max_gimbal_pitch_rate_deg_s", "min_altitude_m", "max_altitude_m",
-                       "min_subject_distance_m"});
-  DroneLimits d = profile(f["profile"]);
-  auto pos = [&](const char* key, double& v) {
-    if (f.Has(key)) v = f[key].AsPositive();
-  };
-  auto any = [&](const char* key, double& v) {
-    if (f.Has(key)) v = f[key].AsDouble();
-  };
-  pos("max_horizontal_speed_m_s", d.max_horizontal_speed_m_s);
-  pos("max_climb_rate_m_s", d.max_climb_rate_m_s);
-  pos("max_descent_rate_m_s", d.max_descent_rate_m_s);
-  pos("max_acceleration_m_s2", d.max_acceleration_m_s2);
-  pos("max_jerk_m_s3", d.max_jerk_m_s3);
-  pos("max_yaw_rate_deg_s", d.max_yaw_rate_deg_s);
-  any("min_gimbal_pitch_deg", d.min_gimbal_pitch_deg);
-  any("max_gimbal_pitch_deg", d.max_gimbal_pitch_deg);
-  pos("max_gimbal_pitch_rate_deg_s", d.max_gimbal_pitch_rate_deg_s);
-  any("min_altitude_m", d.min_altitude_m);
-  any("max_altitude_m", d.max_altitude_m);
-  if (f.Has("min_subject_distance_m")) d.min_subject_distance_m = f["min_subject_distance_m"].AsNonNegative();
-  if (d.max_altitude_m <= d.min_altitude_m) f["max_altitude_m"].Fail("must be > min_altitude_m");
-  if (d.max_gimbal_pitch_deg < d.min_gimbal_pitch_deg)
-    f["max_gimbal_pitch_deg"].Fail("must be >= min_gimbal_pitch_deg");
+// "drone": "<profile>" or {"profile": "<profile>", <any DroneProfile field>: value, ...}.
+DroneProfile ParseDrone(const JsonField& f) {
+  if (f.IsString()) return RequireDroneProfile(f.AsString(), f.Where());
+  if (!f.IsObject()) f.Fail("expected a profile name or {\"profile\": ..., overrides}");
+  DroneProfile d = RequireDroneProfile(f["profile"].AsString(), f["profile"].Where());
+  const std::string name = d.name;
+  ApplyDroneProfileJson(f, &d, {"profile"});
+  if (!f.Has("name")) d.name = name;
   return d;
+}
+
+// A drone with a built-in lens (core/drone_profile.h, FixedLens): the camera's ranges must lie within it.
+void CheckCameraAgainstFixedLens(const JsonField& camera_field, const CameraSpec& c, const DroneProfile& drone) {
+  if (!drone.lens) return;
+  const FixedLens& l = *drone.lens;
+  auto outside = [&](const char* key, double v, double lo, double hi, const std::string& what) {
+    if (v < lo - 1e-9 || v > hi + 1e-9) {
+      camera_field[key].Fail("outside the " + drone.name + "'s built-in lens (" + what + ")");
+    }
+  };
+  const std::string focal = FormatShortest(l.min_focal_length_mm) + "-" + FormatShortest(l.max_focal_length_mm) + " mm";
+  const std::string stops = "f/" + FormatShortest(l.min_f_number) + "-" + FormatShortest(l.max_f_number);
+  outside("min_focal_length_mm", c.min_focal_length_mm, l.min_focal_length_mm, l.max_focal_length_mm, focal);
+  outside("max_focal_length_mm", c.max_focal_length_mm, l.min_focal_length_mm, l.max_focal_length_mm, focal);
+  if (camera_field.Has("min_f_number") || camera_field.Has("max_f_number")) {
+    outside("min_f_number", c.min_f_number, l.min_f_number, l.max_f_number, stops);
+    outside("max_f_number", c.max_f_number, l.min_f_number, l.max_f_number, stops);
+  } else {
+    camera_field.Fail("the " + drone.name + " has a built-in " + stops +
+                      " lens: give min_f_number and max_f_number within it");
+  }
 }
 
 int ActorIndex(const ShotList& list, const JsonField& f) {
@@ -563,7 +561,8 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
     if (list.frame_rate_hz > 1000) root["frame_rate_hz"].Fail("must be <= 1000");
   }
   list.camera = ParseCamera(root["camera"]);
-  list.drone = root.Has("drone") ? ParseDrone(root["drone"]) : DroneLimits(Px4DefaultQuadLimits());
+  list.drone = root.Has("drone") ? ParseDrone(root["drone"]) : DefaultDroneProfile();
+  CheckCameraAgainstFixedLens(root["camera"], list.camera, list.drone);
 
   if (auto actors = root.Find("actors")) {
     for (const auto& a : actors->Elements()) {

@@ -101,7 +101,7 @@ struct ShotList {
   std::optional<Geodetic> origin;
   double frame_rate_hz = 30;
   CameraSpec camera;
-  DroneLimits drone;
+  DroneProfile drone;
   std::vector<Actor> actors;
   std::vector<ShotSpec> shots;
 

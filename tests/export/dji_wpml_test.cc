@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/drone_profiles.h"
+
 #include "core/geoid.h"
 #include "export/mission_builder.h"
 #include "sample_trajectories.h"
@@ -23,7 +25,7 @@ std::vector<std::string> All(const std::string& text, const std::string& tag) {
 
 TEST(DjiWpml, LonLatOrderContiguousIndicesUniqueGroups) {
   const Mission mission = BuildMission(testing::OrbitPlan(), MissionBuildOptions{});
-  const WpmlDocuments docs = WriteWpmlDocuments(mission, FindDroneProfile("dji-m30"), AltitudeRef::kRelative);
+  const WpmlDocuments docs = WriteWpmlDocuments(mission, *FindDroneProfile("dji-m30"), AltitudeRef::kRelative);
   for (const std::string* doc : {&docs.template_kml, &docs.waylines_wpml}) {
     const auto coords = All(*doc, "coordinates");
     ASSERT_EQ(coords.size(), mission.waypoints.size());
@@ -48,7 +50,7 @@ TEST(DjiWpml, AbsoluteHeightsUseEgm96InTemplateAndEllipsoidInWaylines) {
   MissionBuildOptions opt;
   opt.absolute_altitudes = true;
   const Mission mission = BuildMission(testing::FlybyPlan(), opt);
-  const WpmlDocuments docs = WriteWpmlDocuments(mission, FindDroneProfile("dji-m30"), AltitudeRef::kAmsl);
+  const WpmlDocuments docs = WriteWpmlDocuments(mission, *FindDroneProfile("dji-m30"), AltitudeRef::kAmsl);
   EXPECT_EQ(All(docs.template_kml, "wpml:heightMode")[0], "EGM96");
   EXPECT_EQ(All(docs.waylines_wpml, "wpml:executeHeightMode")[0], "WGS84");
   const auto height = All(docs.template_kml, "wpml:height");
@@ -65,7 +67,7 @@ TEST(DjiWpml, AbsoluteHeightsUseEgm96InTemplateAndEllipsoidInWaylines) {
 
 TEST(DjiWpml, KmzHoldsBothEntries) {
   const Mission mission = BuildMission(testing::ChasePlan(), MissionBuildOptions{});
-  const WpmlDocuments docs = WriteWpmlDocuments(mission, FindDroneProfile("dji-m30"), AltitudeRef::kRelative);
+  const WpmlDocuments docs = WriteWpmlDocuments(mission, *FindDroneProfile("dji-m30"), AltitudeRef::kRelative);
   const std::string kmz = WriteDjiKmz(docs);
   EXPECT_NE(kmz.find("wpmz/template.kml"), std::string::npos);
   EXPECT_NE(kmz.find("wpmz/waylines.wpml"), std::string::npos);
@@ -78,7 +80,7 @@ TEST(DjiWpml, SlowLegsFlyAtOneMetrePerSecondThenHover) {
   for (int i = 0; i <= 40; ++i) testing::AddSample(t, i / 10.0, Eigen::Vector3d(i * 0.05, 0, 10), 90, -10, 24, 10, 4);
   const Mission mission = BuildMission(t, MissionBuildOptions{});
   ASSERT_EQ(mission.waypoints.size(), 2u);
-  const WpmlDocuments docs = WriteWpmlDocuments(mission, FindDroneProfile("dji-m30"), AltitudeRef::kRelative);
+  const WpmlDocuments docs = WriteWpmlDocuments(mission, *FindDroneProfile("dji-m30"), AltitudeRef::kRelative);
   const auto hover = All(docs.waylines_wpml, "wpml:hoverTime");
   ASSERT_EQ(hover.size(), 1u);
   EXPECT_NEAR(std::stod(hover[0]), 2.0, 0.01);

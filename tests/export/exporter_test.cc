@@ -85,10 +85,6 @@ TEST(Exporter, OptionChecks) {
   litchi_amsl.formats = {Format::kLitchiCsv};
   litchi_amsl.altitude_ref = AltitudeRef::kAmsl;
   EXPECT_THROW(ExportMission(t, litchi_amsl), InputError);
-  ExportOptions bad_drone;
-  bad_drone.formats = {Format::kQgcPlan};
-  bad_drone.drone_profile = "nope";
-  EXPECT_THROW(ExportMission(t, bad_drone), InputError);
   EXPECT_THROW(ParseFormat("kml"), InputError);
 }
 

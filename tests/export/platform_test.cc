@@ -26,8 +26,6 @@ TEST(Platform, LimitsFromTheSpec) {
   EXPECT_EQ(msdk.max_gimbal_pitch_deg, 0);
   EXPECT_EQ(LimitsOf(Format::kLitchiCsv).max_waypoints, 10000);
   EXPECT_EQ(LimitsOf(Format::kDjiWpml).max_speed_mps, 15);
-  EXPECT_EQ(FindDroneProfile(DefaultProfileName(Firmware::kArduPilot)).max_mission_items, 724);
-  EXPECT_THROW(FindDroneProfile("mavic"), InputError);
 }
 
 }  // namespace

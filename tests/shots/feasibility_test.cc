@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "shots/drone_profiles.h"
+#include "core/drone_profiles.h"
 
 namespace cinepath {
 namespace {
@@ -11,7 +11,7 @@ namespace {
 Trajectory Climb(double rate_m_s, size_t n) {
   Trajectory plan;
   plan.frame_rate_hz = 10;
-  plan.drone = Px4DefaultQuadLimits();
+  plan.drone = DefaultDroneProfile();
   plan.camera.min_focal_length_mm = 24;
   plan.camera.max_focal_length_mm = 24;
   for (size_t i = 0; i < n; ++i) {

@@ -4,7 +4,6 @@
 
 #include "core/error.h"
 #include "core/plan_file.h"
-#include "shots/drone_profiles.h"
 #include "shots/planner.h"
 
 #include <cmath>
@@ -35,7 +34,7 @@ std::string ErrorFor(const std::string& patch) {
 TEST(ShotList, ParsesTheBaseDocumentWithDefaults) {
   const ShotList list = ParseShotList(Json::parse(kBase), "shots.json");
   EXPECT_EQ(list.frame_rate_hz, 30);
-  EXPECT_EQ(list.drone.name, "px4_default_quad");
+  EXPECT_EQ(list.drone.name, "px4-multirotor");
   EXPECT_NEAR(list.camera.sensor_width_mm, 24.89, 1e-9);
   ASSERT_EQ(list.shots.size(), 1u);
   EXPECT_EQ(list.shots[0].name, "shot1");
@@ -79,7 +78,7 @@ TEST(ShotList, BadSpecsNameTheJsonPath) {
                 .rfind("shots.json: camera.filmback: unknown filmback \"imax\" (", 0),
             0u);
   EXPECT_EQ(ErrorFor(R"({"drone": "mavic9"})"),
-            "shots.json: drone: unknown drone profile \"mavic9\" (px4_default_quad, dji_class)");
+            "shots.json: drone: unknown drone profile \"mavic9\" (known: px4-multirotor, ardupilot-copter, dji-m30, dji-mini4pro)");
   EXPECT_EQ(
       ErrorFor(R"({"actors": [{"name": "hero", "position": {"lat_deg": 1, "lon_deg": 2, "height_m": 3}}]})"),
       "shots.json: actors[0].position: a lat/lon position needs a WGS84 origin (shots.json \"origin\" or --scene)");
@@ -125,25 +124,15 @@ TEST(ShotList, OriginFromTheSceneAndLatLonActors) {
   EXPECT_THROW(ParseShotList(doc, "shots.json", origin), InputError);
 }
 
-TEST(DroneProfiles, FiguresFromTheSpecs) {
-  const DroneLimits px4 = Px4DefaultQuadLimits();
-  EXPECT_EQ(px4.max_horizontal_speed_m_s, 12);
-  EXPECT_EQ(px4.max_climb_rate_m_s, 3);
-  EXPECT_EQ(px4.max_descent_rate_m_s, 1.5);
-  EXPECT_EQ(px4.max_jerk_m_s3, 4);
-  EXPECT_EQ(px4.max_yaw_rate_deg_s, 45);
-  const DroneLimits dji = DjiClassLimits();
-  EXPECT_EQ(dji.max_horizontal_speed_m_s, 15);
-  EXPECT_EQ(dji.min_gimbal_pitch_deg, -90);
-  EXPECT_EQ(dji.max_gimbal_pitch_deg, 0);
-  EXPECT_FALSE(FindDroneProfile("x").has_value());
+TEST(ShotListDrone, NamedProfileAndOverrides) {
+  EXPECT_EQ(ParseShotList(Json::parse(kBase), "shots.json").drone.name, "px4-multirotor");
   // Overrides on top of a profile.
   Json doc = Json::parse(kBase);
-  doc["drone"] = Json::parse(R"({"profile": "dji_class", "max_horizontal_speed_m_s": 10})");
+  doc["drone"] = Json::parse(R"({"profile": "dji-m30", "max_horizontal_speed_m_s": 10})");
   const ShotList list = ParseShotList(doc, "shots.json");
-  EXPECT_EQ(list.drone.name, "dji_class");
+  EXPECT_EQ(list.drone.name, "dji-m30");
   EXPECT_EQ(list.drone.max_horizontal_speed_m_s, 10);
-  EXPECT_EQ(list.drone.max_gimbal_pitch_deg, 0);
+  EXPECT_EQ(list.drone.max_gimbal_pitch_deg, 45);  // the M30 gimbal, as the profile has it
 }
 
 }  // namespace
