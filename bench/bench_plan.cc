@@ -44,10 +44,10 @@ Json LongShotList() {
 }
 
 void BM_PlanLongMultiShot(benchmark::State& state) {
-  const cinepath::ShotList list = cinepath::ParseShotList(LongShotList(), "bench.json");
+  const cinepath::shots::ShotList list = cinepath::shots::ParseShotList(LongShotList(), "bench.json");
   size_t samples = 0;
   for (auto _ : state) {
-    const cinepath::Trajectory plan = cinepath::PlanShots(list);
+    const cinepath::Trajectory plan = cinepath::shots::PlanShots(list);
     samples = plan.samples.size();
     benchmark::DoNotOptimize(plan.samples.data());
   }
@@ -57,7 +57,7 @@ void BM_PlanLongMultiShot(benchmark::State& state) {
 BENCHMARK(BM_PlanLongMultiShot)->Unit(benchmark::kMillisecond);
 
 void BM_WritePlanJson(benchmark::State& state) {
-  const cinepath::Trajectory plan = cinepath::PlanShots(cinepath::ParseShotList(LongShotList(), "bench.json"));
+  const cinepath::Trajectory plan = cinepath::shots::PlanShots(cinepath::shots::ParseShotList(LongShotList(), "bench.json"));
   size_t bytes = 0;
   for (auto _ : state) {
     const std::string text = cinepath::PlanToText(plan);

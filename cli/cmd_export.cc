@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
+#include "core/scene_file.h"
 #include "core/plan_file.h"
 #include "export/exporter.h"
 
@@ -72,7 +73,7 @@ class ExportCommand : public Command {
     options.Check();  // option errors before any file is read
 
     const Trajectory plan = ReadPlanFile(plan_path_);
-    if (!scene_path_.empty()) options.build.scene_origin = exporter::ReadSceneOriginFile(scene_path_);
+    if (!scene_path_.empty()) options.build.scene_origin = ReadSceneFile(scene_path_).RequireOrigin();
     const exporter::ExportResult result = exporter::ExportMission(plan, options);
 
     const Json report = exporter::ReportJson(result, options);

@@ -1,6 +1,5 @@
 // cinepath plan: shot list -> keyframes, one sample per frame, lens tracks and a feasibility
 // report (docs/plan.md, plan.json format: docs/plan-format.md).
-#include <cstdio>
 #include <optional>
 #include <string>
 
@@ -10,25 +9,15 @@
 #include "cli/common_options.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/number_format.h"
 #include "core/plan_file.h"
+#include "core/scene_file.h"
 #include "shots/plan_plot.h"
 #include "shots/planner.h"
 #include "shots/shot_list.h"
 
 namespace cinepath::cli {
 namespace {
-
-std::string Number(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  return buf;
-}
-
-std::string Number(double v, const char* format) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
 
 class PlanCommand : public Command {
  public:
@@ -44,18 +33,18 @@ class PlanCommand : public Command {
 
   int Run() override {
     std::optional<Geodetic> scene_origin;
-    if (!scene_path_.empty()) scene_origin = ReadSceneOrigin(scene_path_);
-    const ShotList list = ReadShotListFile(shots_path_, scene_origin);
-    const Trajectory plan = PlanShots(list);
+    if (!scene_path_.empty()) scene_origin = ReadSceneFile(scene_path_).origin;
+    const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin);
+    const Trajectory plan = shots::PlanShots(list);
 
     if (strict_ && !plan.feasibility.feasible()) {
       std::string msg = "the plan breaks " + std::to_string(plan.feasibility.violations.size()) +
                         " limit range(s) (--strict; nothing written):";
       for (const auto& v : plan.feasibility.violations) {
         const bool minimum = v.limit.ends_with("_min") || v.limit == "subject_distance";
-        msg += "\n  " + Number(v.start_time_s) + "-" + Number(v.end_time_s) + " s  shot \"" + v.shot + "\"  " +
-               v.limit + ": " + Number(v.worst_value, "%.4g") + (v.unit.empty() ? "" : " " + v.unit) +
-               (minimum ? " < " : " > ") + Number(v.limit_value, "%.4g") + (v.unit.empty() ? "" : " " + v.unit);
+        msg += "\n  " + FormatFixed(v.start_time_s, 3) + "-" + FormatFixed(v.end_time_s, 3) + " s  shot \"" + v.shot + "\"  " +
+               v.limit + ": " + FormatSignificant(v.worst_value, 4) + (v.unit.empty() ? "" : " " + v.unit) +
+               (minimum ? " < " : " > ") + FormatSignificant(v.limit_value, 4) + (v.unit.empty() ? "" : " " + v.unit);
       }
       throw InfeasibleError(msg);
     }
@@ -63,7 +52,7 @@ class PlanCommand : public Command {
     AtomicOutputs outputs;
     outputs.Add(output_, PlanToText(plan));
     if (!csv_path_.empty()) outputs.Add(csv_path_, PlanSamplesToCsv(plan));
-    if (!plot_path_.empty()) outputs.Add(plot_path_, PlanToSvg(plan));
+    if (!plot_path_.empty()) outputs.Add(plot_path_, shots::PlanToSvg(plan));
     outputs.Commit();
 
     std::vector<std::string> targets = {output_};

@@ -171,13 +171,17 @@ bool JsonField::BoolOr(std::string_view key, bool fallback) const {
 }
 
 void JsonField::RejectUnknownKeys(std::initializer_list<std::string_view> known) const {
+  RejectUnknownKeys(std::vector<std::string_view>(known));
+}
+
+void JsonField::RejectUnknownKeys(const std::vector<std::string_view>& known, const std::string& what) const {
   if (!node_->is_object()) Fail("expected an object, found " + TypeName(*node_));
   for (const auto& item : node_->items()) {
     bool ok = false;
     for (auto k : known) ok = ok || (k == item.key());
     if (!ok) {
       const std::string child = path_.empty() ? item.key() : path_ + "." + item.key();
-      throw InputError(Located(source_.empty() ? child : source_ + ": " + child, "unknown key"));
+      throw InputError(Located(source_.empty() ? child : source_ + ": " + child, what));
     }
   }
 }

@@ -64,8 +64,9 @@ class JsonField {
   std::string StringOr(std::string_view key, const std::string& fallback) const;
   bool BoolOr(std::string_view key, bool fallback) const;
 
-  // Fails on any member not listed (catches typos such as "raduis_m").
+  // Fails on any member not listed (catches typos such as "raduis_m"): "<where>.<key>: <what>".
   void RejectUnknownKeys(std::initializer_list<std::string_view> known) const;
+  void RejectUnknownKeys(const std::vector<std::string_view>& known, const std::string& what = "unknown key") const;
 
   [[noreturn]] void Fail(const std::string& what) const;  // InputError("<source>: <path>: what")
 

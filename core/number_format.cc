@@ -32,4 +32,13 @@ std::string FormatShortest(double value) {
   return std::string(buffer, ptr);
 }
 
+std::string FormatSignificant(double value, int digits) {
+  if (!std::isfinite(value)) return NonFiniteText(value);
+  if (value == 0) return "0";
+  char buffer[64];
+  auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, digits);
+  CINEPATH_CHECK(ec == std::errc());
+  return std::string(buffer, ptr);
+}
+
 }  // namespace cinepath

@@ -9,5 +9,7 @@ namespace cinepath {
 
 std::string FormatFixed(double value, int decimals);  // "%.{decimals}f"
 std::string FormatShortest(double value);             // shortest text that reads back to the same double
+// `digits` significant digits without trailing zeros ("%.{digits}g"): 2.8, 1e-06, 1.235e+04.
+std::string FormatSignificant(double value, int digits = 6);
 
 }  // namespace cinepath

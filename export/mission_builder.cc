@@ -10,7 +10,6 @@
 #include "core/file_io.h"
 #include "core/geoid.h"
 #include "core/json.h"
-#include "core/scene_file.h"
 #include "export/dji_turns.h"
 #include "export/roi.h"
 
@@ -51,9 +50,6 @@ void SetGeoPosition(const EnuFrame& frame, const Egm96Geoid& geoid, double home_
 
 }  // namespace
 
-Geodetic ReadSceneOriginFile(const std::filesystem::path& scene_json) {
-  return ReadSceneFile(scene_json).RequireOrigin();
-}
 
 HomeSpec ParseHomeSpec(const std::string& text, const std::string& option) {
   std::vector<std::string> parts;

@@ -20,8 +20,6 @@ struct HomeSpec {  // --home LAT,LON,ALT (ALT metres AMSL, as QGC's plannedHomeP
   double amsl_m = 0;
 };
 // scene.json's WGS84 origin: {"origin": {"lat_deg", "lon_deg", "height_m"}} (ellipsoidal height;
-// other keys ignored). InputError naming the file when it is missing or malformed.
-Geodetic ReadSceneOriginFile(const std::filesystem::path& scene_json);
 
 // Parses "LAT,LON,ALT"; InputError naming `option` on a malformed value.
 HomeSpec ParseHomeSpec(const std::string& text, const std::string& option);

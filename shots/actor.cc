@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "core/geoid.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline path)
     : name_(std::move(name)), height_m_(height_m), heading_deg_(heading_deg), path_(std::move(path)) {}
@@ -86,4 +86,4 @@ Actor ParseActor(const JsonField& f, const EnuFrame* frame) {
   return Actor(name, height_m, heading_deg, PathSpline(std::move(times), std::move(points), kind));
 }
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

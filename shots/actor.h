@@ -16,7 +16,7 @@
 #include "core/json.h"
 #include "shots/spline.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 class Actor {
  public:
@@ -51,4 +51,4 @@ Actor ParseActor(const JsonField& field, const EnuFrame* frame);
 // `frame`). Exactly one must be present.
 Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, const char* geo_key, const EnuFrame* frame);
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

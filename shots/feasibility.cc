@@ -10,7 +10,7 @@
 #include "core/optics.h"
 #include "shots/lens_track.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 // Collects per-sample values for one limit and merges the broken ones into ranges.
@@ -210,4 +210,4 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
   return report;
 }
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

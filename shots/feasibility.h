@@ -13,7 +13,7 @@
 
 #include "core/trajectory.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 // What the planner asked of the lens before clamping to the camera's ranges (one per sample).
 struct LensRequest {
@@ -27,4 +27,4 @@ struct LensRequest {
 FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<bool>& cut_before,
                                    const std::vector<LensRequest>& requests);
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

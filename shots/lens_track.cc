@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "core/optics.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 double InterpolateFocalLengthMm(double f0_mm, double f1_mm, double w) {
   if (w <= 0) return f0_mm;
@@ -67,4 +67,4 @@ double InterpolateLensKeys(const std::vector<ScalarKey>& keys, double time_s, Le
   return a.value;
 }
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

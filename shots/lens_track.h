@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace cinepath {
+namespace cinepath::shots {
 
 double InterpolateFocalLengthMm(double f0_mm, double f1_mm, double w);
 double InterpolateFocusDistanceM(double s0_m, double s1_m, double w);  // +inf allowed
@@ -39,4 +39,4 @@ struct ScalarKey {
 };
 double InterpolateLensKeys(const std::vector<ScalarKey>& keys, double time_s, LensQuantity quantity);
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

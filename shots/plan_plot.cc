@@ -7,7 +7,7 @@
 
 #include "core/optics.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
@@ -233,4 +233,4 @@ std::string PlanToSvg(const Trajectory& plan) {
   return svg;
 }
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

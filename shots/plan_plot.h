@@ -12,8 +12,8 @@
 
 #include "core/trajectory.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 std::string PlanToSvg(const Trajectory& plan);
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

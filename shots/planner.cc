@@ -13,13 +13,13 @@
 #include "shots/lens_track.h"
 #include "shots/shot_pose.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Precomputed curves of a KEYFRAMES shot.
-struct FreeShot {
+struct KeyframesShot {
   std::unique_ptr<PathSpline> path;
   std::vector<Eigen::Quaterniond> q, s;  // aligned keys and SQUAD controls
   std::vector<ScalarKey> focal, focus, f_number;
@@ -32,7 +32,7 @@ struct ShotState {
   Eigen::Quaterniond rotation_offset = Eigen::Quaterniond::Identity();
   double log_focal_offset = 0;  // zoom continuity: log(previous end focal / this shot's start focal)
   double blend_s = 0;           // 0 = no offset
-  FreeShot free;
+  KeyframesShot keyframes;
 };
 
 struct Evaluated {
@@ -51,6 +51,15 @@ class Planner {
   void Prepare();
   Evaluated Evaluate(size_t shot_index, double tau, double fallback_heading_deg,
                      bool apply_rotation_offset = true) const;
+  // The steps of Evaluate.
+  double RequestedFocalLengthMm(const ShotSpec& shot, const ShotState& st, const ShotPose& pose,
+                                const Eigen::Vector3d& position, double lens_time) const;
+  Eigen::Quaterniond OrientationAt(const ShotSpec& shot, const ShotState& st, const ShotPose& pose,
+                                   const Eigen::Vector3d& position, double focal_length_mm, double t,
+                                   double fallback_heading_deg, double blend_w, bool apply_rotation_offset) const;
+  double RequestedFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
+                         const Eigen::Quaterniond& q, double t, double tau, double lens_time) const;
+  std::vector<std::string> SubjectsInFrame(const TrajectorySample& s, double t) const;
 
   const ShotList& list_;
   std::vector<ShotState> states_;
@@ -74,14 +83,14 @@ void Planner::Prepare() {
         times.push_back(k.time_s);
         points.push_back(k.position_enu_m);
         if (k.world_from_camera) rotations.push_back(*k.world_from_camera);
-        if (k.focal_length_mm) st.free.focal.push_back({k.time_s, *k.focal_length_mm});
-        if (k.focus_distance_m) st.free.focus.push_back({k.time_s, *k.focus_distance_m});
-        if (k.f_number) st.free.f_number.push_back({k.time_s, *k.f_number});
+        if (k.focal_length_mm) st.keyframes.focal.push_back({k.time_s, *k.focal_length_mm});
+        if (k.focus_distance_m) st.keyframes.focus.push_back({k.time_s, *k.focus_distance_m});
+        if (k.f_number) st.keyframes.f_number.push_back({k.time_s, *k.f_number});
       }
-      st.free.path = std::make_unique<PathSpline>(times, points, shot.interpolation);
+      st.keyframes.path = std::make_unique<PathSpline>(times, points, shot.interpolation);
       if (rotations.size() == shot.keys.size() && !rotations.empty()) {
-        st.free.q = AlignHemispheres(rotations);
-        st.free.s = SquadControlPoints(st.free.q);
+        st.keyframes.q = AlignHemispheres(rotations);
+        st.keyframes.s = SquadControlPoints(st.keyframes.q);
       }
     }
   }
@@ -127,7 +136,7 @@ void Planner::Prepare() {
 
 // A KEYFRAMES shot at local time tau: the spline at the segment-eased time, SLERP/SQUAD between
 // key orientations (or an aim at the subject), and the eased time lens keys are read at.
-ShotPose EvaluateFree(const ShotSpec& shot, const ShotState& st, const Actor* actor, double t, double tau,
+ShotPose EvaluateKeyframes(const ShotSpec& shot, const ShotState& st, const Actor* actor, double t, double tau,
                       double* lens_time) {
   ShotPose pose;
   const auto& keys = shot.keys;
@@ -141,14 +150,14 @@ ShotPose EvaluateFree(const ShotSpec& shot, const ShotState& st, const Actor* ac
     teased = keys[k].time_s + w * h;
   }
   *lens_time = teased;
-  pose.position_enu_m = st.free.path->Position(teased);
-  if (!st.free.q.empty()) {
+  pose.position_enu_m = st.keyframes.path->Position(teased);
+  if (!st.keyframes.q.empty()) {
     if (keys.size() == 1) {
-      pose.world_from_camera = st.free.q[0];
+      pose.world_from_camera = st.keyframes.q[0];
     } else if (shot.orientation == OrientationInterpolation::kSquad) {
-      pose.world_from_camera = Squad(st.free.q[k], st.free.q[k + 1], st.free.s[k], st.free.s[k + 1], w);
+      pose.world_from_camera = Squad(st.keyframes.q[k], st.keyframes.q[k + 1], st.keyframes.s[k], st.keyframes.s[k + 1], w);
     } else {
-      pose.world_from_camera = Slerp(st.free.q[k], st.free.q[k + 1], w);
+      pose.world_from_camera = Slerp(st.keyframes.q[k], st.keyframes.q[k + 1], w);
     }
   } else if (actor) {
     pose.aim_point_enu_m = actor->AimPointAt(t);
@@ -157,37 +166,32 @@ ShotPose EvaluateFree(const ShotSpec& shot, const ShotState& st, const Actor* ac
   return pose;
 }
 
-Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_deg, bool apply_rotation_offset) const {
-  const ShotSpec& shot = list_.shots[index];
-  const ShotState& st = states_[index];
-  const CameraSpec& cam = list_.camera;
-  const double t = st.start_s + tau;
-  const Actor* actor = shot.subject >= 0 ? &list_.actors[shot.subject] : nullptr;
+// The transition offset still applied at shot-local time tau (blend_w: position, orientation and
+// focal length; velocity_w: the quintic velocity term h(u) = u - 6u^3 + 8u^4 - 3u^5 scaled by blend_s:
+// h(0) = 0, h'(0) = 1, and h, h', h'' vanish at 1).
+struct BlendWeights {
+  double blend_w = 0;
+  double velocity_w = 0;
+};
 
-  // Geometry.
-  double lens_time = tau;  // local time that lens keys are read at (eased for free keyframes)
-  const ShotPose pose = shot.type == ShotType::kKeyframes ? EvaluateFree(shot, st, actor, t, tau, &lens_time)
-                                                          : EvaluateShotPose(shot, list_, st.start_s, tau);
-
-  // Transition offset (position).
-  double blend_w = 0;     // weight of the offset still applied
-  double velocity_w = 0;  // quintic h(u) = u - 6u^3 + 8u^4 - 3u^5: h(0) = 0, h'(0) = 1, zero h, h', h'' at 1
+BlendWeights BlendAt(const ShotState& st, double tau) {
+  BlendWeights w;
   if (st.blend_s > 0) {
     const double u = std::clamp(tau / st.blend_s, 0.0, 1.0);
-    blend_w = 1.0 - Smootherstep(u);
-    velocity_w = st.blend_s * u * (1.0 + u * u * (-6.0 + u * (8.0 - 3.0 * u)));
+    w.blend_w = 1.0 - Smootherstep(u);
+    w.velocity_w = st.blend_s * u * (1.0 + u * u * (-6.0 + u * (8.0 - 3.0 * u)));
   }
-  const Eigen::Vector3d position = pose.position_enu_m + blend_w * st.position_offset + velocity_w * st.velocity_offset;
+  return w;
+}
 
-  Evaluated out;
-  TrajectorySample& s = out.sample;
-  s.time_s = t;
-  s.position_enu_m = position;
-  s.shot = shot.name;
-
-  // Focal length (needs only the distance to the subject).
+// The focal length the shot asks for (before clamping to the camera): framing, dolly zoom, free keys,
+// or a fixed/zoom lens; `eased` is the shot's eased progress, `lens_time` the time lens keys are read at.
+double Planner::RequestedFocalLengthMm(const ShotSpec& shot, const ShotState& st, const ShotPose& pose,
+                                       const Eigen::Vector3d& position, double lens_time) const {
+  const CameraSpec& cam = list_.camera;
   const LensSpec& lens = shot.lens;
-  double focal = cam.min_focal_length_mm;
+  const Actor* actor = shot.subject >= 0 ? &list_.actors[shot.subject] : nullptr;
+  const double image_height_mm = cam.image_extent_mm().height_mm;
   const double subject_distance = pose.aim_point_enu_m ? (*pose.aim_point_enu_m - position).norm() : 0.0;
   if (shot.type == ShotType::kDollyZoom) {
     double fraction;
@@ -197,25 +201,30 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
       // Keep the image size the start focal length gives at the start distance.
       const ShotPose start = EvaluateShotPose(shot, list_, st.start_s, 0.0);
       const double d0 = (*start.aim_point_enu_m - start.position_enu_m).norm();
-      fraction = ImageHeightFraction(cam.image_extent_mm().height_mm, *lens.focal_length_mm, actor->height_m(), d0);
+      fraction = ImageHeightFraction(image_height_mm, *lens.focal_length_mm, actor->height_m(), d0);
     }
-    focal = FramingFocalLengthMm(cam.image_extent_mm().height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
-  } else if (lens.frame_height_fraction && actor) {
+    return FramingFocalLengthMm(image_height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
+  }
+  if (lens.frame_height_fraction && actor) {
     const double k0 = *lens.frame_height_fraction;
     const double k1 = lens.frame_height_fraction_end.value_or(k0);
     const double fraction = std::exp((1 - pose.eased) * std::log(k0) + pose.eased * std::log(k1));
-    focal = FramingFocalLengthMm(cam.image_extent_mm().height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
-  } else if (!st.free.focal.empty()) {
-    focal = InterpolateLensKeys(st.free.focal, lens_time, LensQuantity::kFocalLength);
-  } else if (lens.focal_length_mm) {
-    focal = InterpolateFocalLengthMm(*lens.focal_length_mm, lens.focal_length_end_mm.value_or(*lens.focal_length_mm),
-                                     pose.eased);
+    return FramingFocalLengthMm(image_height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
   }
-  focal *= std::exp(blend_w * st.log_focal_offset);
-  out.request.focal_length_mm = focal;
-  s.focal_length_mm = std::clamp(focal, cam.min_focal_length_mm, cam.max_focal_length_mm);
+  if (!st.keyframes.focal.empty()) return InterpolateLensKeys(st.keyframes.focal, lens_time, LensQuantity::kFocalLength);
+  if (lens.focal_length_mm) {
+    return InterpolateFocalLengthMm(*lens.focal_length_mm, lens.focal_length_end_mm.value_or(*lens.focal_length_mm),
+                                    pose.eased);
+  }
+  return cam.min_focal_length_mm;
+}
 
-  // Orientation.
+// The camera orientation: given by the shot, aimed at the subject (at the lens's screen position, with a
+// crane's tilt blend), or level along the previous heading; then the transition's rotation offset.
+Eigen::Quaterniond Planner::OrientationAt(const ShotSpec& shot, const ShotState& st, const ShotPose& pose,
+                                          const Eigen::Vector3d& position, double focal_length_mm, double t,
+                                          double fallback_heading_deg, double blend_w,
+                                          bool apply_rotation_offset) const {
   Eigen::Quaterniond q;
   if (pose.world_from_camera) {
     q = *pose.world_from_camera;
@@ -226,12 +235,12 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
                        "\": the camera reaches the subject's aim point at t = " + std::to_string(t) +
                        " s; nothing to look at");
     }
-    const Eigen::Vector2d sp = lens.screen_position;
+    const Eigen::Vector2d sp = shot.lens.screen_position;
     if (sp.x() == 0.5 && sp.y() == 0.5) {
       q = LookAt(to_subject, fallback_heading_deg);
     } else {
-      const ImageExtentMm image = cam.image_extent_mm();
-      const Eigen::Vector3d ray((sp.x() - 0.5) * image.width_mm, (sp.y() - 0.5) * image.height_mm, s.focal_length_mm);
+      const ImageExtentMm image = list_.camera.image_extent_mm();
+      const Eigen::Vector3d ray((sp.x() - 0.5) * image.width_mm, (sp.y() - 0.5) * image.height_mm, focal_length_mm);
       q = AimWithScreenOffset(to_subject, ray, fallback_heading_deg);
     }
     if (pose.tilt_start_deg) {
@@ -248,63 +257,100 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
   if (apply_rotation_offset && blend_w > 0) {
     q = Slerp(st.rotation_offset, Eigen::Quaterniond::Identity(), 1.0 - blend_w) * q;
   }
-  q.normalize();
-  s.world_from_camera = q;
-  const GimbalAngles g = GimbalFromWorldFromCamera(q);
-  s.drone_heading_deg = g.drone_heading_deg;
-  s.gimbal_pitch_deg = g.gimbal_pitch_deg;
-  s.gimbal_roll_deg = g.gimbal_roll_deg;
-  s.gimbal_yaw_deg = g.gimbal_yaw_deg;
+  return q.normalized();
+}
 
-  // Focus.
+// The focus the shot asks for: free keys, a fixed distance, or the subject's distance along the optical
+// axis with racks between subjects in dioptres; +inf for infinity.
+double Planner::RequestedFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
+                                const Eigen::Quaterniond& q, double t, double tau, double lens_time) const {
+  const LensSpec& lens = shot.lens;
+  if (!st.keyframes.focus.empty()) return InterpolateLensKeys(st.keyframes.focus, lens_time, LensQuantity::kFocusDistance);
+  if (lens.focus == LensSpec::Focus::kFixed) return lens.focus_distance_m;
+  if (lens.focus != LensSpec::Focus::kFollow || shot.subject < 0) return kInf;
   const Eigen::Vector3d forward = q * Eigen::Vector3d::UnitZ();
   auto axial = [&](const Actor& a) {
     const Eigen::Vector3d v = a.AimPointAt(t) - position;
     const double along = v.dot(forward);
     return along > 1e-9 ? along : v.norm();
   };
-  double focus = kInf;
-  if (!st.free.focus.empty()) {
-    focus = InterpolateLensKeys(st.free.focus, lens_time, LensQuantity::kFocusDistance);
-  } else if (lens.focus == LensSpec::Focus::kFixed) {
-    focus = lens.focus_distance_m;
-  } else if (lens.focus == LensSpec::Focus::kFollow && actor) {
-    focus = axial(*actor);
-    const Actor* current = actor;
-    for (const auto& r : lens.rack) {
-      const Actor& next = list_.actors[r.actor];
-      if (tau <= r.at_s) break;
-      const double w = Ease(Easing::kSmoothstep, (tau - r.at_s) / r.duration_s);
-      focus = InterpolateFocusDistanceM(axial(*current), axial(next), w);
-      current = &next;
-    }
+  const Actor* current = &list_.actors[shot.subject];
+  double focus = axial(*current);
+  for (const auto& r : lens.rack) {
+    const Actor& next = list_.actors[r.actor];
+    if (tau <= r.at_s) break;
+    const double w = Ease(Easing::kSmoothstep, (tau - r.at_s) / r.duration_s);
+    focus = InterpolateFocusDistanceM(axial(*current), axial(next), w);
+    current = &next;
   }
-  out.request.focus_distance_m = focus;
-  s.focus_distance_m = std::isinf(focus) ? focus : std::max(focus, cam.min_focus_distance_m);
+  return focus;
+}
 
-  // Aperture and shutter.
-  double f_number = std::clamp(4.0, cam.min_f_number, cam.max_f_number);
-  if (!st.free.f_number.empty()) {
-    f_number = InterpolateLensKeys(st.free.f_number, lens_time, LensQuantity::kFNumber);
-  } else if (!lens.f_number.empty()) {
-    f_number = InterpolateLensKeys(lens.f_number, tau, LensQuantity::kFNumber);
-  }
-  out.request.f_number = f_number;
-  s.f_number = std::clamp(f_number, cam.min_f_number, cam.max_f_number);
-  s.shutter_s = lens.shutter_s.empty() ? 1.0 / (2.0 * list_.frame_rate_hz)
-                                       : InterpolateLensKeys(lens.shutter_s, tau, LensQuantity::kShutter);
-
-  // Subjects in frame: the aim point projects inside the image.
-  const Eigen::Quaterniond camera_from_world = q.conjugate();
-  const ImageExtentMm image = cam.image_extent_mm();
+// The actors whose aim points project inside the image (sensor-fit rule, core/optics.h).
+std::vector<std::string> Planner::SubjectsInFrame(const TrajectorySample& s, double t) const {
+  std::vector<std::string> names;
+  const Eigen::Quaterniond camera_from_world = s.world_from_camera.conjugate();
+  const ImageExtentMm image = list_.camera.image_extent_mm();
   const double half_w = image.width_mm / (2.0 * s.focal_length_mm);
   const double half_h = image.height_mm / (2.0 * s.focal_length_mm);
   for (const auto& a : list_.actors) {
-    const Eigen::Vector3d c = camera_from_world * (a.AimPointAt(t) - position);
+    const Eigen::Vector3d c = camera_from_world * (a.AimPointAt(t) - s.position_enu_m);
     if (c.z() > 1e-9 && std::fabs(c.x() / c.z()) <= half_w && std::fabs(c.y() / c.z()) <= half_h) {
-      s.subjects_in_frame.push_back(a.name());
+      names.push_back(a.name());
     }
   }
+  return names;
+}
+
+// One sample of shot `index` at shot-local time tau: pose, transition offset, focal length,
+// orientation, focus, aperture and shutter (each clamped to the camera, the request kept for the
+// feasibility report), and the subjects in frame.
+Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_deg, bool apply_rotation_offset) const {
+  const ShotSpec& shot = list_.shots[index];
+  const ShotState& st = states_[index];
+  const CameraSpec& cam = list_.camera;
+  const double t = st.start_s + tau;
+  const Actor* actor = shot.subject >= 0 ? &list_.actors[shot.subject] : nullptr;
+
+  double lens_time = tau;  // local time that lens keys are read at (eased for free keyframes)
+  const ShotPose pose = shot.type == ShotType::kKeyframes ? EvaluateKeyframes(shot, st, actor, t, tau, &lens_time)
+                                                          : EvaluateShotPose(shot, list_, st.start_s, tau);
+  const BlendWeights blend = BlendAt(st, tau);
+
+  Evaluated out;
+  TrajectorySample& s = out.sample;
+  s.time_s = t;
+  s.shot = shot.name;
+  s.position_enu_m = pose.position_enu_m + blend.blend_w * st.position_offset + blend.velocity_w * st.velocity_offset;
+
+  out.request.focal_length_mm =
+      RequestedFocalLengthMm(shot, st, pose, s.position_enu_m, lens_time) * std::exp(blend.blend_w * st.log_focal_offset);
+  s.focal_length_mm = std::clamp(out.request.focal_length_mm, cam.min_focal_length_mm, cam.max_focal_length_mm);
+
+  s.world_from_camera = OrientationAt(shot, st, pose, s.position_enu_m, s.focal_length_mm, t, fallback_heading_deg,
+                                      blend.blend_w, apply_rotation_offset);
+  const GimbalAngles g = GimbalFromWorldFromCamera(s.world_from_camera);
+  s.drone_heading_deg = g.drone_heading_deg;
+  s.gimbal_pitch_deg = g.gimbal_pitch_deg;
+  s.gimbal_roll_deg = g.gimbal_roll_deg;
+  s.gimbal_yaw_deg = g.gimbal_yaw_deg;
+
+  out.request.focus_distance_m = RequestedFocusM(shot, st, s.position_enu_m, s.world_from_camera, t, tau, lens_time);
+  s.focus_distance_m = std::isinf(out.request.focus_distance_m)
+                           ? out.request.focus_distance_m
+                           : std::max(out.request.focus_distance_m, cam.min_focus_distance_m);
+
+  out.request.f_number = std::clamp(4.0, cam.min_f_number, cam.max_f_number);
+  if (!st.keyframes.f_number.empty()) {
+    out.request.f_number = InterpolateLensKeys(st.keyframes.f_number, lens_time, LensQuantity::kFNumber);
+  } else if (!shot.lens.f_number.empty()) {
+    out.request.f_number = InterpolateLensKeys(shot.lens.f_number, tau, LensQuantity::kFNumber);
+  }
+  s.f_number = std::clamp(out.request.f_number, cam.min_f_number, cam.max_f_number);
+  s.shutter_s = shot.lens.shutter_s.empty() ? 1.0 / (2.0 * list_.frame_rate_hz)
+                                            : InterpolateLensKeys(shot.lens.shutter_s, tau, LensQuantity::kShutter);
+
+  s.subjects_in_frame = SubjectsInFrame(s, t);
   return out;
 }
 
@@ -413,4 +459,4 @@ Trajectory Planner::Run(const PlanOptions& options) {
 
 Trajectory PlanShots(const ShotList& list, const PlanOptions& options) { return Planner(list).Run(options); }
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -31,7 +31,7 @@
 #include "core/trajectory.h"
 #include "shots/shot_list.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 struct PlanOptions {
   size_t max_samples = 20'000'000;  // guards against a frame rate x duration that cannot fit
@@ -39,4 +39,4 @@ struct PlanOptions {
 
 Trajectory PlanShots(const ShotList& list, const PlanOptions& options = {});
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -21,7 +21,7 @@
 #include "shots/shot_type.h"
 #include "shots/spline.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 inline constexpr const char* kShotsSchema = "cinepath.shots/1";
 
@@ -115,7 +115,4 @@ ShotList ParseShotList(const Json& document, const std::string& source,
 ShotList ReadShotListFile(const std::filesystem::path& path,
                           const std::optional<Geodetic>& scene_origin = std::nullopt);
 
-// scene.json's WGS84 origin: {"origin": {"lat_deg", "lon_deg", "height_m"}} (other keys ignored).
-std::optional<Geodetic> ReadSceneOrigin(const std::filesystem::path& scene_json);
-
-}  // namespace cinepath
+}  // namespace cinepath::shots

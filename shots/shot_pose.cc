@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "core/rotation.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 double Lerp(double a, double b, double w) { return a + (b - a) * w; }
@@ -110,4 +110,4 @@ ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double sho
   return pose;
 }
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -13,7 +13,7 @@
 
 #include "shots/shot_list.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 struct ShotPose {
   Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
@@ -31,4 +31,4 @@ Eigen::Vector3d HorizontalFromBearing(double bearing_deg);
 // shot's start in plan time (actors move in plan time).
 ShotPose EvaluateShotPose(const ShotSpec& shot, const ShotList& list, double shot_start_s, double tau_s);
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

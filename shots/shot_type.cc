@@ -1,6 +1,6 @@
 #include "shots/shot_type.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 struct Entry {
@@ -46,4 +46,4 @@ const std::vector<std::string_view>& ShotTypeNames() {
   return names;
 }
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-namespace cinepath {
+namespace cinepath::shots {
 
 enum class ShotType {
   kChase,      // behind the subject at a distance, height and lateral offset, with lag
@@ -26,4 +26,4 @@ std::string_view ShotTypeName(ShotType t);  // canonical: "CHASE", "ORBIT", ...,
 std::optional<ShotType> ShotTypeFromName(std::string_view name);
 const std::vector<std::string_view>& ShotTypeNames();
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 
 std::string_view PathInterpolationName(PathInterpolation p) {
   switch (p) {
@@ -159,4 +159,4 @@ Eigen::Vector3d PathSpline::Velocity(double time_s) const {
   return Eigen::Vector3d::Zero();
 }
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

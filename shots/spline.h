@@ -16,7 +16,7 @@
 
 #include <Eigen/Core>
 
-namespace cinepath {
+namespace cinepath::shots {
 
 enum class PathInterpolation { kLinear, kCatmullRom, kCubicBSpline };
 
@@ -50,4 +50,4 @@ class PathSpline {
   std::vector<Eigen::Vector3d> m_;
 };
 
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -25,5 +25,14 @@ TEST(NumberFormat, ExtremesAndNonFinite) {
   EXPECT_EQ(FormatShortest(HUGE_VAL), "inf");
 }
 
+TEST(NumberFormat, SignificantDigitsAsPrintfG) {
+  EXPECT_EQ(FormatSignificant(2.8), "2.8");
+  EXPECT_EQ(FormatSignificant(1e-6), "1e-06");
+  EXPECT_EQ(FormatSignificant(12345.678, 4), "1.235e+04");
+  EXPECT_EQ(FormatSignificant(1440.0, 4), "1440");
+  EXPECT_EQ(FormatSignificant(-0.0), "0");
+  EXPECT_EQ(FormatSignificant(std::nan("")), "nan");
+}
+
 }  // namespace
 }  // namespace cinepath

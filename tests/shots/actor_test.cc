@@ -4,7 +4,7 @@
 
 #include "core/error.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 TEST(Actor, StaticAndKeyframed) {
@@ -50,9 +50,9 @@ TEST(Actor, BadActorsNameTheField) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 TEST(Actor, AmslHeightsGoThroughEgm96) {
@@ -68,4 +68,4 @@ TEST(Actor, AmslHeightsGoThroughEgm96) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -11,7 +11,7 @@
 #include "shots/planner.h"
 #include "shots/shot_list.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 namespace fs = std::filesystem;
@@ -53,4 +53,4 @@ TEST(Examples, EveryShotTypeFamilyPlans) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -4,7 +4,7 @@
 
 #include "core/drone_profiles.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 // A straight climb at a constant rate, sampled at 10 Hz.
@@ -66,4 +66,4 @@ TEST(Feasibility, AltitudeAndLensRequests) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -50,4 +50,4 @@ TEST(LensTrack, KeysHoldOutsideAndInterpolateInside) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -4,7 +4,7 @@
 
 #include "shots/planner.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 size_t Count(const std::string& s, const std::string& what) {
@@ -33,4 +33,4 @@ TEST(PlanPlot, PanelsFrustumsAndDeterminism) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -10,7 +10,7 @@
 #include "core/rotation.h"
 #include "shots/lens_track.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 using Eigen::Vector3d;
@@ -327,4 +327,4 @@ TEST(PlanGeodesy, OriginFillsLatLonHeight) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <functional>
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 const char* kBase = R"({
@@ -136,9 +136,9 @@ TEST(ShotListDrone, NamedProfileAndOverrides) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 // Every number of every example replaced by hostile values: the planner either plans or throws
@@ -195,4 +195,4 @@ TEST(ShotList, HostileNumbersAreCleanErrors) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -4,7 +4,7 @@
 
 #include "core/angles.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 ShotList List(const std::string& shot) {
@@ -50,4 +50,4 @@ TEST(ShotPose, DronieRampsDistanceAndHeight) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

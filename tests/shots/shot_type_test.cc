@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 TEST(ShotType, NamesAndAliasesRoundTrip) {
@@ -15,4 +15,4 @@ TEST(ShotType, NamesAndAliasesRoundTrip) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 
-namespace cinepath {
+namespace cinepath::shots {
 namespace {
 
 using Eigen::Vector3d;
@@ -97,4 +97,4 @@ TEST(PathSpline, SingleKeyAndBadKeys) {
 }
 
 }  // namespace
-}  // namespace cinepath
+}  // namespace cinepath::shots
