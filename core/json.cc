@@ -3,9 +3,11 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/number_format.h"
 
 namespace cinepath {
 namespace {
@@ -47,26 +49,56 @@ double RoundToDecimals(double value, int decimals) {
   return rounded == 0.0 ? 0.0 : rounded;  // no "-0.0" in outputs
 }
 
-Json ParseJsonText(std::string_view text, const std::string& source_name) {
-  try {
-    return Json::parse(text.begin(), text.end());
-  } catch (const nlohmann::json::parse_error& e) {
-    // Convert the byte offset into a line and column for people.
-    size_t line = 1, column = 1;
-    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
+namespace {
+
+// "line L, column C" of a byte offset (1-based, counting bytes).
+std::string LineColumn(std::string_view text, size_t byte) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
     }
-    std::string what = e.what();
-    const auto pos = what.find("syntax error");
-    if (pos != std::string::npos) what = what.substr(pos);
-    throw InputError(source_name + ": line " + std::to_string(line) + ", column " + std::to_string(column) +
-                     ": invalid JSON: " + what);
   }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// nlohmann's DOM builder, except that every parse error (syntax, and numbers out of range such as
+// 1e400, which the plain parser reports without a position) becomes an InputError naming the file,
+// the line and the column.
+class LocatedDomParser : public nlohmann::detail::json_sax_dom_parser<Json> {
+ public:
+  LocatedDomParser(Json& result, std::string_view text, const std::string& source)
+      : json_sax_dom_parser(result, /*allow_exceptions=*/true), text_(text), source_(source) {}
+
+  template <class Exception>
+  bool parse_error(std::size_t position, const std::string& last_token, const Exception& ex) {
+    // A number out of range is reported at its first character, a syntax error where reading stopped.
+    if (std::is_same_v<Exception, nlohmann::json::out_of_range> && position >= last_token.size()) {
+      position -= last_token.size() - 1;
+    }
+    std::string what = ex.what();
+    if (const auto pos = what.find("] "); what.rfind("[json.exception.", 0) == 0 && pos != std::string::npos) {
+      what = what.substr(pos + 2);  // drop "[json.exception.parse_error.101] "
+    }
+    if (const auto pos = what.find("syntax error"); pos != std::string::npos) what = what.substr(pos);
+    throw InputError(source_ + ": " + LineColumn(text_, position) + ": invalid JSON: " + what);
+  }
+
+ private:
+  std::string_view text_;
+  const std::string& source_;
+};
+
+}  // namespace
+
+Json ParseJsonText(std::string_view text, const std::string& source_name) {
+  Json result;
+  LocatedDomParser parser(result, text, source_name);
+  Json::sax_parse(text.begin(), text.end(), &parser);
+  return result;
 }
 
 Json ParseJsonFile(const std::filesystem::path& path) { return ParseJsonText(ReadFileToString(path), path.string()); }
@@ -133,6 +165,12 @@ double JsonField::AsPositive() const {
 double JsonField::AsNonNegative() const {
   const double v = AsDouble();
   if (!(v >= 0)) Fail("must be >= 0");
+  return v;
+}
+
+double JsonField::AsDoubleIn(double lo, double hi) const {
+  const double v = AsDouble();
+  if (!(v >= lo && v <= hi)) Fail("must be in [" + FormatSignificant(lo) + ", " + FormatSignificant(hi) + "]");
   return v;
 }
 

@@ -55,6 +55,7 @@ class JsonField {
   double AsDouble() const;
   double AsPositive() const;     // > 0
   double AsNonNegative() const;  // >= 0
+  double AsDoubleIn(double lo, double hi) const;  // in [lo, hi], else "must be in [lo, hi]"
   int64_t AsInt() const;
   bool AsBool() const;
   std::string AsString() const;

@@ -89,21 +89,24 @@ double ReadFocus(const JsonField& parent, const char* key) {
 CameraSpec ReadCamera(const JsonField& f) {
   CameraSpec c;
   c.filmback = f.StringOr("filmback", c.filmback);
-  c.sensor_width_mm = f["sensor_width_mm"].AsPositive();
-  c.sensor_height_mm = f["sensor_height_mm"].AsPositive();
-  c.width_px = static_cast<int>(f["width_px"].AsInt());
-  c.height_px = static_cast<int>(f["height_px"].AsInt());
-  c.min_focal_length_mm = f["min_focal_length_mm"].AsPositive();
-  c.max_focal_length_mm = f["max_focal_length_mm"].AsPositive();
-  c.min_f_number = f["min_f_number"].AsPositive();
-  c.max_f_number = f["max_f_number"].AsPositive();
-  c.min_focus_distance_m = f["min_focus_distance_m"].AsPositive();
+  c.sensor_width_mm = f["sensor_width_mm"].AsDoubleIn(0.1, 1000);
+  c.sensor_height_mm = f["sensor_height_mm"].AsDoubleIn(0.1, 1000);
+  auto pixels = [&](const char* key) {
+    const int64_t v = f[key].AsInt();
+    if (v <= 0 || v > 100000) f[key].Fail("must be in [1, 100000]");
+    return static_cast<int>(v);
+  };
+  c.width_px = pixels("width_px");
+  c.height_px = pixels("height_px");
+  c.min_focal_length_mm = f["min_focal_length_mm"].AsDoubleIn(0.1, 1e5);
+  c.max_focal_length_mm = f["max_focal_length_mm"].AsDoubleIn(0.1, 1e5);
+  c.min_f_number = f["min_f_number"].AsDoubleIn(0.1, 1000);
+  c.max_f_number = f["max_f_number"].AsDoubleIn(0.1, 1000);
+  c.min_focus_distance_m = f["min_focus_distance_m"].AsDoubleIn(1e-3, 1e7);
   c.coc_mm = f.DoubleOr("coc_mm", c.coc_mm);
   c.max_focal_rate_mm_s = f.DoubleOr("max_focal_rate_mm_s", c.max_focal_rate_mm_s);
   c.max_focus_rate_m_s = f.DoubleOr("max_focus_rate_m_s", c.max_focus_rate_m_s);
   c.max_aperture_rate_stops_s = f.DoubleOr("max_aperture_rate_stops_s", c.max_aperture_rate_stops_s);
-  if (c.width_px <= 0) f["width_px"].Fail("must be > 0");
-  if (c.height_px <= 0) f["height_px"].Fail("must be > 0");
   return c;
 }
 
@@ -232,7 +235,7 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
   }
   Trajectory plan;
   if (auto o = root.Find("origin")) plan.origin = GeodeticFromJson(*o);
-  plan.frame_rate_hz = root["frame_rate_hz"].AsPositive();
+  plan.frame_rate_hz = root["frame_rate_hz"].AsDoubleIn(0.01, 1000);
   plan.camera = ReadCamera(root["camera"]);
   if (auto d = root.Find("drone")) plan.drone = ReadDrone(*d);
 
@@ -265,10 +268,10 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
     s.gimbal_pitch_deg = f["gimbal_pitch_deg"].AsDouble();
     s.gimbal_roll_deg = f.DoubleOr("gimbal_roll_deg", 0.0);
     s.gimbal_yaw_deg = f.DoubleOr("gimbal_yaw_deg", 0.0);
-    s.focal_length_mm = f["focal_length_mm"].AsPositive();
+    s.focal_length_mm = f["focal_length_mm"].AsDoubleIn(0.1, 1e5);
     s.focus_distance_m = ReadFocus(f, "focus_distance_m");
-    s.f_number = f["f_number"].AsPositive();
-    s.shutter_s = f["shutter_s"].AsPositive();
+    s.f_number = f["f_number"].AsDoubleIn(0.1, 1000);
+    s.shutter_s = f["shutter_s"].AsDoubleIn(1e-6, 60);
     s.shot = f.StringOr("shot", "");
     if (auto subj = f.Find("subjects_in_frame")) {
       for (const auto& e : subj->Elements()) s.subjects_in_frame.push_back(e.AsString());

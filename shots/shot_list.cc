@@ -22,16 +22,18 @@ Geodetic ParseOrigin(const JsonField& f) {
   return GeodeticFromJson(f);
 }
 
-// Every number in a shot list must be within +-1e7 (m, s, deg, mm ...): far beyond any real shot,
-// small enough that nothing downstream overflows.
-void RejectHugeNumbers(const JsonField& f) {
+// Every number in a shot list is 0 or between 1e-6 and 1e7 in magnitude (m, s, deg, mm ...): far
+// beyond any real shot on both ends (a micrometre, a microsecond), and so nothing downstream overflows
+// (1 / 1e-320 is infinite) or loses every digit.
+void RejectOutOfRangeNumbers(const JsonField& f) {
   if (f.IsNumber()) {
-    const double v = f.AsDouble();
-    if (std::fabs(v) > 1e7) f.Fail("must be within +-1e7");
+    const double v = std::fabs(f.AsDouble());
+    if (v > 1e7) f.Fail("must be 0 or between 1e-6 and 1e7 in magnitude");
+    if (v != 0 && v < 1e-6) f.Fail("must be 0 or between 1e-6 and 1e7 in magnitude");
   } else if (f.IsObject()) {
-    for (const auto& item : f.node().items()) RejectHugeNumbers(f[item.key()]);
+    for (const auto& item : f.node().items()) RejectOutOfRangeNumbers(f[item.key()]);
   } else if (f.IsArray()) {
-    for (const auto& e : f.Elements()) RejectHugeNumbers(e);
+    for (const auto& e : f.Elements()) RejectOutOfRangeNumbers(e);
   }
 }
 
@@ -141,7 +143,7 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
   if (schema != kShotsSchema) {
     root["schema"].Fail("unsupported shot-list version \"" + schema + "\" (expected \"" + kShotsSchema + "\")");
   }
-  RejectHugeNumbers(root);
+  RejectOutOfRangeNumbers(root);
   ShotList list;
   list.source = source;
   if (auto o = root.Find("origin")) {
@@ -159,7 +161,7 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
 
   if (root.Has("frame_rate_hz")) {
     list.frame_rate_hz = root["frame_rate_hz"].AsPositive();
-    if (list.frame_rate_hz > 1000) root["frame_rate_hz"].Fail("must be <= 1000");
+    if (list.frame_rate_hz < 0.01 || list.frame_rate_hz > 1000) root["frame_rate_hz"].Fail("must be in [0.01, 1000]");
   }
   list.camera = ParseCamera(root["camera"]);
   list.drone = root.Has("drone") ? ParseDrone(root["drone"]) : DefaultDroneProfile();

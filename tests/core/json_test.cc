@@ -81,5 +81,16 @@ TEST(Json, IntegersAndBooleans) {
   EXPECT_THROW(r["n"].AsBool(), InputError);
 }
 
+TEST(Json, NumbersOutOfRangeAreBadInputWithTheirPosition) {
+  // 2026-11 (found from outside): "1e400" escaped as nlohmann's out_of_range.406 without a position.
+  try {
+    ParseJsonText("{\"a\": [1, 2,\n  1e400]}", "shots.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "shots.json: line 2, column 3: invalid JSON: number overflow parsing '1e400'");
+  }
+  EXPECT_THROW(ParseJsonText("[-1e999]", "x.json"), InputError);
+}
+
 }  // namespace
 }  // namespace cinepath

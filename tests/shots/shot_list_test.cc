@@ -166,7 +166,7 @@ TEST(ShotList, HostileNumbersAreCleanErrors) {
     PlanOptions options;
     options.max_samples = 200000;
     size_t planned = 0, refused = 0;
-    for (const double hostile : {0.0, -1.0, 1e308, -1e308, 1e-300, 1e7}) {
+    for (const double hostile : {0.0, -1.0, 1e308, -1e308, 1e-300, 1e-320, 5e-324, -1e-9, 1e7}) {
       for (size_t target = 0; target < numbers; ++target) {
         Json doc = original;
         size_t i = 0;
