@@ -44,6 +44,7 @@
 #include <Eigen/Core>
 
 #include "photogrammetry/colmap_model.h"
+#include "photogrammetry/triangulation.h"
 
 namespace cinepath::photogrammetry {
 
@@ -76,7 +77,7 @@ struct BundleAdjustOptions {
 // A ground control point for the adjustment: observations (COLMAP pixel convention), a start position
 // and the surveyed position, both in ENU metres.
 struct ControlPointPrior {
-  std::vector<std::pair<uint32_t, Eigen::Vector2d>> observations;  // (image id, pixel)
+  std::vector<PixelObservation> observations;  // (image id, pixel in the COLMAP convention)
   Eigen::Vector3d initial_enu_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d target_enu_m = Eigen::Vector3d::Zero();
   double sigma_horizontal_m = 0.05;

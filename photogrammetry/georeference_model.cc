@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 
 #include "core/error.h"
 #include "core/geoid.h"
@@ -107,98 +108,111 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
   return GeoreferenceModel(model, references, nullptr, options);
 }
 
-ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<ImageReference>& references,
-                                    const GcpFile* gcp_file, const ModelGeoreferenceOptions& options) {
-  ModelGeoreference result;
-  std::map<std::string, uint32_t> image_by_name;
-  // File names without folders, for references written with other paths ("C:/flight/DJI_0018.JPG" or
-  // "images/DJI_0018.JPG" vs COLMAP's "DJI_0018.JPG"); only names that are unique on both sides.
-  auto base_name = [](const std::string& name) {
+namespace {
+
+// The model's images by name, and by file name without folders (references written with other paths,
+// "C:/flight/DJI_0018.JPG" or "images/DJI_0018.JPG" vs COLMAP's "DJI_0018.JPG").
+struct ImageNames {
+  std::map<std::string, uint32_t> by_name;
+  std::map<std::string, std::vector<uint32_t>> by_base;
+
+  static std::string BaseName(const std::string& name) {
     const size_t slash = name.find_last_of("/\\");
     return slash == std::string::npos ? name : name.substr(slash + 1);
-  };
-  std::map<std::string, std::vector<uint32_t>> image_by_base;
-  for (const auto& [id, image] : model.images) {
-    image_by_name[image.name] = id;
-    image_by_base[base_name(image.name)].push_back(id);
   }
-  std::map<std::string, int> ref_base_count;
-  for (const ImageReference& ref : references) ++ref_base_count[base_name(ref.image_name)];
+  // The exact name, else a file name unique among the images (and, when `unique_base_in_refs` is
+  // given, unique among the references too).
+  std::optional<uint32_t> Find(const std::string& name, bool* by_file_name = nullptr,
+                               const std::map<std::string, int>* unique_base_in_refs = nullptr) const {
+    if (const auto it = by_name.find(name); it != by_name.end()) return it->second;
+    const std::string base = BaseName(name);
+    const auto b = by_base.find(base);
+    if (b == by_base.end() || b->second.size() != 1) return std::nullopt;
+    if (unique_base_in_refs && unique_base_in_refs->at(base) != 1) return std::nullopt;
+    if (by_file_name) *by_file_name = true;
+    return b->second.front();
+  }
+};
 
-  // 1. Match and convert heights.
+ImageNames IndexImageNames(const ColmapModel& model) {
+  ImageNames names;
+  for (const auto& [id, image] : model.images) {
+    names.by_name[image.name] = id;
+    names.by_base[ImageNames::BaseName(image.name)].push_back(id);
+  }
+  return names;
+}
+
+double EllipsoidalHeightM(AltitudeDatum datum, double lat_deg, double lon_deg, double height_m) {
+  return datum == AltitudeDatum::kEllipsoidal ? height_m
+                                              : Egm96Geoid::Default().EllipsoidalFromAmslM(lat_deg, lon_deg, height_m);
+}
+
+// Step 1: each camera reference matched to a registered image, its height made ellipsoidal.
+std::vector<ReferenceUse> MatchReferences(const std::vector<ImageReference>& references, const ImageNames& names,
+                                          const ModelGeoreferenceOptions& options) {
+  std::map<std::string, int> ref_base_count;
+  for (const ImageReference& ref : references) ++ref_base_count[ImageNames::BaseName(ref.image_name)];
+  std::vector<ReferenceUse> uses;
   for (const ImageReference& ref : references) {
     ReferenceUse use;
     use.reference = ref;
-    use.height_ellipsoidal_m = options.altitude_datum == AltitudeDatum::kEllipsoidal
-                                   ? ref.alt_m
-                                   : Egm96Geoid::Default().EllipsoidalFromAmslM(ref.lat_deg, ref.lon_deg, ref.alt_m);
-    const auto it = image_by_name.find(ref.image_name);
-    if (it != image_by_name.end()) {
-      use.image_id = it->second;
+    use.height_ellipsoidal_m = EllipsoidalHeightM(options.altitude_datum, ref.lat_deg, ref.lon_deg, ref.alt_m);
+    use.image_id = names.Find(ref.image_name, &use.matched_by_file_name, &ref_base_count);
+    uses.push_back(use);
+  }
+  return uses;
+}
+
+// The pixel observations of a GCP that its triangulation used (the one filter for every re-triangulation).
+std::vector<PixelObservation> UsedObservations(const GcpUse& u) {
+  std::vector<PixelObservation> obs;
+  for (size_t k = 0; k < u.observation_results.size(); ++k) {
+    if (u.observation_results[k].used) obs.push_back({*u.image_ids[k], u.gcp.observations[k].pixel_colmap});
+  }
+  return obs;
+}
+
+// Step 2: ground control points, their images matched and the points triangulated in the COLMAP frame.
+std::vector<GcpUse> TriangulateGcps(const GcpFile& file, const ColmapModel& model, const ImageNames& names,
+                                    const ModelGeoreferenceOptions& options, std::vector<std::string>* warnings) {
+  std::vector<GcpUse> uses;
+  for (const GroundControlPoint& p : file.points) {
+    GcpUse u;
+    u.gcp = p;
+    std::vector<PixelObservation> obs;
+    std::vector<size_t> obs_index;  // file observation of each triangulated one
+    u.observation_results.resize(p.observations.size());
+    for (size_t k = 0; k < p.observations.size(); ++k) {
+      const std::optional<uint32_t> id = names.Find(p.observations[k].image_name);
+      u.image_ids.push_back(id);
+      if (!id) {
+        u.observation_results[k].note = "no registered image of that name";
+        continue;
+      }
+      obs.push_back({*id, p.observations[k].pixel_colmap});
+      obs_index.push_back(k);
+    }
+    u.triangulation = TriangulatePoint(model, obs, options.triangulation);
+    for (size_t j = 0; j < obs.size(); ++j) u.observation_results[obs_index[j]] = u.triangulation.observations[j];
+    if (p.geo_z_m) u.height_ellipsoidal_m = EllipsoidalHeightM(options.gcp_altitude_datum, p.lat_deg, p.lon_deg, *p.geo_z_m);
+    if (!p.geo_z_m) {
+      u.skipped_reason = "no elevation (geo_z is NaN)";
+    } else if (!u.triangulation.ok) {
+      u.skipped_reason = u.triangulation.reason;
     } else {
-      const std::string base = base_name(ref.image_name);
-      const auto b = image_by_base.find(base);
-      if (b != image_by_base.end() && b->second.size() == 1 && ref_base_count[base] == 1) {
-        use.image_id = b->second.front();
-        use.matched_by_file_name = true;
-      }
+      u.usable = true;
     }
-    result.references.push_back(use);
+    if (!u.usable) warnings->push_back("ground control point '" + p.name + "' (" + p.where + ") skipped: " + u.skipped_reason);
+    uses.push_back(std::move(u));
   }
-  size_t matched = 0;
-  for (const auto& r : result.references) matched += r.image_id ? 1 : 0;
+  return uses;
+}
 
-  // 1b. Ground control points: match their images (exact name, else a unique file name) and
-  //     triangulate them in the COLMAP frame.
-  size_t usable_gcps = 0;
-  if (gcp_file) {
-    result.gcp_crs = gcp_file->crs;
-    for (const GroundControlPoint& p : gcp_file->points) {
-      GcpUse u;
-      u.gcp = p;
-      std::vector<PixelObservation> obs;
-      std::vector<size_t> obs_index;  // file observation of each triangulated one
-      u.observation_results.resize(p.observations.size());
-      for (size_t k = 0; k < p.observations.size(); ++k) {
-        const std::string& name = p.observations[k].image_name;
-        std::optional<uint32_t> id;
-        if (const auto it = image_by_name.find(name); it != image_by_name.end()) {
-          id = it->second;
-        } else if (const auto b = image_by_base.find(base_name(name));
-                   b != image_by_base.end() && b->second.size() == 1) {
-          id = b->second.front();
-        }
-        u.image_ids.push_back(id);
-        if (!id) {
-          u.observation_results[k].note = "no registered image of that name";
-          continue;
-        }
-        obs.push_back({*id, p.observations[k].pixel_colmap});
-        obs_index.push_back(k);
-      }
-      u.triangulation = TriangulatePoint(model, obs, options.triangulation);
-      for (size_t j = 0; j < obs.size(); ++j) u.observation_results[obs_index[j]] = u.triangulation.observations[j];
-      if (p.geo_z_m) {
-        u.height_ellipsoidal_m = options.gcp_altitude_datum == AltitudeDatum::kEllipsoidal
-                                     ? *p.geo_z_m
-                                     : Egm96Geoid::Default().EllipsoidalFromAmslM(p.lat_deg, p.lon_deg, *p.geo_z_m);
-      }
-      if (!p.geo_z_m) {
-        u.skipped_reason = "no elevation (geo_z is NaN)";
-      } else if (!u.triangulation.ok) {
-        u.skipped_reason = u.triangulation.reason;
-      } else {
-        u.usable = true;
-        ++usable_gcps;
-      }
-      if (!u.usable) {
-        result.warnings.push_back("ground control point '" + p.name + "' (" + p.where +
-                                  ") skipped: " + u.skipped_reason);
-      }
-      result.gcps.push_back(std::move(u));
-    }
-  }
-
+// Step 3: refuse when nothing can be fitted; warn when GCPs alone are.
+void RequireSomethingToFit(const ColmapModel& model,
+                           const std::vector<ImageReference>& references, const GcpFile* gcp_file, size_t matched,
+                           size_t usable_gcps, std::vector<std::string>* warnings) {
   if (matched == 0 && usable_gcps == 0) {
     std::string example = references.empty() ? "(none)" : references.front().image_name;
     std::string image_example = model.images.empty() ? "(none)" : model.images.begin()->second.name;
@@ -214,220 +228,261 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
                           "', the model's images are named e.g. '" + image_example + "')");
   }
   if (gcp_file && !references.empty() && matched == 0) {
-    result.warnings.push_back("none of the " + std::to_string(references.size()) +
-                              " camera references names a registered image; georeferencing with the ground control "
-                              "points alone");
+    warnings->push_back("none of the " + std::to_string(references.size()) +
+                        " camera references names a registered image; georeferencing with the ground control "
+                        "points alone");
   }
+}
 
-  // 2. Origin: given, else the mean of the matched camera references, else of the usable GCPs.
-  if (options.origin) {
-    result.origin = *options.origin;
-  } else {
-    double lat = 0, lon = 0, h = 0, n = 0;
-    // Longitudes are averaged about the first one so that the antimeridian does no harm.
-    double lon0 = 0;
-    bool first = true;
-    auto add = [&](double lat_deg, double lon_deg, double height_m) {
-      if (first) lon0 = lon_deg, first = false;
-      lat += lat_deg;
-      lon += std::remainder(lon_deg - lon0, 360.0);
-      h += height_m;
-      n += 1;
-    };
-    if (matched > 0) {
-      for (const auto& r : result.references) {
-        if (r.image_id) add(r.reference.lat_deg, r.reference.lon_deg, r.height_ellipsoidal_m);
-      }
-    } else {
-      for (const auto& g : result.gcps) {
-        if (g.usable) add(g.gcp.lat_deg, g.gcp.lon_deg, g.height_ellipsoidal_m);
-      }
+// Step 4: the origin: given, else the mean of the matched camera references, else of the usable GCPs.
+// Longitudes are averaged about the first one so that the antimeridian does no harm.
+Geodetic ChooseOrigin(const ModelGeoreference& r, const ModelGeoreferenceOptions& options, size_t matched) {
+  if (options.origin) return *options.origin;
+  double lat = 0, lon = 0, h = 0, n = 0, lon0 = 0;
+  bool first = true;
+  auto add = [&](double lat_deg, double lon_deg, double height_m) {
+    if (first) lon0 = lon_deg, first = false;
+    lat += lat_deg;
+    lon += std::remainder(lon_deg - lon0, 360.0);
+    h += height_m;
+    n += 1;
+  };
+  if (matched > 0) {
+    for (const auto& u : r.references) {
+      if (u.image_id) add(u.reference.lat_deg, u.reference.lon_deg, u.height_ellipsoidal_m);
     }
-    result.origin = Geodetic{lat / n, std::remainder(lon0 + lon / n, 360.0), h / n};
+  } else {
+    for (const auto& g : r.gcps) {
+      if (g.usable) add(g.gcp.lat_deg, g.gcp.lon_deg, g.height_ellipsoidal_m);
+    }
   }
-  result.geoid_undulation_m = Egm96Geoid::Default().UndulationM(result.origin.lat_deg, result.origin.lon_deg);
-  const EnuFrame frame(result.origin);
+  return Geodetic{lat / n, std::remainder(lon0 + lon / n, 360.0), h / n};
+}
 
-  // Pairs (source in the COLMAP frame, target in ENU): the usable GCPs alone when there are 3 or more,
-  // else the camera references followed by the usable GCPs.
-  const bool gcp_frame = usable_gcps >= 3;
+// The fits' pairs: source in the COLMAP frame, target in ENU.
+struct FitPairs {
   std::vector<Eigen::Vector3d> source, target;
-  std::vector<uint32_t> pair_image;  // camera pairs: image id; GCP pairs: unused
-  std::vector<size_t> pair_gcp;      // GCP pairs: index into result.gcps
-  for (auto& r : result.references) {
-    r.enu_m = frame.EnuFromGeodetic({r.reference.lat_deg, r.reference.lon_deg, r.height_ellipsoidal_m});
-    if (!r.image_id || gcp_frame) continue;
-    r.pair_index = source.size();
-    source.push_back(model.images.at(*r.image_id).ProjectionCenter());
-    target.push_back(r.enu_m);
-    pair_image.push_back(*r.image_id);
-    pair_gcp.push_back(SIZE_MAX);
-    result.pair_is_gcp.push_back(false);
-    result.pair_labels.push_back(r.reference.image_name);
+  std::vector<uint32_t> image;  // camera pairs: image id; GCP pairs: unused
+  std::vector<size_t> gcp;      // GCP pairs: index into ModelGeoreference::gcps
+  std::string what;             // for messages
+};
+
+// Step 5: the usable GCPs alone when there are 3 or more, else the camera references followed by the
+// usable GCPs. Also puts every reference and GCP into ENU.
+FitPairs BuildFitPairs(ModelGeoreference& r, const ColmapModel& model, const EnuFrame& frame, size_t usable_gcps) {
+  const bool gcp_frame = usable_gcps >= 3;
+  FitPairs pairs;
+  for (auto& u : r.references) {
+    u.enu_m = frame.EnuFromGeodetic({u.reference.lat_deg, u.reference.lon_deg, u.height_ellipsoidal_m});
+    if (!u.image_id || gcp_frame) continue;
+    u.pair_index = pairs.source.size();
+    pairs.source.push_back(model.images.at(*u.image_id).ProjectionCenter());
+    pairs.target.push_back(u.enu_m);
+    pairs.image.push_back(*u.image_id);
+    pairs.gcp.push_back(SIZE_MAX);
+    r.pair_is_gcp.push_back(false);
+    r.pair_labels.push_back(u.reference.image_name);
   }
-  for (size_t g = 0; g < result.gcps.size(); ++g) {
-    GcpUse& u = result.gcps[g];
+  for (size_t g = 0; g < r.gcps.size(); ++g) {
+    GcpUse& u = r.gcps[g];
     u.enu_m = frame.EnuFromGeodetic({u.gcp.lat_deg, u.gcp.lon_deg, u.height_ellipsoidal_m});
     if (!u.usable) continue;
-    u.pair_index = source.size();
-    source.push_back(u.triangulation.xyz);
-    target.push_back(u.enu_m);
-    pair_image.push_back(0);
-    pair_gcp.push_back(g);
-    result.pair_is_gcp.push_back(true);
-    result.pair_labels.push_back(u.gcp.name);
+    u.pair_index = pairs.source.size();
+    pairs.source.push_back(u.triangulation.xyz);
+    pairs.target.push_back(u.enu_m);
+    pairs.image.push_back(0);
+    pairs.gcp.push_back(g);
+    r.pair_is_gcp.push_back(true);
+    r.pair_labels.push_back(u.gcp.name);
   }
-  result.pair_targets_enu_m = target;
-  result.fit_references = gcp_frame ? "gcps" : (usable_gcps > 0 ? "cameras+gcps" : "cameras");
-  const std::string what = gcp_frame
-                               ? "ground control points"
-                               : (usable_gcps > 0 ? "references (cameras and ground control points)" : "references");
+  r.pair_targets_enu_m = pairs.target;
+  r.fit_references = gcp_frame ? "gcps" : (usable_gcps > 0 ? "cameras+gcps" : "cameras");
+  pairs.what = gcp_frame ? "ground control points"
+                         : (usable_gcps > 0 ? "references (cameras and ground control points)" : "references");
+  return pairs;
+}
 
-  // 3. First fit.
-  result.first_fit = FitSimilarityRobust(source, target, options.fit, what);
-  result.enu_from_colmap = result.first_fit.target_from_source;
-  result.model_enu = TransformModel(model, result.enu_from_colmap);
-  result.final_fit = result.first_fit;
-  for (size_t i = 0; i < source.size(); ++i) result.pair_final_enu_m.push_back(result.enu_from_colmap(source[i]));
-
-  // 4. Bundle adjustment with priors.
-  if (options.bundle_adjust) {
-    std::map<uint32_t, Eigen::Vector3d> gps;
-    if (gcp_frame) {
-      // Camera references that agree with the GCP-defined frame.
-      for (const auto& r : result.references) {
-        if (!r.image_id) continue;
-        const Eigen::Vector3d c = result.model_enu.images.at(*r.image_id).ProjectionCenter();
-        if ((c - r.enu_m).norm() <= options.fit.inlier_threshold_m) gps[*r.image_id] = r.enu_m;
-      }
-    } else {
-      for (size_t i = 0; i < pair_image.size(); ++i) {
-        if (!result.pair_is_gcp[i] && result.first_fit.inliers[i]) gps[pair_image[i]] = target[i];
-      }
+// GPS priors for the bundle adjustment: in a GCP-defined frame, the camera references that agree with
+// it; else the inlier camera pairs of the first fit.
+std::map<uint32_t, Eigen::Vector3d> GpsPriors(const ModelGeoreference& r, const FitPairs& pairs,
+                                              const ModelGeoreferenceOptions& options) {
+  std::map<uint32_t, Eigen::Vector3d> gps;
+  if (r.fit_references == "gcps") {
+    for (const auto& u : r.references) {
+      if (!u.image_id) continue;
+      const Eigen::Vector3d c = r.model_enu.images.at(*u.image_id).ProjectionCenter();
+      if ((c - u.enu_m).norm() <= options.fit.inlier_threshold_m) gps[*u.image_id] = u.enu_m;
     }
-    std::vector<ControlPointPrior> control;
-    std::vector<size_t> control_pair;  // pair index of each control point
-    for (size_t i = 0; i < source.size(); ++i) {
-      if (!result.pair_is_gcp[i] || !result.first_fit.inliers[i]) continue;
-      const GcpUse& u = result.gcps[pair_gcp[i]];
-      ControlPointPrior c;
-      for (size_t k = 0; k < u.observation_results.size(); ++k) {
-        if (u.observation_results[k].used)
-          c.observations.push_back({*u.image_ids[k], u.gcp.observations[k].pixel_colmap});
-      }
-      c.initial_enu_m = result.enu_from_colmap(u.triangulation.xyz);
-      c.target_enu_m = u.enu_m;
-      c.sigma_horizontal_m = options.gcp_sigma_horizontal_m;
-      c.sigma_vertical_m = options.gcp_sigma_vertical_m;
-      control.push_back(std::move(c));
-      control_pair.push_back(i);
-    }
-    std::vector<Eigen::Vector3d> control_adjusted;
-    result.bundle_adjustment =
-        BundleAdjustEnu(result.model_enu, gps, options.focal_prior_px, options.ba, control, &control_adjusted);
-    // Typical depth (camera to point) for translating a focal-length uncertainty into metres.
-    std::vector<double> depths;
-    for (const auto& [id, point] : result.model_enu.points3d) {
-      for (const auto& e : point.track) {
-        const auto& im = result.model_enu.images.at(e.image_id);
-        depths.push_back((im.cam_from_world_rotation * point.xyz + im.cam_from_world_translation).z());
-      }
-    }
-    double median_depth_m = 0;
-    if (!depths.empty()) {
-      std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-      median_depth_m = depths[depths.size() / 2];
-    }
-    for (const FocalReport& f : result.bundle_adjustment->focal) {
-      const std::string cam = "camera " + std::to_string(f.camera_id) + ": ";
-      const BundleAdjustReport& ba = *result.bundle_adjustment;
-      const std::string sigma =
-          (f.images_sigma_ratio ? "formal sigma " + FormatFixed(100 * *f.images_sigma_ratio, 2) + " %"
-                                : std::string("formal sigma unbounded")) +
-          (ba.geometry_resolves_focal
-               ? std::string()
-               : "; near-flat scene (depth relief " + FormatFixed(100 * ba.depth_relief_ratio, 1) +
-                     " %) under near-parallel views (axes within " + FormatFixed(ba.view_axis_spread_deg, 1) + " deg)");
-      if (f.images_conflict_with_prior && f.images_preferred_px && f.prior_px) {
-        result.warnings.push_back(
-            cam + "the images pull the focal length to " + FormatFixed(*f.images_preferred_px, 1) + " px (" +
-            FormatFixed(100 * (*f.images_preferred_px / *f.prior_px - 1), 1) + " % from the prior " +
-            FormatFixed(*f.prior_px, 1) + " px; " + sigma +
-            "): the focal-length/flying-height ambiguity of a flat scene seen from above, not a measurement; the "
-            "focal length is held at the prior (" +
-            options.focal_prior_source + ")");
-      } else if (f.prior_px) {
-        if (!f.images_resolve_focal) {
-          result.warnings.push_back(cam + "the images cannot resolve focal length vs flying height (" + sigma +
-                                    "); the focal length is held at the prior (" + options.focal_prior_source + ")");
-        }
-      } else if (!f.images_resolve_focal) {
-        std::string what = cam + "the images cannot resolve focal length vs flying height (" + sigma +
-                           ") and no focal-length prior is known (give --images with EXIF, or --focal-prior-px)";
-        what +=
-            ": heights above ground scale with the focal-length error (COLMAP's focal length is taken as is; "
-            "each 1 % error moves the ground by " +
-            FormatFixed(0.01 * median_depth_m, 2) + " m at the median depth of " + FormatFixed(median_depth_m, 1) +
-            " m)";
-        result.warnings.push_back(what);
-      }
-      if (f.prior_px && std::abs(f.before_px / *f.prior_px - 1) > 0.05) {
-        result.warnings.push_back(cam + "COLMAP's focal length (" + FormatFixed(f.before_px, 1) +
-                                  " px) differs from the prior (" + FormatFixed(*f.prior_px, 1) + " px) by " +
-                                  FormatFixed(100 * (f.before_px / *f.prior_px - 1), 1) + " %; adjusted to " +
-                                  FormatFixed(f.after_px, 1) + " px");
-      }
-    }
-    // 5. Refit on the same pairs: adjusted camera centres; adjusted GCPs (re-triangulated when they
-    //    were not in the adjustment).
-    std::vector<Eigen::Vector3d> adjusted(source.size());
-    for (size_t i = 0; i < source.size(); ++i) {
-      if (!result.pair_is_gcp[i]) {
-        adjusted[i] = result.model_enu.images.at(pair_image[i]).ProjectionCenter();
-        continue;
-      }
-      const auto c = std::find(control_pair.begin(), control_pair.end(), i);
-      if (c != control_pair.end()) {
-        adjusted[i] = control_adjusted[c - control_pair.begin()];
-        continue;
-      }
-      const GcpUse& u = result.gcps[pair_gcp[i]];
-      std::vector<PixelObservation> obs;
-      for (size_t k = 0; k < u.observation_results.size(); ++k) {
-        if (u.observation_results[k].used) obs.push_back({*u.image_ids[k], u.gcp.observations[k].pixel_colmap});
-      }
-      const Triangulation t = TriangulatePoint(result.model_enu, obs, options.triangulation);
-      adjusted[i] = t.ok ? t.xyz : result.enu_from_colmap(u.triangulation.xyz);
-    }
-    result.final_fit = FitSimilarityRobust(adjusted, target, options.fit, what);
-    result.model_enu = TransformModel(result.model_enu, result.final_fit.target_from_source);
-    for (size_t i = 0; i < source.size(); ++i) {
-      result.pair_final_enu_m[i] = result.final_fit.target_from_source(adjusted[i]);
+  } else {
+    for (size_t i = 0; i < pairs.image.size(); ++i) {
+      if (!r.pair_is_gcp[i] && r.first_fit.inliers[i]) gps[pairs.image[i]] = pairs.target[i];
     }
   }
+  return gps;
+}
 
-  // Camera references and GCPs against the final model.
-  for (size_t i = 0; i < result.references.size(); ++i) {
-    const ReferenceUse& r = result.references[i];
-    if (r.image_id) {
-      result.camera_residuals_m[i] = (result.model_enu.images.at(*r.image_id).ProjectionCenter() - r.enu_m).norm();
+// The inlier GCP pairs as control-point priors; `control_pair` receives each one's pair index.
+std::vector<ControlPointPrior> ControlPriors(const ModelGeoreference& r, const FitPairs& pairs,
+                                             const ModelGeoreferenceOptions& options,
+                                             std::vector<size_t>* control_pair) {
+  std::vector<ControlPointPrior> control;
+  for (size_t i = 0; i < pairs.source.size(); ++i) {
+    if (!r.pair_is_gcp[i] || !r.first_fit.inliers[i]) continue;
+    const GcpUse& u = r.gcps[pairs.gcp[i]];
+    ControlPointPrior c;
+    c.observations = UsedObservations(u);
+    c.initial_enu_m = r.enu_from_colmap(u.triangulation.xyz);
+    c.target_enu_m = u.enu_m;
+    c.sigma_horizontal_m = options.gcp_sigma_horizontal_m;
+    c.sigma_vertical_m = options.gcp_sigma_vertical_m;
+    control.push_back(std::move(c));
+    control_pair->push_back(i);
+  }
+  return control;
+}
+
+// The median camera-to-point depth, to translate a focal-length uncertainty into metres.
+double MedianPointDepthM(const ColmapModel& model) {
+  std::vector<double> depths;
+  for (const auto& [id, point] : model.points3d) {
+    for (const auto& e : point.track) {
+      const auto& im = model.images.at(e.image_id);
+      depths.push_back((im.cam_from_world_rotation * point.xyz + im.cam_from_world_translation).z());
     }
+  }
+  if (depths.empty()) return 0;
+  std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+  return depths[depths.size() / 2];
+}
+
+// What the bundle adjustment found about each camera's focal length, as warnings a crew can act on.
+void AddFocalWarnings(const BundleAdjustReport& ba, double median_depth_m, const ModelGeoreferenceOptions& options,
+                      std::vector<std::string>* warnings) {
+  for (const FocalReport& f : ba.focal) {
+    const std::string cam = "camera " + std::to_string(f.camera_id) + ": ";
+    const std::string sigma =
+        (f.images_sigma_ratio ? "formal sigma " + FormatFixed(100 * *f.images_sigma_ratio, 2) + " %"
+                              : std::string("formal sigma unbounded")) +
+        (ba.geometry_resolves_focal
+             ? std::string()
+             : "; near-flat scene (depth relief " + FormatFixed(100 * ba.depth_relief_ratio, 1) +
+                   " %) under near-parallel views (axes within " + FormatFixed(ba.view_axis_spread_deg, 1) + " deg)");
+    if (f.images_conflict_with_prior && f.images_preferred_px && f.prior_px) {
+      warnings->push_back(cam + "the images pull the focal length to " + FormatFixed(*f.images_preferred_px, 1) +
+                          " px (" + FormatFixed(100 * (*f.images_preferred_px / *f.prior_px - 1), 1) +
+                          " % from the prior " + FormatFixed(*f.prior_px, 1) + " px; " + sigma +
+                          "): the focal-length/flying-height ambiguity of a flat scene seen from above, not a "
+                          "measurement; the focal length is held at the prior (" +
+                          options.focal_prior_source + ")");
+    } else if (f.prior_px) {
+      if (!f.images_resolve_focal) {
+        warnings->push_back(cam + "the images cannot resolve focal length vs flying height (" + sigma +
+                            "); the focal length is held at the prior (" + options.focal_prior_source + ")");
+      }
+    } else if (!f.images_resolve_focal) {
+      warnings->push_back(cam + "the images cannot resolve focal length vs flying height (" + sigma +
+                          ") and no focal-length prior is known (give --images with EXIF, or --focal-prior-px)" +
+                          ": heights above ground scale with the focal-length error (COLMAP's focal length is taken "
+                          "as is; each 1 % error moves the ground by " +
+                          FormatFixed(0.01 * median_depth_m, 2) + " m at the median depth of " +
+                          FormatFixed(median_depth_m, 1) + " m)");
+    }
+    if (f.prior_px && std::abs(f.before_px / *f.prior_px - 1) > 0.05) {
+      warnings->push_back(cam + "COLMAP's focal length (" + FormatFixed(f.before_px, 1) +
+                          " px) differs from the prior (" + FormatFixed(*f.prior_px, 1) + " px) by " +
+                          FormatFixed(100 * (f.before_px / *f.prior_px - 1), 1) + " %; adjusted to " +
+                          FormatFixed(f.after_px, 1) + " px");
+    }
+  }
+}
+
+// The pairs' sources in the adjusted model: camera centres; adjusted GCPs, re-triangulated when they
+// were not in the adjustment.
+std::vector<Eigen::Vector3d> AdjustedPairSources(const ModelGeoreference& r, const FitPairs& pairs,
+                                                 const std::vector<size_t>& control_pair,
+                                                 const std::vector<Eigen::Vector3d>& control_adjusted,
+                                                 const ModelGeoreferenceOptions& options) {
+  std::vector<Eigen::Vector3d> adjusted(pairs.source.size());
+  for (size_t i = 0; i < pairs.source.size(); ++i) {
+    if (!r.pair_is_gcp[i]) {
+      adjusted[i] = r.model_enu.images.at(pairs.image[i]).ProjectionCenter();
+      continue;
+    }
+    const auto c = std::find(control_pair.begin(), control_pair.end(), i);
+    if (c != control_pair.end()) {
+      adjusted[i] = control_adjusted[c - control_pair.begin()];
+      continue;
+    }
+    const GcpUse& u = r.gcps[pairs.gcp[i]];
+    const Triangulation t = TriangulatePoint(r.model_enu, UsedObservations(u), options.triangulation);
+    adjusted[i] = t.ok ? t.xyz : r.enu_from_colmap(u.triangulation.xyz);
+  }
+  return adjusted;
+}
+
+// Step 7: bundle adjustment in ENU with GPS and GCP priors, then a refit on the same pairs.
+void BundleAdjustAndRefit(ModelGeoreference& r, const FitPairs& pairs, const ModelGeoreferenceOptions& options) {
+  const std::map<uint32_t, Eigen::Vector3d> gps = GpsPriors(r, pairs, options);
+  std::vector<size_t> control_pair;
+  const std::vector<ControlPointPrior> control = ControlPriors(r, pairs, options, &control_pair);
+  std::vector<Eigen::Vector3d> control_adjusted;
+  r.bundle_adjustment = BundleAdjustEnu(r.model_enu, gps, options.focal_prior_px, options.ba, control, &control_adjusted);
+  AddFocalWarnings(*r.bundle_adjustment, MedianPointDepthM(r.model_enu), options, &r.warnings);
+  const std::vector<Eigen::Vector3d> adjusted = AdjustedPairSources(r, pairs, control_pair, control_adjusted, options);
+  r.final_fit = FitSimilarityRobust(adjusted, pairs.target, options.fit, pairs.what);
+  r.model_enu = TransformModel(r.model_enu, r.final_fit.target_from_source);
+  for (size_t i = 0; i < pairs.source.size(); ++i) r.pair_final_enu_m[i] = r.final_fit.target_from_source(adjusted[i]);
+}
+
+// Step 8: camera references and GCPs against the final model.
+void ComputeResiduals(ModelGeoreference& r, const ModelGeoreferenceOptions& options) {
+  for (size_t i = 0; i < r.references.size(); ++i) {
+    const ReferenceUse& u = r.references[i];
+    if (u.image_id) r.camera_residuals_m[i] = (r.model_enu.images.at(*u.image_id).ProjectionCenter() - u.enu_m).norm();
   }
   double sum2 = 0;
   int n_check = 0;
-  for (GcpUse& u : result.gcps) {
+  for (GcpUse& u : r.gcps) {
     if (!u.usable) continue;
-    std::vector<PixelObservation> obs;
-    for (size_t k = 0; k < u.observation_results.size(); ++k) {
-      if (u.observation_results[k].used) obs.push_back({*u.image_ids[k], u.gcp.observations[k].pixel_colmap});
-    }
-    u.final_triangulation = TriangulatePoint(result.model_enu, obs, options.triangulation);
+    u.final_triangulation = TriangulatePoint(r.model_enu, UsedObservations(u), options.triangulation);
     if (!u.final_triangulation->ok) continue;
     u.final_residual_enu_m = u.final_triangulation->xyz - u.enu_m;
     sum2 += u.final_residual_enu_m->squaredNorm();
     ++n_check;
   }
-  result.gcp_check_rmse_m = n_check > 0 ? std::sqrt(sum2 / n_check) : 0;
+  r.gcp_check_rmse_m = n_check > 0 ? std::sqrt(sum2 / n_check) : 0;
+}
+
+}  // namespace
+
+ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<ImageReference>& references,
+                                    const GcpFile* gcp_file, const ModelGeoreferenceOptions& options) {
+  ModelGeoreference result;
+  const ImageNames names = IndexImageNames(model);
+  result.references = MatchReferences(references, names, options);
+  if (gcp_file) {
+    result.gcp_crs = gcp_file->crs;
+    result.gcps = TriangulateGcps(*gcp_file, model, names, options, &result.warnings);
+  }
+  const size_t matched = std::count_if(result.references.begin(), result.references.end(),
+                                       [](const ReferenceUse& u) { return u.image_id.has_value(); });
+  const size_t usable_gcps =
+      std::count_if(result.gcps.begin(), result.gcps.end(), [](const GcpUse& u) { return u.usable; });
+  RequireSomethingToFit(model, references, gcp_file, matched, usable_gcps, &result.warnings);
+
+  result.origin = ChooseOrigin(result, options, matched);
+  result.geoid_undulation_m = Egm96Geoid::Default().UndulationM(result.origin.lat_deg, result.origin.lon_deg);
+  const FitPairs pairs = BuildFitPairs(result, model, EnuFrame(result.origin), usable_gcps);
+
+  // Step 6: the first, similarity-only fit.
+  result.first_fit = FitSimilarityRobust(pairs.source, pairs.target, options.fit, pairs.what);
+  result.enu_from_colmap = result.first_fit.target_from_source;
+  result.model_enu = TransformModel(model, result.enu_from_colmap);
+  result.final_fit = result.first_fit;
+  for (const Eigen::Vector3d& source : pairs.source) result.pair_final_enu_m.push_back(result.enu_from_colmap(source));
+
+  if (options.bundle_adjust) BundleAdjustAndRefit(result, pairs, options);
+  ComputeResiduals(result, options);
   return result;
 }
 
