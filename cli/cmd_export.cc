@@ -11,8 +11,8 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
-#include "core/scene_file.h"
 #include "core/plan_file.h"
+#include "core/scene_file.h"
 #include "export/exporter.h"
 
 namespace cinepath::cli {
@@ -85,6 +85,16 @@ class ExportCommand : public Command {
     outputs.Commit();
     std::cout << (json_ ? DumpJson(report) : exporter::ReportText(result, options));
     return 0;
+  }
+
+  FieldFlags field_flags() const override {
+    return {{"formats", "--format"},
+            {"firmware", "--firmware"},
+            {"altitude_ref", "--altitude-ref"},
+            {"max_deviation_m", "--max-deviation-m"},
+            {"max_angle_deg", "--max-angle-deg"},
+            {"scene_origin", "--scene"},
+            {"home", "--home"}};
   }
 
  private:

@@ -42,8 +42,8 @@ class PlanCommand : public Command {
                         " limit range(s) (--strict; nothing written):";
       for (const auto& v : plan.feasibility.violations) {
         const bool minimum = v.limit.ends_with("_min") || v.limit == "subject_distance";
-        msg += "\n  " + FormatFixed(v.start_time_s, 3) + "-" + FormatFixed(v.end_time_s, 3) + " s  shot \"" + v.shot + "\"  " +
-               v.limit + ": " + FormatSignificant(v.worst_value, 4) + (v.unit.empty() ? "" : " " + v.unit) +
+        msg += "\n  " + FormatFixed(v.start_time_s, 3) + "-" + FormatFixed(v.end_time_s, 3) + " s  shot \"" + v.shot +
+               "\"  " + v.limit + ": " + FormatSignificant(v.worst_value, 4) + (v.unit.empty() ? "" : " " + v.unit) +
                (minimum ? " < " : " > ") + FormatSignificant(v.limit_value, 4) + (v.unit.empty() ? "" : " " + v.unit);
       }
       throw InfeasibleError(msg);
@@ -63,6 +63,8 @@ class PlanCommand : public Command {
     common_.WriteDepfileIfAsked(targets, inputs);
     return 0;
   }
+
+  FieldFlags field_flags() const override { return {{"scene_origin", "--scene"}, {"progress", "--progress"}}; }
 
  private:
   std::string shots_path_;

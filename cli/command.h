@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/field_flags.h"
+
 namespace CLI {
 class App;
 }
@@ -20,6 +22,8 @@ class Command {
   virtual void Setup(CLI::App& app) = 0;
   // Does the work; returns the exit code (normally 0). Throws cinepath::Error on failure.
   virtual int Run() = 0;
+  // Which flag binds which library field (cli/field_flags.h): messages of InputErrors show the flags.
+  virtual FieldFlags field_flags() const { return {}; }
 };
 
 struct CommandInfo {

@@ -4,6 +4,8 @@
 //   common.WriteDepfileIfAsked({output}, {inputs...});  // after the outputs landed
 #pragma once
 
+#include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,22 @@
 #include "core/progress.h"
 
 namespace cinepath::cli {
+
+// A finite number > 0, with a message a person can read ("must be a finite number > 0, got 0"), where
+// CLI::PositiveNumber prints its range up to DBL_MAX.
+inline const CLI::Validator& PositiveFinite() {
+  static const CLI::Validator v(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(x) || !(x > 0)) {
+          return "must be a finite number > 0, got " + text;
+        }
+        return {};
+      },
+      "POSITIVE");
+  return v;
+}
 
 class CommonOptions {
  public:

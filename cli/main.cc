@@ -49,7 +49,11 @@ int RunCommand(const cinepath::cli::CommandInfo& info, int argc, char** argv) {
               << "Run 'cinepath " << info.name << " --help' for usage.\n";
     return static_cast<int>(cinepath::ExitCode::kBadInput);
   }
-  return command->Run();
+  try {
+    return command->Run();
+  } catch (const cinepath::InputError& e) {
+    throw cinepath::InputError(cinepath::cli::WithFlagNames(e.what(), command->field_flags()));
+  }
 }
 
 }  // namespace

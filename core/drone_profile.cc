@@ -62,7 +62,8 @@ FixedLens ReadLens(const JsonField& f) {
   lens.min_f_number = f["min_f_number"].AsPositive();
   lens.max_f_number = f["max_f_number"].AsPositive();
   lens.min_focus_distance_m = f["min_focus_distance_m"].AsPositive();
-  if (lens.max_focal_length_mm < lens.min_focal_length_mm) f["max_focal_length_mm"].Fail("must be >= min_focal_length_mm");
+  if (lens.max_focal_length_mm < lens.min_focal_length_mm)
+    f["max_focal_length_mm"].Fail("must be >= min_focal_length_mm");
   if (lens.max_f_number < lens.min_f_number) f["max_f_number"].Fail("must be >= min_f_number");
   return lens;
 }

@@ -53,8 +53,8 @@ class JsonField {
 
   // Typed reads; each throws InputError naming the path on a wrong type or a non-finite number.
   double AsDouble() const;
-  double AsPositive() const;     // > 0
-  double AsNonNegative() const;  // >= 0
+  double AsPositive() const;                      // > 0
+  double AsNonNegative() const;                   // >= 0
   double AsDoubleIn(double lo, double hi) const;  // in [lo, hi], else "must be in [lo, hi]"
   int64_t AsInt() const;
   bool AsBool() const;

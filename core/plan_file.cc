@@ -40,7 +40,6 @@ Json Focus(double focus_m) {
   return Json(R(focus_m, kMetres));
 }
 
-
 Json CameraJson(const CameraSpec& c) {
   Json j = Json::object();
   j["filmback"] = c.filmback;
@@ -59,7 +58,6 @@ Json CameraJson(const CameraSpec& c) {
   j["max_aperture_rate_stops_s"] = c.max_aperture_rate_stops_s;
   return j;
 }
-
 
 // ---- reading -------------------------------------------------------------------------------
 
@@ -84,7 +82,6 @@ double ReadFocus(const JsonField& parent, const char* key) {
   }
   return parent[key].AsPositive();
 }
-
 
 CameraSpec ReadCamera(const JsonField& f) {
   CameraSpec c;

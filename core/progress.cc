@@ -13,7 +13,7 @@ ProgressMode ParseProgressMode(const std::string& text) {
   if (text == "auto") return ProgressMode::kAuto;
   if (text == "always") return ProgressMode::kAlways;
   if (text == "never") return ProgressMode::kNever;
-  throw InputError("--progress: expected auto, always or never, got '" + text + "'");
+  throw InputError("progress: expected auto, always or never, got '" + text + "'");
 }
 
 Progress::Progress(std::string label, double total, ProgressMode mode)

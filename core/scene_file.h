@@ -19,10 +19,10 @@
 namespace cinepath {
 
 struct SceneFile {
-  std::string source;                           // the file name, as messages name it
-  std::optional<Geodetic> origin;               // "origin"; absent = local metres only
-  std::optional<std::filesystem::path> mesh;    // "mesh" resolved against scene.json's folder
-  Json document;                                // the whole file
+  std::string source;                         // the file name, as messages name it
+  std::optional<Geodetic> origin;             // "origin"; absent = local metres only
+  std::optional<std::filesystem::path> mesh;  // "mesh" resolved against scene.json's folder
+  Json document;                              // the whole file
 
   // The mesh path; InputError ("<source>: mesh: ...") when the key is absent or the file is missing.
   const std::filesystem::path& RequireMesh() const;

@@ -43,7 +43,6 @@ struct CameraSpec {
   ImageExtentMm image_extent_mm() const { return ImageExtentOnSensorMm(sensor_width_mm, width_px, height_px); }
 };
 
-
 struct TrajectorySample {
   double time_s = 0;
   Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();

@@ -17,20 +17,20 @@
 namespace cinepath::exporter {
 
 void ExportOptions::Check() const {
-  if (formats.empty()) throw InputError("--format: at least one format is required");
+  if (formats.empty()) throw InputError("formats: at least one format is required");
   for (size_t i = 0; i < formats.size(); ++i) {
     for (size_t j = 0; j < i; ++j) {
       if (formats[i] == formats[j]) {
-        throw InputError(std::string("--format: '") + FormatName(formats[i]) + "' given twice");
+        throw InputError(std::string("formats: '") + FormatName(formats[i]) + "' given twice");
       }
     }
     const Format f = formats[i];
     if (IsMavlinkFormat(f) && altitude_ref == AltitudeRef::kEllipsoid) {
-      throw InputError(std::string("--altitude-ref ellipsoid: ") + FormatName(f) +
+      throw InputError(std::string("altitude_ref ellipsoid: ") + FormatName(f) +
                        " carries altitudes relative to home or AMSL only (MAVLink frames 3 / 0)");
     }
     if ((f == Format::kDjiMsdkJson || f == Format::kLitchiCsv) && altitude_ref != AltitudeRef::kRelative) {
-      throw InputError(std::string("--altitude-ref ") + AltitudeRefName(altitude_ref) + ": " + FormatName(f) +
+      throw InputError(std::string("altitude_ref ") + AltitudeRefName(altitude_ref) + ": " + FormatName(f) +
                        " carries altitudes relative to take-off only");
     }
   }

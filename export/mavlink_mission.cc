@@ -35,7 +35,7 @@ MavItem HomeItem(const Mission& mission) {
 MavMission BuildMavMission(const Mission& mission, Firmware firmware, AltitudeRef ref) {
   if (ref == AltitudeRef::kEllipsoid) {
     throw InputError(
-        "--altitude-ref ellipsoid: MAVLink missions carry altitudes relative to home (frame 3) or "
+        "altitude_ref ellipsoid: MAVLink missions carry altitudes relative to home (frame 3) or "
         "AMSL (frame 0), not ellipsoidal heights");
   }
   CINEPATH_CHECK(!mission.waypoints.empty());

@@ -50,7 +50,6 @@ void SetGeoPosition(const EnuFrame& frame, const Egm96Geoid& geoid, double home_
 
 }  // namespace
 
-
 HomeSpec ParseHomeSpec(const std::string& text, const std::string& option) {
   std::vector<std::string> parts;
   std::stringstream stream(text);
@@ -88,13 +87,13 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
   if (!origin) {
     if (options.absolute_altitudes) {
       throw InputError(Located(plan,
-                               "origin: the plan has no WGS84 origin (none in the plan, no --scene); "
+                               "origin: the plan has no WGS84 origin (none in the plan, no `scene_origin`); "
                                "absolute altitudes (amsl/ellipsoid) need one"));
     }
     if (!options.home) {
       throw InputError(Located(plan,
-                               "origin: the plan has no WGS84 origin; pass --scene scene.json, or "
-                               "--home LAT,LON,ALT to place the scene origin at home"));
+                               "origin: the plan has no WGS84 origin; pass `scene_origin` (a scene.json), or "
+                               "`home` (LAT,LON,ALT) to place the scene origin at home"));
     }
     origin = Geodetic{options.home->lat_deg, options.home->lon_deg,
                       geoid.EllipsoidalFromAmslM(options.home->lat_deg, options.home->lon_deg, options.home->amsl_m)};

@@ -42,7 +42,7 @@ Format ParseFormat(const std::string& name) {
     if (name == f.name) return f.format;
     known += known.empty() ? f.name : std::string(", ") + f.name;
   }
-  throw InputError("--format: unknown format '" + name + "' (known: " + known + ")");
+  throw InputError("formats: unknown format '" + name + "' (known: " + known + ")");
 }
 
 bool IsMavlinkFormat(Format format) {
@@ -54,7 +54,7 @@ const char* FirmwareName(Firmware firmware) { return firmware == Firmware::kPx4 
 Firmware ParseFirmware(const std::string& name) {
   if (name == "px4") return Firmware::kPx4;
   if (name == "ardupilot") return Firmware::kArduPilot;
-  throw InputError("--firmware: unknown firmware '" + name + "' (known: px4, ardupilot)");
+  throw InputError("firmware: unknown firmware '" + name + "' (known: px4, ardupilot)");
 }
 
 FormatLimits LimitsOf(Format format) {

@@ -10,10 +10,10 @@ namespace cinepath::exporter {
 
 void SelectionOptions::Check() const {
   if (!std::isfinite(max_deviation_m) || max_deviation_m <= 0) {
-    throw InputError("--max-deviation-m: must be a finite number > 0");
+    throw InputError("max_deviation_m: must be a finite number > 0");
   }
   if (!std::isfinite(max_angle_deg) || max_angle_deg <= 0) {
-    throw InputError("--max-angle-deg: must be a finite number > 0");
+    throw InputError("max_angle_deg: must be a finite number > 0");
   }
 }
 

@@ -500,7 +500,7 @@ fs::path FindColmapModelDir(const fs::path& dir) {
     std::string names;
     for (const fs::path& f : found) names += (names.empty() ? "" : ", ") + f.string();
     throw InputError(Located(dir.string(), "holds " + std::to_string(found.size()) + " COLMAP models (" + names +
-                                               "): give the one to use with --colmap"));
+                                               "): give the one to use as `colmap_dir`"));
   }
   return found.front();
 }

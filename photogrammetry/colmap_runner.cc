@@ -82,7 +82,7 @@ fs::path LargestModel(const fs::path& sparse) {
 
 fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& workspace, const ColmapRunOptions& options,
                                  const std::function<void(const std::string&)>& on_step) {
-  if (!fs::is_directory(images_dir)) throw InputError(Located(images_dir.string(), "not a directory (--images)"));
+  if (!fs::is_directory(images_dir)) throw InputError(Located(images_dir.string(), "not a directory (`images_dir`)"));
   fs::create_directories(workspace / "sparse");
   if (fs::path existing = LargestModel(workspace / "sparse"); !existing.empty()) return existing;
   const fs::path db = workspace / "database.db";

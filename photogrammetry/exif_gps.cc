@@ -67,7 +67,7 @@ ExifInfo ReadExif(const std::filesystem::path& image_path) {
 
 std::vector<ExifInfo> ReadExifFolder(const std::filesystem::path& images_dir, const std::vector<std::string>& names) {
   if (!std::filesystem::is_directory(images_dir)) {
-    throw InputError(Located(images_dir.string(), "not a directory (--images)"));
+    throw InputError(Located(images_dir.string(), "not a directory (`images_dir`)"));
   }
   std::vector<ExifInfo> out;
   for (const std::string& name : names) {

@@ -223,7 +223,7 @@ RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source, const 
   if (fit.rmse_m > options.max_rmse_m) {
     throw InfeasibleError("georeferencing RMSE " + FormatFixed(fit.rmse_m, 3) + " m over " +
                           std::to_string(fit.num_inliers) + " inlier " + what + " exceeds the maximum " +
-                          FormatFixed(options.max_rmse_m, 3) + " m (--max-rmse-m)");
+                          FormatFixed(options.max_rmse_m, 3) + " m (`max_rmse_m`)");
   }
   return fit;
 }

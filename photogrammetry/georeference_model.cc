@@ -195,7 +195,8 @@ std::vector<GcpUse> TriangulateGcps(const GcpFile& file, const ColmapModel& mode
     }
     u.triangulation = TriangulatePoint(model, obs, options.triangulation);
     for (size_t j = 0; j < obs.size(); ++j) u.observation_results[obs_index[j]] = u.triangulation.observations[j];
-    if (p.geo_z_m) u.height_ellipsoidal_m = EllipsoidalHeightM(options.gcp_altitude_datum, p.lat_deg, p.lon_deg, *p.geo_z_m);
+    if (p.geo_z_m)
+      u.height_ellipsoidal_m = EllipsoidalHeightM(options.gcp_altitude_datum, p.lat_deg, p.lon_deg, *p.geo_z_m);
     if (!p.geo_z_m) {
       u.skipped_reason = "no elevation (geo_z is NaN)";
     } else if (!u.triangulation.ok) {
@@ -203,16 +204,17 @@ std::vector<GcpUse> TriangulateGcps(const GcpFile& file, const ColmapModel& mode
     } else {
       u.usable = true;
     }
-    if (!u.usable) warnings->push_back("ground control point '" + p.name + "' (" + p.where + ") skipped: " + u.skipped_reason);
+    if (!u.usable)
+      warnings->push_back("ground control point '" + p.name + "' (" + p.where + ") skipped: " + u.skipped_reason);
     uses.push_back(std::move(u));
   }
   return uses;
 }
 
 // Step 3: refuse when nothing can be fitted; warn when GCPs alone are.
-void RequireSomethingToFit(const ColmapModel& model,
-                           const std::vector<ImageReference>& references, const GcpFile* gcp_file, size_t matched,
-                           size_t usable_gcps, std::vector<std::string>* warnings) {
+void RequireSomethingToFit(const ColmapModel& model, const std::vector<ImageReference>& references,
+                           const GcpFile* gcp_file, size_t matched, size_t usable_gcps,
+                           std::vector<std::string>* warnings) {
   if (matched == 0 && usable_gcps == 0) {
     std::string example = references.empty() ? "(none)" : references.front().image_name;
     std::string image_example = model.images.empty() ? "(none)" : model.images.begin()->second.name;
@@ -381,7 +383,7 @@ void AddFocalWarnings(const BundleAdjustReport& ba, double median_depth_m, const
       }
     } else if (!f.images_resolve_focal) {
       warnings->push_back(cam + "the images cannot resolve focal length vs flying height (" + sigma +
-                          ") and no focal-length prior is known (give --images with EXIF, or --focal-prior-px)" +
+                          ") and no focal-length prior is known (neither the photos' EXIF nor a given prior)" +
                           ": heights above ground scale with the focal-length error (COLMAP's focal length is taken "
                           "as is; each 1 % error moves the ground by " +
                           FormatFixed(0.01 * median_depth_m, 2) + " m at the median depth of " +
@@ -426,7 +428,8 @@ void BundleAdjustAndRefit(ModelGeoreference& r, const FitPairs& pairs, const Mod
   std::vector<size_t> control_pair;
   const std::vector<ControlPointPrior> control = ControlPriors(r, pairs, options, &control_pair);
   std::vector<Eigen::Vector3d> control_adjusted;
-  r.bundle_adjustment = BundleAdjustEnu(r.model_enu, gps, options.focal_prior_px, options.ba, control, &control_adjusted);
+  r.bundle_adjustment =
+      BundleAdjustEnu(r.model_enu, gps, options.focal_prior_px, options.ba, control, &control_adjusted);
   AddFocalWarnings(*r.bundle_adjustment, MedianPointDepthM(r.model_enu), options, &r.warnings);
   const std::vector<Eigen::Vector3d> adjusted = AdjustedPairSources(r, pairs, control_pair, control_adjusted, options);
   r.final_fit = FitSimilarityRobust(adjusted, pairs.target, options.fit, pairs.what);
@@ -513,7 +516,7 @@ Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions
   g["altitude_datum_note"] =
       options.altitude_datum == AltitudeDatum::kEllipsoidal
           ? "reference altitudes taken as WGS84 ellipsoidal heights (as COLMAP does; DJI drones write these "
-            "in EXIF GPSAltitude); use --altitude-datum amsl if they are above mean sea level"
+            "in EXIF GPSAltitude); choose the AMSL datum if they are above mean sea level"
           : "reference altitudes taken as above mean sea level and converted with EGM96 (h = H + N)";
   g["inlier_threshold_m"] = options.fit.inlier_threshold_m;
   g["max_rmse_m"] = options.fit.max_rmse_m;

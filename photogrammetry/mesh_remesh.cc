@@ -20,7 +20,7 @@ using internal::SurfaceMesh;
 
 void RemeshOptions::Check() const {
   if (!(target_edge_m > 0 && std::isfinite(target_edge_m))) {
-    throw InputError("--remesh-edge-m: must be a finite number > 0");
+    throw InputError("remesh_edge_m: must be a finite number > 0");
   }
   if (iterations < 1) throw InputError("remesh: iterations must be >= 1");
 }

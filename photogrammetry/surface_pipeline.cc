@@ -293,14 +293,14 @@ const char* SurfaceMethodName(SurfaceMethod method) {
 
 void SurfacePipelineOptions::Check() const {
   if (target_faces && max_error_m) {
-    throw InputError("--target-faces and --max-error-m: give at most one of them");
+    throw InputError("target_faces and max_error_m: give at most one of them");
   }
-  if (target_faces && *target_faces <= 0) throw InputError("--target-faces: must be > 0");
+  if (target_faces && *target_faces <= 0) throw InputError("target_faces: must be > 0");
   if (max_error_m && !(*max_error_m > 0 && std::isfinite(*max_error_m))) {
-    throw InputError("--max-error-m: must be a finite number > 0");
+    throw InputError("max_error_m: must be a finite number > 0");
   }
   if (remesh_edge_m && !(*remesh_edge_m > 0 && std::isfinite(*remesh_edge_m))) {
-    throw InputError("--remesh-edge-m: must be a finite number > 0");
+    throw InputError("remesh_edge_m: must be a finite number > 0");
   }
   if (!gltf_extras.is_null() && !gltf_extras.is_object()) {
     throw InputError("gltf extras: must be a JSON object");

@@ -50,7 +50,8 @@ class GlbDecoder {
   Attribute ReadAccessor(int index, const std::string& where) const;
   std::vector<uint32_t> ReadIndices(int index, size_t vertex_count, const std::string& where) const;
   Primitive ReadPlainPrimitive(const tinygltf::Primitive& p, const std::string& where) const;
-  Primitive ReadDracoPrimitive(const tinygltf::Primitive& p, const tinygltf::Value& ext, const std::string& where) const;
+  Primitive ReadDracoPrimitive(const tinygltf::Primitive& p, const tinygltf::Value& ext,
+                               const std::string& where) const;
   void AddMesh(int mesh_index, const Eigen::Matrix4d& gltf_from_mesh, SceneMesh* out);
   void Visit(int node_index, const Eigen::Matrix4d& parent, int depth, SceneMesh* out);
   int MaterialIndex(int gltf_material, SceneMesh* out);
@@ -144,7 +145,8 @@ GlbDecoder::Attribute GlbDecoder::ReadAccessor(int index, const std::string& whe
   out.values.resize(a.count * out.components);
   for (size_t i = 0; i < a.count; ++i) {
     for (int c = 0; c < out.components; ++c) {
-      out.values[i * out.components + c] = ComponentAsFloat(base + i * stride + c * size, a.componentType, a.normalized);
+      out.values[i * out.components + c] =
+          ComponentAsFloat(base + i * stride + c * size, a.componentType, a.normalized);
     }
   }
   return out;
@@ -191,7 +193,8 @@ std::vector<uint32_t> GlbDecoder::ReadIndices(int index, size_t vertex_count, co
     } else {
       std::memcpy(&v, p, 4);
     }
-    if (v >= vertex_count) Fail(at, "index " + std::to_string(v) + " out of range (" + std::to_string(vertex_count) + " vertices)");
+    if (v >= vertex_count)
+      Fail(at, "index " + std::to_string(v) + " out of range (" + std::to_string(vertex_count) + " vertices)");
     out[i] = v;
   }
   return out;
@@ -289,7 +292,9 @@ GlbDecoder::Primitive GlbDecoder::ReadDracoPrimitive(const tinygltf::Primitive& 
     }
     // Normalized integer colours and texture coordinates come back as floats in [0, 1].
     if (att->normalized() && att->data_type() != draco::DT_FLOAT32) {
-      const double scale = att->data_type() == draco::DT_UINT8 ? 255.0 : att->data_type() == draco::DT_UINT16 ? 65535.0 : 1.0;
+      const double scale = att->data_type() == draco::DT_UINT8    ? 255.0
+                           : att->data_type() == draco::DT_UINT16 ? 65535.0
+                                                                  : 1.0;
       for (float& v : a.values) v = static_cast<float>(v / scale);
     }
     return a;
@@ -319,12 +324,15 @@ int GlbDecoder::MaterialIndex(int gltf_material, SceneMesh* out) {
   const tinygltf::Material& m = model_.materials[gltf_material];
   SceneMaterial material;
   const auto& factor = m.pbrMetallicRoughness.baseColorFactor;
-  if (factor.size() == 4) material.base_color_factor = Eigen::Vector4d(factor[0], factor[1], factor[2], factor[3]).cast<float>();
+  if (factor.size() == 4)
+    material.base_color_factor = Eigen::Vector4d(factor[0], factor[1], factor[2], factor[3]).cast<float>();
   const int texture = m.pbrMetallicRoughness.baseColorTexture.index;
   if (texture >= 0) {
-    if (static_cast<size_t>(texture) >= model_.textures.size()) Fail(Element("materials", gltf_material), "texture index out of range");
+    if (static_cast<size_t>(texture) >= model_.textures.size())
+      Fail(Element("materials", gltf_material), "texture index out of range");
     const int image = model_.textures[texture].source;
-    if (image < 0 || static_cast<size_t>(image) >= model_.images.size()) Fail(Element("textures", texture), "source out of range");
+    if (image < 0 || static_cast<size_t>(image) >= model_.images.size())
+      Fail(Element("textures", texture), "source out of range");
     if (image_map_[image] < 0 && !model_.images[image].image.empty()) {
       image_map_[image] = static_cast<int>(out->images.size());
       out->images.push_back({model_.images[image].mimeType, model_.images[image].image});
@@ -347,8 +355,8 @@ void GlbDecoder::AddMesh(int mesh_index, const Eigen::Matrix4d& gltf_from_mesh, 
     const int mode = p.mode < 0 ? kModeTriangles : p.mode;
     if (mode != kModeTriangles && mode != kModeTriangleStrip && mode != kModeTriangleFan) continue;
     const auto ext = p.extensions.find(kDracoExtension);
-    const Primitive prim = ext != p.extensions.end() ? ReadDracoPrimitive(p, ext->second, where)
-                                                     : ReadPlainPrimitive(p, where);
+    const Primitive prim =
+        ext != p.extensions.end() ? ReadDracoPrimitive(p, ext->second, where) : ReadPlainPrimitive(p, where);
     if (prim.indices.empty()) continue;
     const int material = MaterialIndex(p.material, out);
     const Eigen::Vector4f factor = material >= 0 ? out->materials[material].base_color_factor : Eigen::Vector4f::Ones();
@@ -362,7 +370,8 @@ void GlbDecoder::AddMesh(int mesh_index, const Eigen::Matrix4d& gltf_from_mesh, 
     if (colors && !out->has_colors()) out->colors_linear.assign(base, Eigen::Vector3f::Ones());
     if (texcoords && !out->has_texcoords()) out->texcoords.assign(base, Eigen::Vector2f::Zero());
     for (size_t i = 0; i < n; ++i) {
-      const Eigen::Vector4d g(prim.position.values[3 * i], prim.position.values[3 * i + 1], prim.position.values[3 * i + 2], 1.0);
+      const Eigen::Vector4d g(prim.position.values[3 * i], prim.position.values[3 * i + 1],
+                              prim.position.values[3 * i + 2], 1.0);
       const Eigen::Vector4d w = gltf_from_mesh * g;
       const Eigen::Vector3d enu(w.x(), -w.z(), w.y());
       if (!enu.allFinite()) Fail(where, "a position is not finite");
@@ -383,7 +392,8 @@ void GlbDecoder::AddMesh(int mesh_index, const Eigen::Matrix4d& gltf_from_mesh, 
     }
     const bool flip = gltf_from_mesh.topLeftCorner<3, 3>().determinant() < 0;  // mirrored: keep the winding
     for (size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
-      std::array<uint32_t, 3> f = {static_cast<uint32_t>(base + prim.indices[t]), static_cast<uint32_t>(base + prim.indices[t + 1]),
+      std::array<uint32_t, 3> f = {static_cast<uint32_t>(base + prim.indices[t]),
+                                   static_cast<uint32_t>(base + prim.indices[t + 1]),
                                    static_cast<uint32_t>(base + prim.indices[t + 2])};
       if (flip) std::swap(f[1], f[2]);
       out->faces.push_back(f);
@@ -404,7 +414,8 @@ Eigen::Matrix4d LocalTransform(const tinygltf::Node& node) {
     return m;
   }
   Eigen::Affine3d a = Eigen::Affine3d::Identity();
-  if (node.translation.size() == 3) a.translate(Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]));
+  if (node.translation.size() == 3)
+    a.translate(Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]));
   if (node.rotation.size() == 4) {
     a.rotate(Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]).normalized());
   }
@@ -413,7 +424,8 @@ Eigen::Matrix4d LocalTransform(const tinygltf::Node& node) {
 }
 
 void GlbDecoder::Visit(int node_index, const Eigen::Matrix4d& parent, int depth, SceneMesh* out) {
-  if (node_index < 0 || static_cast<size_t>(node_index) >= model_.nodes.size()) Fail("nodes", "node index out of range");
+  if (node_index < 0 || static_cast<size_t>(node_index) >= model_.nodes.size())
+    Fail("nodes", "node index out of range");
   if (depth > 64) Fail(Element("nodes", node_index), "node hierarchy deeper than 64 (a cycle?)");
   const tinygltf::Node& node = model_.nodes[node_index];
   const Eigen::Matrix4d world = parent * LocalTransform(node);

@@ -39,7 +39,7 @@ Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, cons
   }
   const JsonField g = parent[geo_key];
   g.RejectUnknownKeys({"lat_deg", "lon_deg", "height_m", "amsl_m"});
-  if (!frame) g.Fail("a lat/lon position needs a WGS84 origin (shots.json \"origin\" or --scene)");
+  if (!frame) g.Fail("a lat/lon position needs a WGS84 origin (shots.json \"origin\" or `scene_origin`)");
   Geodetic geo;
   geo.lat_deg = g["lat_deg"].AsDouble();
   geo.lon_deg = g["lon_deg"].AsDouble();

@@ -43,8 +43,7 @@ double FramingFocalLengthMm(double image_height_mm, double subject_height_m, dou
   return FocalLengthForFieldOfViewMm(image_height_mm, vfov);
 }
 
-double ImageHeightFraction(double image_height_mm, double focal_length_mm, double subject_height_m,
-                           double distance_m) {
+double ImageHeightFraction(double image_height_mm, double focal_length_mm, double subject_height_m, double distance_m) {
   const double vfov = FieldOfViewRad(image_height_mm, focal_length_mm);
   return subject_height_m / (2.0 * distance_m * std::tan(vfov / 2.0));
 }

@@ -26,8 +26,7 @@ double StopsBetween(double n0, double n1);
 
 // The focal length that makes a subject of `subject_height_m` at `distance_m` fill
 // `height_fraction` of the frame height (0 < fraction). InputError for non-positive input.
-double FramingFocalLengthMm(double image_height_mm, double subject_height_m, double distance_m,
-                            double height_fraction);
+double FramingFocalLengthMm(double image_height_mm, double subject_height_m, double distance_m, double height_fraction);
 // The fraction of the frame height the subject fills with that focal length.
 double ImageHeightFraction(double image_height_mm, double focal_length_mm, double subject_height_m, double distance_m);
 

@@ -137,7 +137,7 @@ void Planner::Prepare() {
 // A KEYFRAMES shot at local time tau: the spline at the segment-eased time, SLERP/SQUAD between
 // key orientations (or an aim at the subject), and the eased time lens keys are read at.
 ShotPose EvaluateKeyframes(const ShotSpec& shot, const ShotState& st, const Actor* actor, double t, double tau,
-                      double* lens_time) {
+                           double* lens_time) {
   ShotPose pose;
   const auto& keys = shot.keys;
   const double tc = std::clamp(tau, keys.front().time_s, keys.back().time_s);
@@ -155,7 +155,8 @@ ShotPose EvaluateKeyframes(const ShotSpec& shot, const ShotState& st, const Acto
     if (keys.size() == 1) {
       pose.world_from_camera = st.keyframes.q[0];
     } else if (shot.orientation == OrientationInterpolation::kSquad) {
-      pose.world_from_camera = Squad(st.keyframes.q[k], st.keyframes.q[k + 1], st.keyframes.s[k], st.keyframes.s[k + 1], w);
+      pose.world_from_camera =
+          Squad(st.keyframes.q[k], st.keyframes.q[k + 1], st.keyframes.s[k], st.keyframes.s[k + 1], w);
     } else {
       pose.world_from_camera = Slerp(st.keyframes.q[k], st.keyframes.q[k + 1], w);
     }
@@ -211,7 +212,8 @@ double Planner::RequestedFocalLengthMm(const ShotSpec& shot, const ShotState& st
     const double fraction = std::exp((1 - pose.eased) * std::log(k0) + pose.eased * std::log(k1));
     return FramingFocalLengthMm(image_height_mm, actor->height_m(), std::max(subject_distance, 1e-6), fraction);
   }
-  if (!st.keyframes.focal.empty()) return InterpolateLensKeys(st.keyframes.focal, lens_time, LensQuantity::kFocalLength);
+  if (!st.keyframes.focal.empty())
+    return InterpolateLensKeys(st.keyframes.focal, lens_time, LensQuantity::kFocalLength);
   if (lens.focal_length_mm) {
     return InterpolateFocalLengthMm(*lens.focal_length_mm, lens.focal_length_end_mm.value_or(*lens.focal_length_mm),
                                     pose.eased);
@@ -265,7 +267,8 @@ Eigen::Quaterniond Planner::OrientationAt(const ShotSpec& shot, const ShotState&
 double Planner::RequestedFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
                                 const Eigen::Quaterniond& q, double t, double tau, double lens_time) const {
   const LensSpec& lens = shot.lens;
-  if (!st.keyframes.focus.empty()) return InterpolateLensKeys(st.keyframes.focus, lens_time, LensQuantity::kFocusDistance);
+  if (!st.keyframes.focus.empty())
+    return InterpolateLensKeys(st.keyframes.focus, lens_time, LensQuantity::kFocusDistance);
   if (lens.focus == LensSpec::Focus::kFixed) return lens.focus_distance_m;
   if (lens.focus != LensSpec::Focus::kFollow || shot.subject < 0) return kInf;
   const Eigen::Vector3d forward = q * Eigen::Vector3d::UnitZ();
@@ -323,8 +326,8 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
   s.shot = shot.name;
   s.position_enu_m = pose.position_enu_m + blend.blend_w * st.position_offset + blend.velocity_w * st.velocity_offset;
 
-  out.request.focal_length_mm =
-      RequestedFocalLengthMm(shot, st, pose, s.position_enu_m, lens_time) * std::exp(blend.blend_w * st.log_focal_offset);
+  out.request.focal_length_mm = RequestedFocalLengthMm(shot, st, pose, s.position_enu_m, lens_time) *
+                                std::exp(blend.blend_w * st.log_focal_offset);
   s.focal_length_mm = std::clamp(out.request.focal_length_mm, cam.min_focal_length_mm, cam.max_focal_length_mm);
 
   s.world_from_camera = OrientationAt(shot, st, pose, s.position_enu_m, s.focal_length_mm, t, fallback_heading_deg,

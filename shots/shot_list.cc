@@ -37,7 +37,6 @@ void RejectOutOfRangeNumbers(const JsonField& f) {
   }
 }
 
-
 CameraSpec ParseCamera(const JsonField& f) {
   f.RejectUnknownKeys({"filmback", "sensor_width_mm", "sensor_height_mm", "width_px", "height_px",
                        "min_focal_length_mm", "max_focal_length_mm", "min_f_number", "max_f_number",
@@ -117,15 +116,6 @@ void CheckCameraAgainstFixedLens(const JsonField& camera_field, const CameraSpec
   }
 }
 
-
-
-
-
-
-
-
-
-
 }  // namespace
 
 int ShotList::FindActor(const std::string& name) const {
@@ -151,7 +141,7 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
     if (scene_origin && (std::fabs(scene_origin->lat_deg - list.origin->lat_deg) > 1e-9 ||
                          std::fabs(scene_origin->lon_deg - list.origin->lon_deg) > 1e-9 ||
                          std::fabs(scene_origin->height_m - list.origin->height_m) > 1e-6)) {
-      o->Fail("differs from the scene's origin (--scene); remove it or make them agree");
+      o->Fail("differs from the scene's origin (`scene_origin`); remove it or make them agree");
     }
   } else {
     list.origin = scene_origin;
@@ -193,6 +183,5 @@ ShotList ReadShotListFile(const std::filesystem::path& path, const std::optional
   const std::string name = path.filename().string();
   return ParseShotList(ParseJsonText(ReadFileToString(path), name), name, scene_origin);
 }
-
 
 }  // namespace cinepath::shots

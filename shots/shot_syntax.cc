@@ -60,7 +60,8 @@ std::vector<ScalarKey> ParseScalarKeys(const JsonField& f, const char* value_key
   std::vector<ScalarKey> keys;
   auto check = [&](const JsonField& v) {
     const double x = v.AsPositive();
-    if (x < lo || x > hi) v.Fail("must be in [" + FormatSignificant(lo) + ", " + FormatSignificant(hi) + "]" + range_note);
+    if (x < lo || x > hi)
+      v.Fail("must be in [" + FormatSignificant(lo) + ", " + FormatSignificant(hi) + "]" + range_note);
     return x;
   };
   if (f.IsNumber()) {
@@ -380,7 +381,9 @@ const std::vector<ShotSyntax>& Syntax() {
        {"distance_m", "distance_end_m", "height_m", "height_end_m", "bearing_deg", "tilt_start_deg"},
        true,
        &ParseCraneOrDronie},
-      {ShotType::kTopDown, {"height_m", "height_end_m", "up_bearing_deg", "rotate_deg", "offset_enu_m"}, true,
+      {ShotType::kTopDown,
+       {"height_m", "height_end_m", "up_bearing_deg", "rotate_deg", "offset_enu_m"},
+       true,
        &ParseTopDown},
       {ShotType::kDollyZoom, {"distance_m", "distance_end_m", "height_m", "bearing_deg"}, true, &ParseDollyZoom},
       {ShotType::kLockedOff,

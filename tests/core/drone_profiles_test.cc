@@ -97,14 +97,18 @@ TEST(DroneProfile, JsonRoundTripThroughTheFieldTable) {
 
 TEST(DroneProfile, OverridesAreCheckedAndUnknownKeysRefused) {
   DroneProfile d = DefaultDroneProfile();
-  auto apply = [&](const char* text) { ApplyDroneProfileJson(JsonField(Json::parse(text), "shots.json", "drone"), &d); };
+  auto apply = [&](const char* text) {
+    ApplyDroneProfileJson(JsonField(Json::parse(text), "shots.json", "drone"), &d);
+  };
   apply(R"({"max_horizontal_speed_m_s": 20, "max_mission_items": 100})");
   EXPECT_EQ(d.max_horizontal_speed_m_s, 20);
   EXPECT_EQ(d.max_mission_items, 100);
   EXPECT_EQ(Message([&] { apply(R"({"max_speed": 3})"); }),
             "shots.json: drone.max_speed: unknown key in a drone profile (docs/drones.md lists the fields)");
-  EXPECT_EQ(Message([&] { apply(R"({"max_climb_rate_m_s": -1})"); }), "shots.json: drone.max_climb_rate_m_s: must be > 0");
-  EXPECT_EQ(Message([&] { apply(R"({"max_altitude_m": 0.5})"); }), "shots.json: drone.max_altitude_m: must be > min_altitude_m");
+  EXPECT_EQ(Message([&] { apply(R"({"max_climb_rate_m_s": -1})"); }),
+            "shots.json: drone.max_climb_rate_m_s: must be > 0");
+  EXPECT_EQ(Message([&] { apply(R"({"max_altitude_m": 0.5})"); }),
+            "shots.json: drone.max_altitude_m: must be > min_altitude_m");
 }
 
 }  // namespace

@@ -21,10 +21,9 @@ std::string Message(const std::function<void()>& f) {
 }
 
 TEST(SceneFile, ReadsOriginAndResolvesTheMeshBesideIt) {
-  const SceneFile s = ParseSceneFile(
-      Json::parse(R"({"format": "cinepath.scene", "version": 1, "mesh": "scene.glb",
+  const SceneFile s = ParseSceneFile(Json::parse(R"({"format": "cinepath.scene", "version": 1, "mesh": "scene.glb",
                       "origin": {"lat_deg": 46.8, "lon_deg": -91.9, "height_m": 198.5, "geoid_model": "EGM96"}})"),
-      "scene.json", "/data/beach");
+                                     "scene.json", "/data/beach");
   ASSERT_TRUE(s.origin);
   EXPECT_DOUBLE_EQ(s.origin->lat_deg, 46.8);
   EXPECT_EQ(s.mesh->string(), "/data/beach/scene.glb");
@@ -40,7 +39,8 @@ TEST(SceneFile, BadInputNamesTheFileAndTheKey) {
   auto parse = [](const char* text) { ParseSceneFile(Json::parse(text), "scene.json", "."); };
   EXPECT_EQ(Message([&] { parse(R"({"format": "other"})"); }),
             "scene.json: format: expected \"cinepath.scene\", got \"other\"");
-  EXPECT_EQ(Message([&] { parse(R"({"version": 2})"); }), "scene.json: version: unsupported scene version 2 (this build reads 1)");
+  EXPECT_EQ(Message([&] { parse(R"({"version": 2})"); }),
+            "scene.json: version: unsupported scene version 2 (this build reads 1)");
   EXPECT_EQ(Message([&] { parse(R"({"origin": {"lat_deg": 91, "lon_deg": 0, "height_m": 0}})"); }),
             "scene.json: origin.lat_deg: must be in [-90, 90]");
   EXPECT_EQ(Message([&] { parse(R"([1])"); }), "scene.json: expected a scene (a JSON object)");

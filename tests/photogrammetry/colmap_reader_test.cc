@@ -99,7 +99,7 @@ TEST(ColmapReader, FindsTheModelInAWorkspace) {
   std::filesystem::create_directories(ws / "sparse" / "2");  // empty: not a model
   const std::string msg = ErrorOf([&] { FindColmapModelDir(ws); });
   EXPECT_NE(msg.find("holds 2 COLMAP models (" + (ws / "sparse" / "0").string() + ", " +
-                     (ws / "sparse" / "10").string() + "): give the one to use with --colmap"),
+                     (ws / "sparse" / "10").string() + "): give the one to use as `colmap_dir`"),
             std::string::npos)
       << msg;
   const auto empty = testing::ScratchDir("empty_workspace");

@@ -76,8 +76,8 @@ TEST(GlbReader, GltfYUpBecomesEnuZUp) {
   EXPECT_TRUE(mesh.positions_enu_m[0].isApprox(Eigen::Vector3d(1, 3, 2)));
   EXPECT_TRUE(mesh.positions_enu_m[2].isApprox(Eigen::Vector3d(1, 4, 2)));
   // Counter-clockwise seen from above in glTF stays counter-clockwise seen from above in ENU.
-  const Eigen::Vector3d n = (mesh.positions_enu_m[1] - mesh.positions_enu_m[0])
-                                .cross(mesh.positions_enu_m[2] - mesh.positions_enu_m[0]);
+  const Eigen::Vector3d n =
+      (mesh.positions_enu_m[1] - mesh.positions_enu_m[0]).cross(mesh.positions_enu_m[2] - mesh.positions_enu_m[0]);
   EXPECT_GT(n.z(), 0);
   EXPECT_FALSE(mesh.has_colors());
 }

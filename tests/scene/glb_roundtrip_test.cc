@@ -39,7 +39,8 @@ void ExpectSameMesh(const photogrammetry::TriangleMesh& written, const SceneMesh
   }
   auto area = [](const auto& positions, const auto& faces) {
     double total = 0;
-    for (const auto& f : faces) total += 0.5 * (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
+    for (const auto& f : faces)
+      total += 0.5 * (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
     return total;
   };
   EXPECT_NEAR(area(read.positions_enu_m, read.faces), area(written.vertices_m, written.faces), 1e-3);

@@ -29,7 +29,8 @@ TEST(SceneMesh, CropKeepsTheFacesMeetingTheBoxAndRenumbers) {
   EXPECT_TRUE(c.positions_enu_m[0].isApprox(Eigen::Vector3d(10, 10, 0)));
   EXPECT_TRUE(c.colors_linear[0].isApprox(Eigen::Vector3f(0, 1, 0)));
   // A box that meets nothing gives an empty mesh.
-  EXPECT_EQ(CropToBox(m, Eigen::AlignedBox3d(Eigen::Vector3d(50, 50, 50), Eigen::Vector3d(60, 60, 60))).num_faces(), 0u);
+  EXPECT_EQ(CropToBox(m, Eigen::AlignedBox3d(Eigen::Vector3d(50, 50, 50), Eigen::Vector3d(60, 60, 60))).num_faces(),
+            0u);
 }
 
 }  // namespace

@@ -81,7 +81,7 @@ TEST(ShotList, BadSpecsNameTheJsonPath) {
             "shots.json: drone: unknown drone profile \"mavic9\" (known: px4-multirotor, ardupilot-copter, dji-m30, dji-mini4pro)");
   EXPECT_EQ(
       ErrorFor(R"({"actors": [{"name": "hero", "position": {"lat_deg": 1, "lon_deg": 2, "height_m": 3}}]})"),
-      "shots.json: actors[0].position: a lat/lon position needs a WGS84 origin (shots.json \"origin\" or --scene)");
+      "shots.json: actors[0].position: a lat/lon position needs a WGS84 origin (shots.json \"origin\" or `scene_origin`)");
   EXPECT_EQ(ErrorFor(R"({"origin": {"lat_deg": 91, "lon_deg": 0, "height_m": 0}})"),
             "shots.json: origin.lat_deg: must be in [-90, 90]");
   EXPECT_EQ(

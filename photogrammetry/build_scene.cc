@@ -1,0 +1,208 @@
+#include "photogrammetry/build_scene.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "photogrammetry/colmap_reader.h"
+#include "photogrammetry/colmap_runner.h"
+#include "photogrammetry/exif_gps.h"
+#include "photogrammetry/gcp_file.h"
+#include "photogrammetry/ply_reader.h"
+#include "photogrammetry/refs_file.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+namespace fs = std::filesystem;
+
+void Tell(const std::function<void(const std::string&)>& f, const std::string& text) {
+  if (f) f(text);
+}
+
+// The photos: given, or an images/ folder beside or above the model (COLMAP workspaces keep images/
+// at their root). Paths stay as given (relative ones too), so that messages and scene.json do not
+// depend on where the command ran.
+struct ImagesFolder {
+  std::string dir;
+  std::string note;  // how it was found
+};
+
+ImagesFolder FindImages(const SceneBuildOptions& options, const std::string& colmap_dir) {
+  if (!options.images_dir.empty()) return {options.images_dir, "given"};
+  const fs::path m = fs::path(colmap_dir).lexically_normal();
+  for (const fs::path& candidate : {(m / "images").lexically_normal(), (m / ".." / "images").lexically_normal(),
+                                    (m / ".." / ".." / "images").lexically_normal()}) {
+    if (fs::is_directory(candidate)) return {candidate.string(), "found next to the model"};
+  }
+  return {};
+}
+
+// Focal-length priors: the given one for every camera, else the EXIF of an image of each camera.
+void SetFocalPriors(const ColmapModel& model, const std::vector<ExifInfo>& exif, const SceneBuildOptions& options,
+                    ModelGeoreferenceOptions* georeference) {
+  for (const auto& [camera_id, camera] : model.cameras) {
+    if (options.focal_prior_px) {
+      georeference->focal_prior_px[camera_id] = *options.focal_prior_px;
+      georeference->focal_prior_source = "a given value";
+      continue;
+    }
+    for (const ExifInfo& e : exif) {
+      const auto image = std::find_if(model.images.begin(), model.images.end(),
+                                      [&](const auto& kv) { return kv.second.name == e.file_name; });
+      if (image == model.images.end() || image->second.camera_id != camera_id) continue;
+      if (const auto prior = FocalPriorFromExif(e, static_cast<double>(camera.width_px), options.sensor_width_mm)) {
+        georeference->focal_prior_px[camera_id] = prior->focal_px;
+        georeference->focal_prior_source = prior->source + " (" + e.file_name + ")";
+        break;
+      }
+    }
+  }
+}
+
+// The surface from the sparse points, a dense cloud or a given mesh, all in ENU.
+SurfacePipelineResult BuildSurface(const SceneBuildOptions& options, const ColmapModel& model,
+                                   const ModelGeoreference& geo, SurfacePipelineOptions surface,
+                                   std::vector<std::string>* inputs, Json* input_note) {
+  Json extras = Json::object();
+  extras["origin"] = {
+      {"lat_deg", geo.origin.lat_deg}, {"lon_deg", geo.origin.lon_deg}, {"height_m", geo.origin.height_m}};
+  extras["frame"] = "ENU metres about origin (glTF x = east, y = up, z = -north); heights WGS84 ellipsoidal";
+  surface.gltf_extras = extras;
+  surface.Check();
+
+  PointCloud cloud = PointCloudFromModel(geo.model_enu);
+  const AffineMap enu_from_input = FitAffineBetweenModels(model, geo.model_enu);
+  if (!options.points_path.empty() || !options.mesh_path.empty()) {
+    (*input_note)["enu_from_input_affine_rms_m"] = RoundToDecimals(enu_from_input.rms_m, 4);
+  }
+  if (!options.mesh_path.empty()) {
+    PlyData ply = ReadPly(options.mesh_path);
+    inputs->push_back(options.mesh_path);
+    if (!ply.has_faces())
+      throw InputError(options.mesh_path + ": the mesh has no faces (a point cloud is a dense cloud)");
+    for (auto& v : ply.mesh.vertices_m) v = enu_from_input(v);
+    (*input_note)["mesh"] = options.mesh_path;
+    return BuildSurfaceFromMesh(std::move(ply.mesh), &cloud, surface);
+  }
+  if (!options.points_path.empty()) {
+    PlyData ply = ReadPly(options.points_path);
+    inputs->push_back(options.points_path);
+    PointCloud dense = std::move(ply.points);
+    for (auto& p : dense.positions_m) p = enu_from_input(p);
+    if (dense.has_normals()) {
+      const Eigen::Matrix3d normal_map = enu_from_input.linear.inverse().transpose();
+      for (auto& n : dense.normals) n = (normal_map * n).normalized();
+    }
+    dense.camera_centers_m = cloud.camera_centers_m;
+    (*input_note)["points"] = options.points_path;
+    cloud = std::move(dense);
+  }
+  return BuildSurfaceFromPoints(cloud, surface);
+}
+
+}  // namespace
+
+void SceneBuildOptions::Check() const {
+  if (colmap_dir.empty() && images_dir.empty()) {
+    throw InputError("give a COLMAP model (colmap_dir) or photos to reconstruct (images_dir)");
+  }
+  if (!points_path.empty() && !mesh_path.empty()) {
+    throw InputError("points_path and mesh_path: give a dense cloud or a mesh, not both");
+  }
+  surface.Check();
+}
+
+SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLog& log) {
+  options.Check();
+  SceneBuildResult result;
+  std::vector<std::string>& inputs = result.inputs;
+
+  // The model: given, or reconstructed from the photos.
+  std::string colmap_dir = options.colmap_dir;
+  if (colmap_dir.empty()) {
+    const fs::path workspace =
+        options.colmap_workspace.empty() ? fs::path(options.output_dir) / "colmap" : fs::path(options.colmap_workspace);
+    colmap_dir =
+        RunColmapReconstruction(options.images_dir, workspace, ColmapRunOptions(), [&](const std::string& step) {
+          Tell(log.colmap_step, step + " (log in " + workspace.string() + ")");
+        }).string();
+  }
+  if (const fs::path found = FindColmapModelDir(colmap_dir); found != fs::path(colmap_dir)) {
+    Tell(log.note, "using the COLMAP model in " + found.string());
+    colmap_dir = found.string();
+  }
+  const ColmapModel model = ReadColmapModel(colmap_dir);
+  const ColmapFormat format = DetectColmapFormat(colmap_dir);
+  for (const char* stem : {"cameras", "images", "points3D"}) {
+    inputs.push_back(
+        (fs::path(colmap_dir) / (std::string(stem) + (format == ColmapFormat::kBinary ? ".bin" : ".txt"))).string());
+  }
+
+  ModelGeoreferenceOptions georeference = options.georeference;
+  std::optional<GcpFile> gcps;
+  if (!options.gcp_path.empty()) {
+    gcps = ReadGcpFile(options.gcp_path);
+    inputs.push_back(options.gcp_path);
+  }
+
+  const ImagesFolder images = FindImages(options, colmap_dir);
+  std::vector<ExifInfo> exif;
+  if (!images.dir.empty()) {
+    std::vector<std::string> names;
+    for (const auto& [id, image] : model.images) names.push_back(image.name);
+    exif = ReadExifFolder(images.dir, names);
+    for (const auto& e : exif) inputs.push_back((fs::path(images.dir) / e.file_name).string());
+  }
+
+  // References: the file, else EXIF GPS.
+  std::vector<ImageReference> refs;
+  std::string refs_source;
+  if (!options.refs_path.empty()) {
+    refs = ReadReferencesFile(options.refs_path);
+    refs_source = options.refs_path;
+    inputs.push_back(options.refs_path);
+  } else if (!exif.empty()) {
+    refs = ReferencesFromExif(images.dir, exif);
+    refs_source = "EXIF GPS of " + images.dir;
+  }
+  if (refs.empty() && !gcps) {
+    throw InputError(
+        "no references to georeference with: give a references file, photos with GPS EXIF, or ground "
+        "control points" +
+        std::string(images.dir.empty() ? "" : " (" + images.dir + " has no GPS EXIF)"));
+  }
+
+  SetFocalPriors(model, exif, options, &georeference);
+  const ModelGeoreference geo = GeoreferenceModel(model, refs, gcps ? &*gcps : nullptr, georeference);
+  for (const std::string& w : geo.warnings) Tell(log.warning, w);
+
+  SurfacePipelineOptions surface = options.surface;
+  surface.report_times = options.timestamps;
+  Json input_note = Json::object();
+  SurfacePipelineResult built = BuildSurface(options, model, geo, surface, &inputs, &input_note);
+
+  // scene.json (docs/scene-format.md): what a reader needs first, then the reports.
+  Json scene = Json::object();
+  scene["format"] = "cinepath.scene";
+  scene["version"] = 1;
+  scene["mesh"] = "scene.glb";
+  scene["frame"] = "ENU metres about origin; scene.glb stores (e, n, u) as glTF (e, u, -n)";
+  Json geo_json = GeoreferenceJson(geo, georeference, options.timestamps);
+  for (auto it = geo_json.begin(); it != geo_json.end(); ++it) scene[it.key()] = it.value();
+  scene["georeferencing"]["references_source"] = refs_source.empty() ? Json(nullptr) : Json(refs_source);
+  if (gcps) scene["georeferencing"]["gcp_source"] = options.gcp_path;
+  scene["georeferencing"]["images"] = images.dir.empty() ? Json(nullptr) : Json(images.dir + " (" + images.note + ")");
+  scene["input"] = {{"colmap", colmap_dir},
+                    {"colmap_format", format == ColmapFormat::kBinary ? "binary" : "text"},
+                    {"cameras", model.cameras.size()},
+                    {"images", model.images.size()},
+                    {"points3d", model.points3d.size()}};
+  for (auto it = input_note.begin(); it != input_note.end(); ++it) scene["input"][it.key()] = it.value();
+  scene["surface"] = built.report;
+
+  result.glb = std::move(built.glb);
+  result.scene = std::move(scene);
+  return result;
+}
+
+}  // namespace cinepath::photogrammetry

@@ -1,0 +1,62 @@
+// `cinepath mesh` as a library call: a COLMAP model (or photos COLMAP reconstructs first) with GPS
+// references, EXIF or ground control points in, scene.glb bytes and the scene.json document out.
+// Nothing is written here; cli/cmd_mesh.cc binds its flags onto SceneBuildOptions and writes the two
+// files atomically.
+//
+// The steps: find the model (a workspace or sparse/ folder holding one model), read it, find the
+// photos (given, or an images/ folder beside the model), read their EXIF, take the references (the
+// refs file, else EXIF GPS), the focal-length priors (a given one, else EXIF), georeference
+// (georeference_model.h), build the surface from the sparse points, a dense PLY or a given mesh
+// (surface_pipeline.h), and assemble scene.json (docs/scene-format.md, docs/mesh.md).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geodesy.h"
+#include "core/json.h"
+#include "photogrammetry/georeference_model.h"
+#include "photogrammetry/surface_pipeline.h"
+
+namespace cinepath::photogrammetry {
+
+struct SceneBuildOptions {
+  std::string colmap_dir;                 // model, sparse/ or workspace; empty: reconstruct `images_dir` with colmap
+  std::string colmap_workspace;           // where colmap runs for photos-only input (default output_dir/colmap)
+  std::string images_dir;                 // photos (EXIF GPS and focal length); empty: found beside the model
+  std::string refs_path;                  // "image_name lat lon alt" lines
+  std::string gcp_path;                   // OpenDroneMap gcp_list.txt
+  std::string points_path;                // dense PLY in the model's frame
+  std::string mesh_path;                  // mesh PLY in the model's frame, used as is
+  std::string output_dir;                 // only for the default colmap workspace
+  ModelGeoreferenceOptions georeference;  // fit, datum, origin, bundle adjustment, GCP datum and sigma
+  std::optional<double> focal_prior_px;   // for every camera; overrides EXIF
+  std::optional<double> sensor_width_mm;  // EXIF FocalLength -> pixels
+  SurfacePipelineOptions surface;
+  bool timestamps = true;  // wall-clock times in scene.json
+
+  // InputError naming the field: neither a model nor photos; both a dense cloud and a mesh.
+  void Check() const;
+};
+
+struct SceneBuildResult {
+  std::string glb;                  // scene.glb bytes
+  Json scene;                       // scene.json
+  std::vector<std::string> inputs;  // every file read (for --depfile)
+};
+
+// Where BuildScene reports as it goes (each may be empty): the steps of a COLMAP run, notes such as
+// which model folder was used, and warnings (georeferencing). Called at once, so that a later error
+// still follows them.
+struct SceneBuildLog {
+  std::function<void(const std::string&)> colmap_step;
+  std::function<void(const std::string&)> note;
+  std::function<void(const std::string&)> warning;
+};
+
+SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLog& log = {});
+
+}  // namespace cinepath::photogrammetry
