@@ -32,6 +32,51 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 using internal::Point3;
 using internal::SurfaceMesh;
 using Color = std::array<uint8_t, 3>;
+
+// The rules both repair paths (the manifold soup's and CGAL's) apply, stated once.
+
+// A component is small, and removed, when it has fewer faces than max(min_component_faces,
+// ceil(min_component_fraction x the largest component)); the largest is always kept.
+int64_t SmallComponentThreshold(const MeshCleanOptions& options, int64_t largest_faces) {
+  return std::max<int64_t>(options.min_component_faces,
+                           static_cast<int64_t>(std::ceil(options.min_component_fraction * largest_faces)));
+}
+bool IsSmallComponent(int64_t faces, int64_t threshold, int64_t largest_faces) {
+  return faces < threshold && faces < largest_faces;
+}
+void CountComponent(bool small, int64_t faces, MeshCleanReport& report) {
+  if (small) {
+    ++report.small_components_removed;
+    report.faces_in_small_components += faces;
+  } else {
+    ++report.components_kept;
+  }
+}
+
+// The colour of a filled hole's new vertices: the mean over its border's vertices.
+Color MeanColor(const std::array<double, 3>& sum, int64_t count) {
+  Color mean{0, 0, 0};
+  for (int k = 0; k < 3; ++k) mean[k] = static_cast<uint8_t>(std::lround(sum[k] / static_cast<double>(count)));
+  return mean;
+}
+
+// The outer border of a component is its longest boundary cycle (the first of equals); it is never
+// filled. `component` and `perimeter_m` are per cycle; the result marks the outer ones.
+std::vector<char> OuterBorders(const std::vector<size_t>& component, const std::vector<double>& perimeter_m,
+                               size_t num_components) {
+  std::vector<double> longest(num_components, -1.0);
+  for (size_t i = 0; i < component.size(); ++i) longest[component[i]] = std::max(longest[component[i]], perimeter_m[i]);
+  std::vector<char> taken(num_components, 0), outer(component.size(), 0);
+  for (size_t i = 0; i < component.size(); ++i) {
+    if (!taken[component[i]] && perimeter_m[i] == longest[component[i]]) taken[component[i]] = outer[i] = 1;
+  }
+  return outer;
+}
+
+// Holes up to max_hole_edges edges and max_hole_perimeter_m are filled.
+bool FillableHole(bool outer, int64_t edges, double perimeter_m, const MeshCleanOptions& options) {
+  return !outer && edges <= options.max_hole_edges && perimeter_m <= options.max_hole_perimeter_m;
+}
 using VertexIndex = SurfaceMesh::Vertex_index;
 using FaceIndex = SurfaceMesh::Face_index;
 using HalfedgeIndex = SurfaceMesh::Halfedge_index;
@@ -390,19 +435,13 @@ TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored, const Mes
   for (size_t v = 0; v < n; ++v) {
     if (root[v] == v) largest = std::max(largest, faces_per_root[v]);
   }
-  const int64_t threshold = std::max<int64_t>(
-      options.min_component_faces, static_cast<int64_t>(std::ceil(options.min_component_fraction * largest)));
+  const int64_t threshold = SmallComponentThreshold(options, largest);
   std::vector<char> component_kept(n, 0);
   for (size_t v = 0; v < n; ++v) {
     if (root[v] != v || faces_per_root[v] == 0) continue;
-    const int64_t count = faces_per_root[v];
-    if (count < threshold && count < largest) {
-      ++report.small_components_removed;
-      report.faces_in_small_components += count;
-    } else {
-      ++report.components_kept;
-      component_kept[v] = 1;
-    }
+    const bool small = IsSmallComponent(faces_per_root[v], threshold, largest);
+    CountComponent(small, faces_per_root[v], report);
+    component_kept[v] = small ? 0 : 1;
   }
   std::vector<char> face_kept(faces.size(), 1);
   if (report.small_components_removed > 0) {
@@ -419,7 +458,6 @@ TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored, const Mes
   if (options.max_hole_edges > 0 && options.max_hole_perimeter_m > 0) {
     std::vector<BoundaryCycle> cycles;
     std::vector<char> visited(n, 0);
-    std::vector<double> longest(n, -1.0);
     for (size_t v = 0; v < n; ++v) {
       if (topology.boundary_next[v] == kNone || visited[v] || !component_kept[root[v]]) continue;
       BoundaryCycle c;
@@ -441,16 +479,20 @@ TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored, const Mes
         ++report.holes_left_open;
         continue;
       }
-      longest[c.component] = std::max(longest[c.component], c.perimeter_m);
       cycles.push_back(std::move(c));
     }
-    std::vector<char> outer_taken(n, 0);
-    const size_t faces_before_filling = faces.size();
+    std::vector<size_t> cycle_component;
+    std::vector<double> cycle_perimeter;
     for (const BoundaryCycle& c : cycles) {
-      const bool outer = !outer_taken[c.component] && c.perimeter_m == longest[c.component];
-      if (outer) outer_taken[c.component] = 1;
+      cycle_component.push_back(c.component);
+      cycle_perimeter.push_back(c.perimeter_m);
+    }
+    const std::vector<char> outer = OuterBorders(cycle_component, cycle_perimeter, n);
+    const size_t faces_before_filling = faces.size();
+    for (size_t i = 0; i < cycles.size(); ++i) {
+      const BoundaryCycle& c = cycles[i];
       const int64_t edges = static_cast<int64_t>(c.points.size());
-      if (outer || edges > options.max_hole_edges || c.perimeter_m > options.max_hole_perimeter_m) {
+      if (!FillableHole(outer[i], edges, c.perimeter_m, options)) {
         ++report.holes_left_open;
         continue;
       }
@@ -460,10 +502,7 @@ TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored, const Mes
           for (int k = 0; k < 3; ++k) sum[k] += colors[p][k];
         }
       }
-      Color mean{0, 0, 0};
-      for (int k = 0; k < 3; ++k) {
-        mean[k] = static_cast<uint8_t>(std::lround(sum[k] / static_cast<double>(edges)));
-      }
+      const Color mean = MeanColor(sum, edges);
       const int64_t added =
           FillHoleLocally(c, topology, faces_before_filling, points, faces, colored ? &colors : nullptr, mean);
       if (added == 0) {
@@ -577,16 +616,8 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const 
     std::vector<int64_t> faces_per_component(num_components, 0);
     for (FaceIndex f : sm.faces()) ++faces_per_component[cc_map[f]];
     const int64_t largest = *std::max_element(faces_per_component.begin(), faces_per_component.end());
-    const int64_t threshold = std::max<int64_t>(
-        options.min_component_faces, static_cast<int64_t>(std::ceil(options.min_component_fraction * largest)));
-    for (int64_t count : faces_per_component) {
-      if (count < threshold && count < largest) {
-        ++report.small_components_removed;
-        report.faces_in_small_components += count;
-      } else {
-        ++report.components_kept;
-      }
-    }
+    const int64_t threshold = SmallComponentThreshold(options, largest);
+    for (int64_t count : faces_per_component) CountComponent(IsSmallComponent(count, threshold, largest), count, report);
     if (report.small_components_removed > 0) {
       const int64_t keep_threshold = std::min(threshold, largest);
       PMP::keep_large_connected_components(sm, static_cast<std::size_t>(keep_threshold));
@@ -609,7 +640,8 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const 
       std::size_t component = 0;
     };
     std::vector<Cycle> info;
-    std::vector<double> longest(num_components, -1.0);
+    std::vector<size_t> cycle_component;
+    std::vector<double> cycle_perimeter;
     for (HalfedgeIndex h : cycles) {
       Cycle c;
       c.h = h;
@@ -618,15 +650,15 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const 
         c.perimeter_m += std::sqrt(CGAL::squared_distance(sm.point(sm.source(e)), sm.point(sm.target(e))));
       }
       c.component = cc_map[sm.face(sm.opposite(h))];
-      longest[c.component] = std::max(longest[c.component], c.perimeter_m);
+      cycle_component.push_back(c.component);
+      cycle_perimeter.push_back(c.perimeter_m);
       info.push_back(c);
     }
-    std::vector<char> outer_taken(num_components, 0);
+    const std::vector<char> outer = OuterBorders(cycle_component, cycle_perimeter, num_components);
     sm.remove_property_map(cc_map);
-    for (const Cycle& c : info) {
-      const bool outer = !outer_taken[c.component] && c.perimeter_m == longest[c.component];
-      if (outer) outer_taken[c.component] = 1;
-      if (outer || c.edges > options.max_hole_edges || c.perimeter_m > options.max_hole_perimeter_m) {
+    for (size_t i = 0; i < info.size(); ++i) {
+      const Cycle& c = info[i];
+      if (!FillableHole(outer[i], c.edges, c.perimeter_m, options)) {
         ++report.holes_left_open;
         continue;
       }
@@ -644,10 +676,7 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const 
       }
       ++report.holes_filled;
       report.hole_faces_added += static_cast<int64_t>(new_faces.size());
-      Color mean;
-      for (int k = 0; k < 3; ++k) {
-        mean[k] = static_cast<uint8_t>(std::lround(sum[k] / static_cast<double>(c.edges)));
-      }
+      const Color mean = MeanColor(sum, c.edges);
       for (VertexIndex v : new_vertices) color_map[v] = mean;
     }
   }
