@@ -57,7 +57,8 @@ void BM_PlanLongMultiShot(benchmark::State& state) {
 BENCHMARK(BM_PlanLongMultiShot)->Unit(benchmark::kMillisecond);
 
 void BM_WritePlanJson(benchmark::State& state) {
-  const cinepath::Trajectory plan = cinepath::shots::PlanShots(cinepath::shots::ParseShotList(LongShotList(), "bench.json"));
+  const cinepath::Trajectory plan =
+      cinepath::shots::PlanShots(cinepath::shots::ParseShotList(LongShotList(), "bench.json"));
   size_t bytes = 0;
   for (auto _ : state) {
     const std::string text = cinepath::PlanToText(plan);

@@ -21,6 +21,7 @@
 #include "core/json.h"
 #include "export/dji_turns.h"
 #include "export/exporter.h"
+#include "export/formats.h"
 #include "export/mission_builder.h"
 #include "export/waypoint_selection.h"
 

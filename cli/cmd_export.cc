@@ -14,6 +14,7 @@
 #include "core/plan_file.h"
 #include "core/scene_file.h"
 #include "export/exporter.h"
+#include "export/formats.h"
 
 namespace cinepath::cli {
 namespace {

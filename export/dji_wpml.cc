@@ -192,6 +192,43 @@ void WaypointActions(Xml& x, const Mission& mission, size_t w, int& group_id) {
   }
 }
 
+// One Placemark per waypoint. template.kml states every setting per point (with the useGlobal* flags
+// off); waylines.wpml carries what the aircraft executes (the height in its execute mode).
+enum class WpmlFile { kTemplate, kWaylines };
+
+void Placemarks(Xml& x, const Mission& mission, bool relative, WpmlFile file) {
+  const bool tmpl = file == WpmlFile::kTemplate;
+  int group_id = 0;
+  for (size_t w = 0; w < mission.waypoints.size(); ++w) {
+    const MissionWaypoint& wp = mission.waypoints[w];
+    x.Open("Placemark");
+    x.Open("Point");
+    x.Leaf("coordinates", Num(wp.lon_deg, 9) + "," + Num(wp.lat_deg, 9));
+    x.Close("Point");
+    x.Leaf("wpml:index", Int(static_cast<int>(w)));
+    if (tmpl) {
+      x.Leaf("wpml:useGlobalHeight", "0");
+      x.Leaf("wpml:ellipsoidHeight", Num(wp.ellipsoidal_height_m, 3));
+      x.Leaf("wpml:height", Num(relative ? wp.relative_alt_m : wp.amsl_m, 3));
+      x.Leaf("wpml:useGlobalSpeed", "0");
+    } else {
+      x.Leaf("wpml:executeHeight", Num(relative ? wp.relative_alt_m : wp.ellipsoidal_height_m, 3));
+    }
+    x.Leaf("wpml:waypointSpeed", Num(ClampSpeed(wp.speed_mps), 2));
+    if (tmpl) x.Leaf("wpml:useGlobalHeadingParam", "0");
+    HeadingParam(x, mission, w, relative);
+    if (tmpl) x.Leaf("wpml:useGlobalTurnParam", "0");
+    TurnParam(x, wp);
+    x.Leaf("wpml:useStraightLine", "1");
+    if (tmpl) {
+      x.Leaf("wpml:gimbalPitchAngle", Num(wp.gimbal_pitch_deg, 2));
+      x.Leaf("wpml:isRisky", "0");
+    }
+    WaypointActions(x, mission, w, group_id);
+    x.Close("Placemark");
+  }
+}
+
 const char* kHeader =
     "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
     "<kml xmlns=\"http://www.opengis.net/kml/2.2\" xmlns:wpml=\"http://www.dji.com/wpmz/1.0.2\">\n";
@@ -229,29 +266,7 @@ WpmlDocuments WriteWpmlDocuments(const Mission& mission, const DroneProfile& pro
     x.Close("wpml:globalWaypointHeadingParam");
     x.Leaf("wpml:globalWaypointTurnMode", "toPointAndStopWithDiscontinuityCurvature");
     x.Leaf("wpml:globalUseStraightLine", "1");
-    int group_id = 0;
-    for (size_t w = 0; w < wps.size(); ++w) {
-      const MissionWaypoint& wp = wps[w];
-      x.Open("Placemark");
-      x.Open("Point");
-      x.Leaf("coordinates", Num(wp.lon_deg, 9) + "," + Num(wp.lat_deg, 9));
-      x.Close("Point");
-      x.Leaf("wpml:index", Int(static_cast<int>(w)));
-      x.Leaf("wpml:useGlobalHeight", "0");
-      x.Leaf("wpml:ellipsoidHeight", Num(wp.ellipsoidal_height_m, 3));
-      x.Leaf("wpml:height", Num(relative ? wp.relative_alt_m : wp.amsl_m, 3));
-      x.Leaf("wpml:useGlobalSpeed", "0");
-      x.Leaf("wpml:waypointSpeed", Num(ClampSpeed(wp.speed_mps), 2));
-      x.Leaf("wpml:useGlobalHeadingParam", "0");
-      HeadingParam(x, mission, w, relative);
-      x.Leaf("wpml:useGlobalTurnParam", "0");
-      TurnParam(x, wp);
-      x.Leaf("wpml:useStraightLine", "1");
-      x.Leaf("wpml:gimbalPitchAngle", Num(wp.gimbal_pitch_deg, 2));
-      x.Leaf("wpml:isRisky", "0");
-      WaypointActions(x, mission, w, group_id);
-      x.Close("Placemark");
-    }
+    Placemarks(x, mission, relative, WpmlFile::kTemplate);
     x.Close("Folder");
     x.Close("Document");
     x.text() += "</kml>\n";
@@ -269,22 +284,7 @@ WpmlDocuments WriteWpmlDocuments(const Mission& mission, const DroneProfile& pro
     x.Leaf("wpml:executeHeightMode", relative ? "relativeToStartPoint" : "WGS84");
     x.Leaf("wpml:waylineId", "0");
     x.Leaf("wpml:autoFlightSpeed", Num(auto_speed, 2));
-    int group_id = 0;
-    for (size_t w = 0; w < wps.size(); ++w) {
-      const MissionWaypoint& wp = wps[w];
-      x.Open("Placemark");
-      x.Open("Point");
-      x.Leaf("coordinates", Num(wp.lon_deg, 9) + "," + Num(wp.lat_deg, 9));
-      x.Close("Point");
-      x.Leaf("wpml:index", Int(static_cast<int>(w)));
-      x.Leaf("wpml:executeHeight", Num(relative ? wp.relative_alt_m : wp.ellipsoidal_height_m, 3));
-      x.Leaf("wpml:waypointSpeed", Num(ClampSpeed(wp.speed_mps), 2));
-      HeadingParam(x, mission, w, relative);
-      TurnParam(x, wp);
-      x.Leaf("wpml:useStraightLine", "1");
-      WaypointActions(x, mission, w, group_id);
-      x.Close("Placemark");
-    }
+    Placemarks(x, mission, relative, WpmlFile::kWaylines);
     x.Close("Folder");
     x.Close("Document");
     x.text() += "</kml>\n";

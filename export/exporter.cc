@@ -5,14 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "export/dji_msdk_json.h"
-#include "export/dji_wpml.h"
-#include "export/litchi_csv.h"
-#include "export/mavlink_bin.h"
-#include "export/mavlink_mission.h"
-#include "export/msdk_spacing.h"
-#include "export/qgc_plan.h"
-#include "export/qgc_wpl.h"
+#include "export/formats.h"
 
 namespace cinepath::exporter {
 
@@ -51,74 +44,37 @@ ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& op
   build.absolute_altitudes = options.altitude_ref != AltitudeRef::kRelative;
 
   ExportResult result;
-  // One Mission per flight model (roi tracking, turn model), in the order formats ask for them.
-  std::vector<std::pair<RoiTracking, TurnModel>> models;
-  const bool roi = options.roi == RoiMode::kAuto;
-  auto model_of = [&](Format format) -> std::pair<RoiTracking, TurnModel> {
-    if (IsMavlinkFormat(format) || format == Format::kLitchiCsv) {
-      return {roi ? RoiTracking::kCamera : RoiTracking::kNone, TurnModel::kStraight};
-    }
-    if (format == Format::kDjiWpml) {
-      return {roi ? RoiTracking::kHeading : RoiTracking::kNone, TurnModel::kDjiCoordinatedTurn};
-    }
-    return {RoiTracking::kNone, TurnModel::kStraight};  // MSDK v4: headingMode is mission-wide
-  };
+  // One Mission per flight model, in the order the formats ask for them (formats.h).
+  const bool roi_auto = options.roi == RoiMode::kAuto;
+  std::vector<FlightModel> models;
   for (Format format : options.formats) {
-    const auto model = model_of(format);
-    const auto found = std::find(models.begin(), models.end(), model);
-    if (found != models.end()) continue;
+    const FlightModel model = InfoOf(format).flight_model(roi_auto);
+    if (std::find(models.begin(), models.end(), model) != models.end()) continue;
     models.push_back(model);
     MissionBuildOptions b = build;
-    b.selection.roi_tracking = model.first;
-    b.turn_model = model.second;
+    b.selection.roi_tracking = model.roi_tracking;
+    b.turn_model = model.turn_model;
     result.missions.push_back(BuildMission(trajectory, b));
   }
+  const bool any_rois =
+      std::any_of(result.missions.begin(), result.missions.end(), [](const Mission& m) { return !m.rois.empty(); });
 
   for (Format format : options.formats) {
-    const auto model = model_of(format);
+    const FormatInfo& info = InfoOf(format);
+    const FlightModel model = info.flight_model(roi_auto);
     const int mission_index = static_cast<int>(std::find(models.begin(), models.end(), model) - models.begin());
     const Mission& mission = result.missions[mission_index];
+    FormatOutput written = info.write({mission, options.firmware, options.altitude_ref, profile,
+                                       any_rois && model.roi_tracking == RoiTracking::kNone});
     FormatReport report;
     report.mission = mission_index;
     report.format = format;
-    report.file_name = FormatFileName(format);
-    ExportFile file{report.file_name, ""};
-    if (IsMavlinkFormat(format)) {
-      const MavMission items = BuildMavMission(mission, options.firmware, options.altitude_ref);
-      report.notes = items.notes;
-      report.mission_items = static_cast<int>(items.items.size());
-      if (format == Format::kQgcPlan)
-        file.contents = WriteQgcPlan(mission, items, options.firmware, options.altitude_ref);
-      if (format == Format::kQgcWpl) file.contents = WriteQgcWpl(mission, items);
-      if (format == Format::kMavlinkBin) file.contents = WriteMavlinkBin(mission, items, options.firmware);
-    } else if (format == Format::kDjiWpml) {
-      const WpmlDocuments docs = WriteWpmlDocuments(mission, profile, options.altitude_ref);
-      report.notes = docs.notes;
-      file.contents = WriteDjiKmz(docs);
-    } else if (format == Format::kDjiMsdkJson) {
-      std::vector<std::string> merge_notes;
-      const Mission merged = MergeCloseWaypoints(mission, LimitsOf(format).min_spacing_m, merge_notes);
-      MsdkJson json = WriteDjiMsdkJson(merged);
-      report.notes = json.notes;
-      report.notes.insert(report.notes.end(), merge_notes.begin(), merge_notes.end());
-      for (const Mission& other : result.missions) {
-        if (other.rois.empty()) continue;
-        report.notes.push_back(
-            "points of interest not used: MSDK v4's headingMode TOWARD_POINT_OF_INTEREST is mission-wide; headings and "
-            "gimbal pitch are per waypoint");
-        break;
-      }
-      file.contents = std::move(json.text);
-      report.violations = ValidateMission(merged, format, profile, 0);
-    } else if (format == Format::kLitchiCsv) {
-      LitchiCsv csv = WriteLitchiCsv(mission);
-      report.notes = csv.notes;
-      file.contents = std::move(csv.text);
-    }
-    if (format != Format::kDjiMsdkJson) {
-      report.violations = ValidateMission(mission, format, profile, report.mission_items);
-    }
-    result.files.push_back(std::move(file));
+    report.file_name = info.file_name;
+    report.notes = std::move(written.notes);
+    report.mission_items = written.mission_items;
+    report.violations = ValidateMission(written.checked_mission ? *written.checked_mission : mission, format, profile,
+                                        report.mission_items);
+    result.files.push_back({report.file_name, std::move(written.contents)});
     result.reports.push_back(std::move(report));
   }
   result.mission = result.missions[result.reports.front().mission];

@@ -9,6 +9,7 @@
 
 #include "core/json.h"
 #include "core/trajectory.h"
+#include "export/formats.h"
 #include "export/mission.h"
 #include "export/mission_builder.h"
 #include "export/platform.h"

@@ -1,5 +1,5 @@
-// Output formats, target firmware and the limits of each drone platform and format
-// (../shared/specs/missions.md: MAVLink 3.2–3.4, DJI 4.1–4.2, Litchi 4.3).
+// The output formats and target firmwares, and what a format's limits are made of (docs/export.md).
+// Each format is declared once, with its limits, in export/formats.h.
 #pragma once
 
 #include <limits>
@@ -11,13 +11,8 @@ namespace cinepath::exporter {
 enum class Format { kQgcPlan, kQgcWpl, kMavlinkBin, kDjiWpml, kDjiMsdkJson, kLitchiCsv };
 enum class Firmware { kPx4, kArduPilot };
 
-const char* FormatName(Format format);        // "qgc-plan", ...
-const char* FormatFileName(Format format);    // "mission.plan", ...
-Format ParseFormat(const std::string& name);  // InputError listing the known names
-bool IsMavlinkFormat(Format format);
 const char* FirmwareName(Firmware firmware);  // "px4" | "ardupilot"
 Firmware ParseFirmware(const std::string& name);
-
 
 // What a file format itself allows (independent of the drone).
 struct FormatLimits {
@@ -32,6 +27,5 @@ struct FormatLimits {
   double min_gimbal_pitch_deg = -std::numeric_limits<double>::infinity();
   double max_gimbal_pitch_deg = std::numeric_limits<double>::infinity();
 };
-FormatLimits LimitsOf(Format format);
 
 }  // namespace cinepath::exporter

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "export/formats.h"
+
 namespace cinepath::exporter {
 
 namespace {

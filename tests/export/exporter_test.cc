@@ -1,4 +1,5 @@
 #include "export/exporter.h"
+#include "export/formats.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "export/platform.h"
+#include "export/formats.h"
 
 #include <gtest/gtest.h>
 

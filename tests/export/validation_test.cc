@@ -1,4 +1,5 @@
 #include "export/validation.h"
+#include "export/formats.h"
 
 #include <gtest/gtest.h>
 
