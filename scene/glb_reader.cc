@@ -112,6 +112,38 @@ int ComponentCount(int type) {
 
 std::string Element(const char* array, int index) { return std::string(array) + "[" + std::to_string(index) + "]"; }
 
+// The bytes an accessor reads, after every index and range is checked: `element` bytes every `stride`
+// bytes, `count` times.
+struct AccessorBytes {
+  const uint8_t* base = nullptr;
+  size_t count = 0;
+  size_t stride = 0;
+};
+
+AccessorBytes CheckedBytes(const tinygltf::Model& model, int index, size_t element, const std::string& source) {
+  const tinygltf::Accessor& a = model.accessors[index];
+  const std::string at = source + ": " + Element("accessors", index);
+  if (a.bufferView < 0 || static_cast<size_t>(a.bufferView) >= model.bufferViews.size()) {
+    throw InputError(at + ": bufferView index out of range");
+  }
+  const tinygltf::BufferView& view = model.bufferViews[a.bufferView];
+  const std::string view_at = source + ": " + Element("bufferViews", a.bufferView);
+  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) {
+    throw InputError(view_at + ": buffer index out of range");
+  }
+  const std::vector<unsigned char>& buffer = model.buffers[view.buffer].data;
+  const size_t stride = view.byteStride ? view.byteStride : element;
+  if (stride < element) throw InputError(view_at + ": byteStride smaller than the element");
+  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
+    throw InputError(view_at + ": byte range outside its buffer");
+  }
+  if (a.count > 0 && (a.byteOffset > view.byteLength || (a.count - 1) > (view.byteLength - a.byteOffset) / stride ||
+                      (a.count - 1) * stride + element > view.byteLength - a.byteOffset)) {
+    throw InputError(at + ": reads past the end of its bufferView");
+  }
+  return {buffer.data() + view.byteOffset + a.byteOffset, a.count, stride};
+}
+
 GlbDecoder::Attribute GlbDecoder::ReadAccessor(int index, const std::string& where) const {
   if (index < 0 || static_cast<size_t>(index) >= model_.accessors.size()) Fail(where, "accessor index out of range");
   const tinygltf::Accessor& a = model_.accessors[index];
@@ -123,30 +155,12 @@ GlbDecoder::Attribute GlbDecoder::ReadAccessor(int index, const std::string& whe
   if (out.components == 0 || size == 0 || a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
     Fail(at, "unsupported type for a vertex attribute");
   }
-  if (a.bufferView < 0 || static_cast<size_t>(a.bufferView) >= model_.bufferViews.size()) {
-    Fail(at, "bufferView index out of range");
-  }
-  const tinygltf::BufferView& view = model_.bufferViews[a.bufferView];
-  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model_.buffers.size()) {
-    Fail(Element("bufferViews", a.bufferView), "buffer index out of range");
-  }
-  const std::vector<unsigned char>& buffer = model_.buffers[view.buffer].data;
-  const size_t element = static_cast<size_t>(out.components) * size;
-  const size_t stride = view.byteStride ? view.byteStride : element;
-  if (stride < element) Fail(Element("bufferViews", a.bufferView), "byteStride smaller than the element");
-  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
-    Fail(Element("bufferViews", a.bufferView), "byte range outside its buffer");
-  }
-  if (a.count > 0 && (a.byteOffset > view.byteLength || (a.count - 1) > (view.byteLength - a.byteOffset) / stride ||
-                      (a.count - 1) * stride + element > view.byteLength - a.byteOffset)) {
-    Fail(at, "reads past the end of its bufferView");
-  }
-  const uint8_t* base = buffer.data() + view.byteOffset + a.byteOffset;
-  out.values.resize(a.count * out.components);
-  for (size_t i = 0; i < a.count; ++i) {
+  const AccessorBytes bytes = CheckedBytes(model_, index, static_cast<size_t>(out.components) * size, source_);
+  out.values.resize(bytes.count * out.components);
+  for (size_t i = 0; i < bytes.count; ++i) {
     for (int c = 0; c < out.components; ++c) {
       out.values[i * out.components + c] =
-          ComponentAsFloat(base + i * stride + c * size, a.componentType, a.normalized);
+          ComponentAsFloat(bytes.base + i * bytes.stride + c * size, a.componentType, a.normalized);
     }
   }
   return out;
@@ -163,26 +177,10 @@ std::vector<uint32_t> GlbDecoder::ReadIndices(int index, size_t vertex_count, co
                                          a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
     Fail(at, "indices must be unsigned byte, short or int scalars");
   }
-  if (a.bufferView < 0 || static_cast<size_t>(a.bufferView) >= model_.bufferViews.size()) {
-    Fail(at, "bufferView index out of range");
-  }
-  const tinygltf::BufferView& view = model_.bufferViews[a.bufferView];
-  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model_.buffers.size()) {
-    Fail(Element("bufferViews", a.bufferView), "buffer index out of range");
-  }
-  const std::vector<unsigned char>& buffer = model_.buffers[view.buffer].data;
-  const size_t stride = view.byteStride ? view.byteStride : static_cast<size_t>(size);
-  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
-    Fail(Element("bufferViews", a.bufferView), "byte range outside its buffer");
-  }
-  if (a.count > 0 && (a.byteOffset > view.byteLength || (a.count - 1) > (view.byteLength - a.byteOffset) / stride ||
-                      (a.count - 1) * stride + size > view.byteLength - a.byteOffset)) {
-    Fail(at, "reads past the end of its bufferView");
-  }
-  const uint8_t* base = buffer.data() + view.byteOffset + a.byteOffset;
-  std::vector<uint32_t> out(a.count);
-  for (size_t i = 0; i < a.count; ++i) {
-    const uint8_t* p = base + i * stride;
+  const AccessorBytes bytes = CheckedBytes(model_, index, static_cast<size_t>(size), source_);
+  std::vector<uint32_t> out(bytes.count);
+  for (size_t i = 0; i < bytes.count; ++i) {
+    const uint8_t* p = bytes.base + i * bytes.stride;
     uint32_t v = 0;
     if (size == 1) {
       v = p[0];
@@ -193,8 +191,9 @@ std::vector<uint32_t> GlbDecoder::ReadIndices(int index, size_t vertex_count, co
     } else {
       std::memcpy(&v, p, 4);
     }
-    if (v >= vertex_count)
+    if (v >= vertex_count) {
       Fail(at, "index " + std::to_string(v) + " out of range (" + std::to_string(vertex_count) + " vertices)");
+    }
     out[i] = v;
   }
   return out;

@@ -4,19 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/input_error.h"
+
 #include "core/error.h"
 
 namespace cinepath {
 namespace {
-
-std::string Message(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(DroneProfiles, Px4MultirotorFigures) {
   const DroneProfile d = *FindDroneProfile("px4-multirotor");
@@ -60,10 +53,10 @@ TEST(DroneProfiles, OldNamesAreAnAliasOrRefusedWithTheNewName) {
   EXPECT_EQ(FindDroneProfile("px4_default_quad")->name, "px4-multirotor");
   EXPECT_EQ(RequireDroneProfile("px4_default_quad", "shots.json: drone").name, "px4-multirotor");
   EXPECT_FALSE(FindDroneProfile("dji_class"));
-  const std::string m = Message([] { RequireDroneProfile("dji_class", "shots.json: drone"); });
+  const std::string m = testing::InputErrorMessage([] { RequireDroneProfile("dji_class", "shots.json: drone"); });
   EXPECT_NE(m.find("shots.json: drone: \"dji_class\" is no longer a profile"), std::string::npos) << m;
   EXPECT_NE(m.find("\"dji-m30\" or \"dji-mini4pro\""), std::string::npos) << m;
-  EXPECT_EQ(Message([] { RequireDroneProfile("x", "--drone"); }),
+  EXPECT_EQ(testing::InputErrorMessage([] { RequireDroneProfile("x", "--drone"); }),
             "--drone: unknown drone profile \"x\" (known: px4-multirotor, ardupilot-copter, dji-m30, dji-mini4pro)");
 }
 
@@ -103,11 +96,11 @@ TEST(DroneProfile, OverridesAreCheckedAndUnknownKeysRefused) {
   apply(R"({"max_horizontal_speed_m_s": 20, "max_mission_items": 100})");
   EXPECT_EQ(d.max_horizontal_speed_m_s, 20);
   EXPECT_EQ(d.max_mission_items, 100);
-  EXPECT_EQ(Message([&] { apply(R"({"max_speed": 3})"); }),
+  EXPECT_EQ(testing::InputErrorMessage([&] { apply(R"({"max_speed": 3})"); }),
             "shots.json: drone.max_speed: unknown key in a drone profile (docs/drones.md lists the fields)");
-  EXPECT_EQ(Message([&] { apply(R"({"max_climb_rate_m_s": -1})"); }),
+  EXPECT_EQ(testing::InputErrorMessage([&] { apply(R"({"max_climb_rate_m_s": -1})"); }),
             "shots.json: drone.max_climb_rate_m_s: must be > 0");
-  EXPECT_EQ(Message([&] { apply(R"({"max_altitude_m": 0.5})"); }),
+  EXPECT_EQ(testing::InputErrorMessage([&] { apply(R"({"max_altitude_m": 0.5})"); }),
             "shots.json: drone.max_altitude_m: must be > min_altitude_m");
 }
 

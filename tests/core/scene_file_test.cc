@@ -4,21 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/input_error.h"
+
 #include "core/error.h"
 
 namespace cinepath {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string Message(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(SceneFile, ReadsOriginAndResolvesTheMeshBesideIt) {
   const SceneFile s = ParseSceneFile(Json::parse(R"({"format": "cinepath.scene", "version": 1, "mesh": "scene.glb",
@@ -32,26 +25,28 @@ TEST(SceneFile, ReadsOriginAndResolvesTheMeshBesideIt) {
 TEST(SceneFile, AHandWrittenSceneNeedsOnlyMeshAndOrigin) {
   const SceneFile s = ParseSceneFile(Json::parse(R"({"mesh": "m.glb"})"), "s.json", "d");
   EXPECT_FALSE(s.origin);
-  EXPECT_EQ(Message([&] { s.RequireOrigin(); }), "s.json: origin: missing ({\"lat_deg\", \"lon_deg\", \"height_m\"})");
+  EXPECT_EQ(testing::InputErrorMessage([&] { s.RequireOrigin(); }),
+            "s.json: origin: missing ({\"lat_deg\", \"lon_deg\", \"height_m\"})");
 }
 
 TEST(SceneFile, BadInputNamesTheFileAndTheKey) {
   auto parse = [](const char* text) { ParseSceneFile(Json::parse(text), "scene.json", "."); };
-  EXPECT_EQ(Message([&] { parse(R"({"format": "other"})"); }),
+  EXPECT_EQ(testing::InputErrorMessage([&] { parse(R"({"format": "other"})"); }),
             "scene.json: format: expected \"cinepath.scene\", got \"other\"");
-  EXPECT_EQ(Message([&] { parse(R"({"version": 2})"); }),
+  EXPECT_EQ(testing::InputErrorMessage([&] { parse(R"({"version": 2})"); }),
             "scene.json: version: unsupported scene version 2 (this build reads 1)");
-  EXPECT_EQ(Message([&] { parse(R"({"origin": {"lat_deg": 91, "lon_deg": 0, "height_m": 0}})"); }),
+  EXPECT_EQ(testing::InputErrorMessage([&] { parse(R"({"origin": {"lat_deg": 91, "lon_deg": 0, "height_m": 0}})"); }),
             "scene.json: origin.lat_deg: must be in [-90, 90]");
-  EXPECT_EQ(Message([&] { parse(R"([1])"); }), "scene.json: expected a scene (a JSON object)");
+  EXPECT_EQ(testing::InputErrorMessage([&] { parse(R"([1])"); }), "scene.json: expected a scene (a JSON object)");
 }
 
 TEST(SceneFile, AMissingMeshIsNamed) {
   const SceneFile s = ParseSceneFile(Json::parse(R"({"mesh": "nowhere.glb"})"), "scene.json", "/nonexistent");
-  EXPECT_EQ(Message([&] { s.RequireMesh(); }),
+  EXPECT_EQ(testing::InputErrorMessage([&] { s.RequireMesh(); }),
             "scene.json: mesh: '/nonexistent/nowhere.glb' does not exist or is not a file");
   const SceneFile none = ParseSceneFile(Json::parse(R"({})"), "scene.json", ".");
-  EXPECT_NE(Message([&] { none.RequireMesh(); }).find("scene.json: mesh: missing"), std::string::npos);
+  EXPECT_NE(testing::InputErrorMessage([&] { none.RequireMesh(); }).find("scene.json: mesh: missing"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/input_error.h"
+
 #include "core/error.h"
 #include "core/file_io.h"
 #include "photogrammetry/camera_models.h"
@@ -13,15 +15,6 @@ namespace {
 
 using testing::MakeSyntheticScene;
 using testing::SyntheticOptions;
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 SyntheticOptions SmallScene() {
   SyntheticOptions o;
@@ -79,7 +72,7 @@ TEST(ColmapReader, BinaryPreferredWhenBothExist) {
 
 TEST(ColmapReader, MissingFilesNameTheFolder) {
   const auto dir = testing::ScratchDir("empty");
-  const std::string msg = ErrorOf([&] { ReadColmapModel(dir); });
+  const std::string msg = cinepath::testing::InputErrorMessage([&] { ReadColmapModel(dir); });
   EXPECT_NE(msg.find("not a COLMAP sparse model"), std::string::npos) << msg;
   EXPECT_NE(msg.find(dir.string()), std::string::npos) << msg;
 }
@@ -97,13 +90,15 @@ TEST(ColmapReader, FindsTheModelInAWorkspace) {
   std::filesystem::create_directories(ws / "sparse" / "10");
   testing::WriteColmapText(scene.model, ws / "sparse" / "10");
   std::filesystem::create_directories(ws / "sparse" / "2");  // empty: not a model
-  const std::string msg = ErrorOf([&] { FindColmapModelDir(ws); });
+  const std::string msg = cinepath::testing::InputErrorMessage([&] { FindColmapModelDir(ws); });
   EXPECT_NE(msg.find("holds 2 COLMAP models (" + (ws / "sparse" / "0").string() + ", " +
                      (ws / "sparse" / "10").string() + "): give the one to use as `colmap_dir`"),
             std::string::npos)
       << msg;
   const auto empty = testing::ScratchDir("empty_workspace");
-  EXPECT_NE(ErrorOf([&] { FindColmapModelDir(empty); }).find("or in sparse/0 as COLMAP writes them"),
+  EXPECT_NE(cinepath::testing::InputErrorMessage([&] {
+              FindColmapModelDir(empty);
+            }).find("or in sparse/0 as COLMAP writes them"),
             std::string::npos);
 }
 
@@ -118,7 +113,7 @@ TEST(ColmapReader, EveryTruncationOfBinaryFilesIsAnInputErrorWithAByteOffset) {
     for (size_t len = 0; len < data.size(); len += stride) {
       ColmapModel m;
       const std::string_view cut(data.data(), len);
-      const std::string msg = ErrorOf([&] {
+      const std::string msg = cinepath::testing::InputErrorMessage([&] {
         if (f == 0) ParseColmapCamerasBinary(cut, "x.bin", m);
         if (f == 1) ParseColmapImagesBinary(cut, "x.bin", m);
         if (f == 2) ParseColmapPoints3DBinary(cut, "x.bin", m);
@@ -128,7 +123,7 @@ TEST(ColmapReader, EveryTruncationOfBinaryFilesIsAnInputErrorWithAByteOffset) {
     // Trailing garbage too.
     ColmapModel m;
     const std::string longer = data + "x";
-    const std::string msg = ErrorOf([&] {
+    const std::string msg = cinepath::testing::InputErrorMessage([&] {
       if (f == 0) ParseColmapCamerasBinary(longer, "x.bin", m);
       if (f == 1) ParseColmapImagesBinary(longer, "x.bin", m);
       if (f == 2) ParseColmapPoints3DBinary(longer, "x.bin", m);
@@ -144,10 +139,11 @@ TEST(ColmapReader, UnknownCameraModelIdIsRejectedWithItsOffset) {
   const int32_t eleven = 11;  // RAD_TAN_THIN_PRISM_FISHEYE in newer COLMAP
   std::memcpy(&data[12], &eleven, 4);
   ColmapModel out;
-  const std::string msg = ErrorOf([&] { ParseColmapCamerasBinary(data, "cameras.bin", out); });
+  const std::string msg =
+      cinepath::testing::InputErrorMessage([&] { ParseColmapCamerasBinary(data, "cameras.bin", out); });
   EXPECT_NE(msg.find("cameras.bin: byte 12: unknown camera model id 11"), std::string::npos) << msg;
 
-  const std::string text_msg = ErrorOf(
+  const std::string text_msg = cinepath::testing::InputErrorMessage(
       [&] { ParseColmapCamerasText("# header\n1 RAD_TAN_THIN_PRISM_FISHEYE 10 10 1 2 3\n", "cameras.txt", out); });
   EXPECT_NE(text_msg.find("cameras.txt: line 2: unknown camera model 'RAD_TAN_THIN_PRISM_FISHEYE'"), std::string::npos)
       << text_msg;
@@ -155,17 +151,22 @@ TEST(ColmapReader, UnknownCameraModelIdIsRejectedWithItsOffset) {
 
 TEST(ColmapReader, TextErrorsNameTheLine) {
   ColmapModel m;
-  auto msg = ErrorOf([&] { ParseColmapCamerasText("1 PINHOLE 100 100 50 50 50\n", "c.txt", m); });
+  auto msg =
+      cinepath::testing::InputErrorMessage([&] { ParseColmapCamerasText("1 PINHOLE 100 100 50 50 50\n", "c.txt", m); });
   EXPECT_NE(msg.find("c.txt: line 1: PINHOLE takes 4 parameters, found 3"), std::string::npos) << msg;
-  msg = ErrorOf([&] { ParseColmapCamerasText("\n\n1 PINHOLE 100 100 50 nan 50 50\n", "c.txt", m); });
+  msg = cinepath::testing::InputErrorMessage(
+      [&] { ParseColmapCamerasText("\n\n1 PINHOLE 100 100 50 nan 50 50\n", "c.txt", m); });
   EXPECT_NE(msg.find("c.txt: line 3: camera parameter is not finite"), std::string::npos) << msg;
-  msg = ErrorOf([&] { ParseColmapPoints3DText("#\n7 1 2 inf 1 2 3 0.5 1 0 2 0\n", "p.txt", m); });
+  msg = cinepath::testing::InputErrorMessage(
+      [&] { ParseColmapPoints3DText("#\n7 1 2 inf 1 2 3 0.5 1 0 2 0\n", "p.txt", m); });
   EXPECT_NE(msg.find("p.txt: line 2: Z is not finite"), std::string::npos) << msg;
-  msg = ErrorOf([&] { ParseColmapPoints3DText("7 1 2 3 1 2 300 0.5 1 0 2 0\n", "p.txt", m); });
+  msg = cinepath::testing::InputErrorMessage(
+      [&] { ParseColmapPoints3DText("7 1 2 3 1 2 300 0.5 1 0 2 0\n", "p.txt", m); });
   EXPECT_NE(msg.find("p.txt: line 1: B: '300' is not a valid integer"), std::string::npos) << msg;
-  msg = ErrorOf([&] { ParseColmapImagesText("1 0 0 0 0 0 0 0 1 a.jpg\n\n", "i.txt", m); });
+  msg = cinepath::testing::InputErrorMessage([&] { ParseColmapImagesText("1 0 0 0 0 0 0 0 1 a.jpg\n\n", "i.txt", m); });
   EXPECT_NE(msg.find("i.txt: line 1: zero-length quaternion"), std::string::npos) << msg;
-  msg = ErrorOf([&] { ParseColmapImagesText("1 1 0 0 0 0 0 0 1 a.jpg\n1.5 2.5\n", "i.txt", m); });
+  msg = cinepath::testing::InputErrorMessage(
+      [&] { ParseColmapImagesText("1 1 0 0 0 0 0 0 1 a.jpg\n1.5 2.5\n", "i.txt", m); });
   EXPECT_NE(msg.find("i.txt: line 2: POINTS2D must be triples"), std::string::npos) << msg;
 }
 
@@ -175,7 +176,8 @@ TEST(ColmapReader, BinaryNanIsRejectedWithItsOffset) {
   const double nan = std::nan("");
   std::memcpy(&data[8 + 8 + 8], &nan, 8);  // y of the first point
   ColmapModel m;
-  const std::string msg = ErrorOf([&] { ParseColmapPoints3DBinary(data, "points3D.bin", m); });
+  const std::string msg =
+      cinepath::testing::InputErrorMessage([&] { ParseColmapPoints3DBinary(data, "points3D.bin", m); });
   EXPECT_NE(msg.find("points3D.bin: byte 24: point coordinate is not finite"), std::string::npos) << msg;
 }
 
@@ -187,7 +189,7 @@ TEST(ColmapReader, DanglingIdsNameTheReferringElement) {
     model.images.at(2).camera_id = 9;
     const auto dir = testing::ScratchDir("dangling_camera");
     testing::WriteColmapText(model, dir);
-    const std::string msg = ErrorOf([&] { ReadColmapModel(dir); });
+    const std::string msg = cinepath::testing::InputErrorMessage([&] { ReadColmapModel(dir); });
     EXPECT_NE(msg.find("images.txt: line 4: image 2 refers to camera_id 9"), std::string::npos) << msg;
   }
   // A track element naming a keypoint index past the image's keypoints.
@@ -197,7 +199,7 @@ TEST(ColmapReader, DanglingIdsNameTheReferringElement) {
     point.track[0].point2d_idx = 100000;
     const auto dir = testing::ScratchDir("dangling_track");
     testing::WriteColmapBinary(model, dir);
-    const std::string msg = ErrorOf([&] { ReadColmapModel(dir); });
+    const std::string msg = cinepath::testing::InputErrorMessage([&] { ReadColmapModel(dir); });
     EXPECT_NE(msg.find("points3D.bin: byte 8: point3D 1 track refers to keypoint 100000"), std::string::npos) << msg;
   }
   // A keypoint naming a missing 3D point.
@@ -206,7 +208,7 @@ TEST(ColmapReader, DanglingIdsNameTheReferringElement) {
     model.points3d.erase(model.points3d.begin());
     const auto dir = testing::ScratchDir("dangling_point");
     testing::WriteColmapBinary(model, dir);
-    const std::string msg = ErrorOf([&] { ReadColmapModel(dir); });
+    const std::string msg = cinepath::testing::InputErrorMessage([&] { ReadColmapModel(dir); });
     EXPECT_NE(msg.find("refers to point3D_id 1, which is not in the points3D file"), std::string::npos) << msg;
   }
 }
