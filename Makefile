@@ -3,6 +3,9 @@
 #   make demo    build, then run the whole pipeline on the bundled sample into demo-out/
 #   make test    build, then run every test (unit, golden, interop) with CTest
 #   make bench   build, then run the benchmarks (figures go to bench/RESULTS.md by hand)
+#   make sanitize  ASan+UBSan build (preset "sanitize"), then the unit and golden tests under it
+#   make fuzz      every libFuzzer target from its seed corpus, FUZZ_SECONDS each (clang)
+#   make format    check the code's format (clang-format, 120 columns)
 BUILD_DIR ?= build
 JOBS ?= 2
 CMAKE_FLAGS ?=
@@ -10,7 +13,7 @@ CMAKE_FLAGS ?=
 export CCACHE_BASEDIR := $(CURDIR)
 export CCACHE_NOHASHDIR := true
 
-.PHONY: all deps configure build test demo bench clean
+.PHONY: all deps configure build test demo bench sanitize fuzz format clean
 
 all: build
 
@@ -33,5 +36,22 @@ demo: build
 bench: build
 	@scripts/bench.sh $(BUILD_DIR)
 
+# The sanitizers catch what the optimized build hides; interop (Node.js tools) and the COLMAP run add
+# nothing under them and take long, so they are left out.
+sanitize: deps
+	@cmake --preset sanitize > build-sanitize.configure.log 2>&1 || (cat build-sanitize.configure.log; exit 1)
+	@cmake --build build-sanitize -j $(JOBS)
+	@cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 \
+	  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:suppressions=$(CURDIR)/tests/sanitizers/ubsan.supp \
+	  ctest --output-on-failure -j $(JOBS) -E '^(interop\.|colmap_runner|repo\.)'
+
+FUZZ_SECONDS ?= 60
+fuzz:
+	@scripts/install-deps.sh --with fuzz
+	@scripts/fuzz.sh $(FUZZ_SECONDS)
+
+format:
+	@scripts/check-format.sh
+
 clean:
-	rm -rf $(BUILD_DIR) $(BUILD_DIR).configure.log demo-out
+	rm -rf $(BUILD_DIR) $(BUILD_DIR).configure.log build-sanitize build-sanitize.configure.log build-fuzz build-fuzz.configure.log demo-out

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/command.h"
+#include "cli/doc_pages.h"
 #include "core/error.h"
 #include "core/version.h"
 
@@ -20,6 +21,7 @@ void PrintUsage(std::ostream& os) {
   os << "cinepath " << cinepath::kVersion << " — aerial-cinematography previsualization\n\n"
      << "Usage: cinepath <command> [options]\n"
      << "       cinepath <command> --help\n"
+     << "       cinepath help <command>     the options and the examples of its page in docs/\n"
      << "       cinepath --version\n\n"
      << "Commands:\n";
   size_t width = 0;
@@ -28,6 +30,31 @@ void PrintUsage(std::ostream& os) {
     os << "  " << c.name << std::string(width + 2 - c.name.size(), ' ') << c.summary << "\n";
   }
   os << "\nExit codes: 0 success, 1 runtime failure, 2 usage or bad input, 3 result fails validation.\n";
+}
+
+// `cinepath help <command>`: the command's --help, then the examples of its page in docs/.
+int PrintCommandHelp(const std::string& name) {
+  for (const auto& info : Commands()) {
+    if (info.name != name) continue;
+    try {
+      auto command = info.make();
+      CLI::App app(info.summary, "cinepath " + info.name);
+      app.set_help_flag("-h,--help", "Print this help and exit");
+      app.get_formatter()->column_width(34);
+      command->Setup(app);
+      std::cout << app.help();
+    } catch (const cinepath::Error& e) {
+      std::cerr << "cinepath help: " << e.what() << "\n";
+      return static_cast<int>(e.exit_code());
+    }
+    if (const auto examples = cinepath::cli::DocExamples(name)) {
+      std::cout << "\nFrom docs/" << name << ".md:\n\n" << *examples;
+    }
+    return 0;
+  }
+  std::cerr << "cinepath help: unknown command '" << name << "'\n\n";
+  PrintUsage(std::cerr);
+  return static_cast<int>(cinepath::ExitCode::kBadInput);
 }
 
 int RunCommand(const cinepath::cli::CommandInfo& info, int argc, char** argv) {
@@ -65,6 +92,7 @@ int main(int argc, char** argv) {
     return static_cast<int>(cinepath::ExitCode::kBadInput);
   }
   const std::string first = argv[1];
+  if (first == "help" && argc >= 3) return PrintCommandHelp(argv[2]);
   if (first == "--help" || first == "-h" || first == "help") {
     PrintUsage(std::cout);
     return 0;

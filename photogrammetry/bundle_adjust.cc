@@ -252,7 +252,8 @@ State StateFromModel(const ColmapModel& model, const std::vector<ControlPointPri
   for (const ControlPointPrior& c : control) {
     const size_t pi = s.points.size();
     s.points.push_back({c.initial_enu_m.x(), c.initial_enu_m.y(), c.initial_enu_m.z()});
-    for (const PixelObservation& o : c.observations) s.observations.push_back({image_index.at(o.image_id), pi, o.pixel_px});
+    for (const PixelObservation& o : c.observations)
+      s.observations.push_back({image_index.at(o.image_id), pi, o.pixel_px});
     s.control.push_back(c);
   }
   return s;

@@ -617,7 +617,8 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const 
     for (FaceIndex f : sm.faces()) ++faces_per_component[cc_map[f]];
     const int64_t largest = *std::max_element(faces_per_component.begin(), faces_per_component.end());
     const int64_t threshold = SmallComponentThreshold(options, largest);
-    for (int64_t count : faces_per_component) CountComponent(IsSmallComponent(count, threshold, largest), count, report);
+    for (int64_t count : faces_per_component)
+      CountComponent(IsSmallComponent(count, threshold, largest), count, report);
     if (report.small_components_removed > 0) {
       const int64_t keep_threshold = std::min(threshold, largest);
       PMP::keep_large_connected_components(sm, static_cast<std::size_t>(keep_threshold));

@@ -1,13 +1,24 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages cinepath builds, tests and runs with (docs/dependencies.md),
 # only when some are missing. Idempotent: a machine that has them all is left alone.
-#   scripts/install-deps.sh          install what is missing
-#   scripts/install-deps.sh --check  exit 0 when nothing is missing, 1 otherwise (installs nothing)
+#   scripts/install-deps.sh                 install what is missing (build, tests, demo)
+#   scripts/install-deps.sh --with fuzz     also clang and its libFuzzer runtime (make fuzz, CI)
+#   scripts/install-deps.sh --check [...]   exit 0 when nothing is missing, 1 otherwise (installs nothing)
 set -euo pipefail
+CHECK=0
+GROUPS=()
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --check) CHECK=1 ;;
+    --with) GROUPS+=("$2"); shift ;;
+    *) echo "install-deps: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+  shift
+done
 
 PACKAGES=(
   # build
-  cmake g++ ninja-build ccache pkg-config
+  cmake g++ ninja-build ccache pkg-config clang-format
   # libraries (design.md)
   libcgal-dev libopenmesh-dev libgeographiclib-dev libceres-dev libtinygltf-dev libdraco-dev
   libopenimageio-dev openimageio-tools libembree-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
@@ -17,6 +28,12 @@ PACKAGES=(
   # independent tools the tests compare against
   geographiclib-tools libxml2-utils
 )
+for g in "${GROUPS[@]}"; do
+  case "$g" in
+    fuzz) PACKAGES+=(clang libclang-rt-14-dev) ;;
+    *) echo "install-deps: unknown group '$g' (known: fuzz)" >&2; exit 2 ;;
+  esac
+done
 # Node.js runs the interop tests (glTF-Validator, node-mavlink, ajv); use the machine's own if present.
 if ! command -v node > /dev/null 2>&1 || ! command -v npm > /dev/null 2>&1; then
   PACKAGES+=(nodejs npm)
@@ -32,7 +49,7 @@ done
 if [[ ${#missing[@]} -eq 0 ]]; then
   exit 0
 fi
-if [[ "${1:-}" == "--check" ]]; then
+if [[ $CHECK -eq 1 ]]; then
   echo "missing Debian packages: ${missing[*]}" >&2
   exit 1
 fi

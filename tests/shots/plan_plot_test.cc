@@ -17,7 +17,8 @@ TEST(PlanPlot, PanelsFrustumsAndDeterminism) {
   const ShotList list = ParseShotList(Json::parse(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 10,
       "camera": {"filmback": "super35", "min_focal_length_mm": 24},
       "actors": [{"name": "hero <1>", "position_enu_m": [0, 0, 0]}],
-      "shots": [{"name": "o", "type": "ORBIT", "subject": "hero <1>", "duration_s": 20, "radius_m": 20, "height_m": 5, "turns": 1}]})"),
+      "shots": [{"name": "o", "type": "ORBIT", "subject": "hero <1>", "duration_s": 20, "radius_m": 20,
+        "height_m": 5, "turns": 1}]})"),
                                       "shots.json");
   const Trajectory plan = PlanShots(list);
   const std::string svg = PlanToSvg(plan);

@@ -79,13 +79,20 @@ TEST(PlanLookAt, ZeroErrorForEveryAimedShotType) {
       {"time_s": 0, "position_enu_m": [0, 0, 0]}, {"time_s": 10, "position_enu_m": [80, 10, 0]},
       {"time_s": 20, "position_enu_m": [120, 70, 2]}, {"time_s": 60, "position_enu_m": [300, 100, 5]}]}])";
   const Trajectory plan = Plan(R"([
-      {"name": "a", "type": "CHASE", "subject": "hero", "duration_s": 6, "distance_m": 15, "height_m": 5, "lateral_m": 2, "lag_s": 0.5, "transition": "cut"},
-      {"name": "b", "type": "FLYBY", "subject": "hero", "duration_s": 6, "closest_distance_m": 12, "height_m": 4, "speed_m_s": 5, "transition": "cut"},
-      {"name": "c", "type": "TRACK", "subject": "hero", "duration_s": 6, "distance_m": 10, "side": "left", "transition": "cut"},
-      {"name": "d", "type": "CRANE", "subject": "hero", "duration_s": 6, "distance_m": 10, "height_m": 2, "height_end_m": 20, "transition": "cut"},
-      {"name": "e", "type": "DRONIE", "subject": "hero", "duration_s": 6, "distance_m": 5, "distance_end_m": 60, "height_m": 3, "height_end_m": 40, "transition": "cut"},
-      {"name": "f", "type": "HELIX", "subject": "hero", "duration_s": 6, "radius_m": 10, "radius_end_m": 20, "height_m": 3, "height_end_m": 30, "turns": 1, "transition": "cut"},
-      {"name": "g", "type": "LOCKED-OFF", "subject": "hero", "duration_s": 6, "position_enu_m": [200, -40, 30], "pan": true, "transition": "cut"}
+      {"name": "a", "type": "CHASE", "subject": "hero", "duration_s": 6, "distance_m": 15, "height_m": 5,
+        "lateral_m": 2, "lag_s": 0.5, "transition": "cut"},
+      {"name": "b", "type": "FLYBY", "subject": "hero", "duration_s": 6, "closest_distance_m": 12, "height_m": 4,
+        "speed_m_s": 5, "transition": "cut"},
+      {"name": "c", "type": "TRACK", "subject": "hero", "duration_s": 6, "distance_m": 10, "side": "left",
+        "transition": "cut"},
+      {"name": "d", "type": "CRANE", "subject": "hero", "duration_s": 6, "distance_m": 10, "height_m": 2,
+        "height_end_m": 20, "transition": "cut"},
+      {"name": "e", "type": "DRONIE", "subject": "hero", "duration_s": 6, "distance_m": 5, "distance_end_m": 60,
+        "height_m": 3, "height_end_m": 40, "transition": "cut"},
+      {"name": "f", "type": "HELIX", "subject": "hero", "duration_s": 6, "radius_m": 10, "radius_end_m": 20,
+        "height_m": 3, "height_end_m": 30, "turns": 1, "transition": "cut"},
+      {"name": "g", "type": "LOCKED-OFF", "subject": "hero", "duration_s": 6, "position_enu_m": [200, -40, 30],
+        "pan": true, "transition": "cut"}
   ])",
                                car);
   for (const auto& s : plan.samples) {
@@ -155,7 +162,8 @@ TEST(PlanExtremes, SubjectStraightBelowTheCamera) {
   const Trajectory plan = Plan(
       R"([{"type": "TOP-DOWN", "subject": "hero", "duration_s": 3, "height_m": 50, "up_bearing_deg": 90,
            "rotate_deg": 90},
-          {"type": "LOCKED-OFF", "subject": "hero", "duration_s": 2, "position_enu_m": [5, -3, 60], "transition": "cut"}])");
+          {"type": "LOCKED-OFF", "subject": "hero", "duration_s": 2, "position_enu_m": [5, -3, 60],
+            "transition": "cut"}])");
   for (const auto& s : plan.samples) {
     EXPECT_NEAR(s.gimbal_pitch_deg, -90.0, 1e-9) << s.time_s;
     EXPECT_TRUE(s.world_from_camera.coeffs().allFinite());
@@ -179,7 +187,8 @@ TEST(PlanExtremes, ZeroLengthShots) {
   const Trajectory mixed = Plan(R"([
       {"name": "a", "type": "ORBIT", "subject": "hero", "duration_s": 1, "radius_m": 10, "height_m": 5, "turns": 0.1},
       {"name": "z", "type": "ORBIT", "subject": "hero", "duration_s": 0, "radius_m": 12, "height_m": 5, "turns": 0.1},
-      {"name": "b", "type": "ORBIT", "subject": "hero", "duration_s": 1, "radius_m": 10, "height_m": 5, "turns": 0.1, "transition": "cut"}])");
+      {"name": "b", "type": "ORBIT", "subject": "hero", "duration_s": 1, "radius_m": 10, "height_m": 5, "turns": 0.1,
+        "transition": "cut"}])");
   ASSERT_EQ(mixed.samples.size(), 61u);
   for (const auto& s : mixed.samples) EXPECT_NE(s.shot, "z");
   EXPECT_EQ(mixed.samples[30].shot, "b");
@@ -212,7 +221,8 @@ TEST(PlanExtremes, Framing1200mmAt2km) {
   const double target_focal = 1200.0;
   const double fraction = ImageHeightFraction(24.89 * 2160.0 / 3840.0, target_focal, 1.8, 2000.0);
   const Trajectory plan = Plan(
-      R"([{"type": "LOCKED-OFF", "subject": "hero", "duration_s": 1, "bearing_deg": 0, "distance_m": 2000, "height_m": 0.9,
+      R"([{"type": "LOCKED-OFF", "subject": "hero", "duration_s": 1, "bearing_deg": 0, "distance_m": 2000,
+        "height_m": 0.9,
            "lens": {"frame_height_fraction": )" +
       Json(fraction).dump() + R"(}}])");
   for (const auto& s : plan.samples) {
@@ -223,7 +233,8 @@ TEST(PlanExtremes, Framing1200mmAt2km) {
   EXPECT_TRUE(plan.feasibility.feasible()) << plan.feasibility.violations[0].limit;
   // Asking for 20 % more than the lens has is clamped and reported.
   const Trajectory over = Plan(
-      R"([{"type": "LOCKED-OFF", "subject": "hero", "duration_s": 1, "bearing_deg": 0, "distance_m": 2000, "height_m": 0.9,
+      R"([{"type": "LOCKED-OFF", "subject": "hero", "duration_s": 1, "bearing_deg": 0, "distance_m": 2000,
+        "height_m": 0.9,
            "lens": {"frame_height_fraction": )" +
       Json(fraction * 1.2).dump() + R"(}}])");
   EXPECT_NEAR(over.samples[0].focal_length_mm, 1200.0, 1e-9);
@@ -293,7 +304,8 @@ TEST(PlanKeyframes, SquadThroughKeysAndLensInLogSpace) {
 TEST(PlanFeasibility, SpeedViolationsAreTimeRanges) {
   // 30 m radius, one turn in 10 s: 18.85 m/s around, over PX4's 12 m/s for the whole shot.
   const Trajectory plan = Plan(
-      R"([{"name": "fast", "type": "ORBIT", "subject": "hero", "duration_s": 10, "radius_m": 30, "height_m": 10, "turns": 1}])");
+      R"([{"name": "fast", "type": "ORBIT", "subject": "hero", "duration_s": 10, "radius_m": 30, "height_m": 10,
+        "turns": 1}])");
   bool found = false;
   for (const auto& v : plan.feasibility.violations) {
     if (v.limit != "horizontal_speed") continue;
@@ -307,7 +319,8 @@ TEST(PlanFeasibility, SpeedViolationsAreTimeRanges) {
   EXPECT_TRUE(found);
   // A slow orbit with smootherstep easing breaks nothing.
   const Trajectory slow = Plan(
-      R"([{"type": "ORBIT", "subject": "hero", "duration_s": 40, "radius_m": 30, "height_m": 10, "turns": 0.5, "easing": "smootherstep"}])");
+      R"([{"type": "ORBIT", "subject": "hero", "duration_s": 40, "radius_m": 30, "height_m": 10, "turns": 0.5,
+        "easing": "smootherstep"}])");
   EXPECT_TRUE(slow.feasibility.feasible())
       << slow.feasibility.violations.size() << " "
       << (slow.feasibility.violations.empty() ? "" : slow.feasibility.violations[0].limit);

@@ -43,51 +43,52 @@ TEST(ShotList, ParsesTheBaseDocumentWithDefaults) {
 }
 
 TEST(ShotList, BadSpecsNameTheJsonPath) {
-  EXPECT_EQ(
-      ErrorFor(
-          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 0, "height_m": 5, "turns": 1}]})"),
-      "shots.json: shots[0].radius_m: must be > 0");
-  EXPECT_EQ(
-      ErrorFor(
-          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "raduis_m": 3, "height_m": 5, "turns": 1}]})"),
-      "shots.json: shots[0].raduis_m: unknown key for a ORBIT shot");
+  EXPECT_EQ(ErrorFor(
+                R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 0, "height_m": 5,
+            "turns": 1}]})"),
+            "shots.json: shots[0].radius_m: must be > 0");
+  EXPECT_EQ(ErrorFor(
+                R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "raduis_m": 3, "height_m": 5,
+            "turns": 1}]})"),
+            "shots.json: shots[0].raduis_m: unknown key for a ORBIT shot");
   EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "SPIRAL", "duration_s": 5}]})")
                 .rfind("shots.json: shots[0].type: unknown shot type \"SPIRAL\" (CHASE, ORBIT", 0),
             0u);
-  EXPECT_EQ(
-      ErrorFor(
-          R"({"shots": [{"type": "ORBIT", "subject": "villain", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1}]})"),
-      "shots.json: shots[0].subject: no actor named \"villain\"");
-  EXPECT_EQ(
-      ErrorFor(
-          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": -1, "radius_m": 3, "height_m": 5, "turns": 1}]})"),
-      "shots.json: shots[0].duration_s: must be >= 0");
+  EXPECT_EQ(ErrorFor(
+                R"({"shots": [{"type": "ORBIT", "subject": "villain", "duration_s": 5, "radius_m": 3, "height_m": 5,
+            "turns": 1}]})"),
+            "shots.json: shots[0].subject: no actor named \"villain\"");
+  EXPECT_EQ(ErrorFor(
+                R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": -1, "radius_m": 3, "height_m": 5,
+            "turns": 1}]})"),
+            "shots.json: shots[0].duration_s: must be >= 0");
   EXPECT_EQ(
       ErrorFor(R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5}]})"),
       "shots.json: shots[0]: give exactly one of \"turns\" or \"angular_speed_deg_s\"");
   EXPECT_EQ(ErrorFor(R"({"shots": [{"type": "ORBIT", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1}]})"),
             "shots.json: shots[0]: a ORBIT shot needs a \"subject\"");
-  EXPECT_EQ(
-      ErrorFor(
-          R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1, "easing": "bouncy"}]})")
-          .rfind("shots.json: shots[0].easing: unknown easing \"bouncy\" (linear", 0),
-      0u);
+  EXPECT_EQ(ErrorFor(
+                R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5,
+            "turns": 1, "easing": "bouncy"}]})")
+                .rfind("shots.json: shots[0].easing: unknown easing \"bouncy\" (linear", 0),
+            0u);
   EXPECT_EQ(ErrorFor(R"({"schema": "cinepath.shots/2"})"),
             "shots.json: schema: unsupported shot-list version \"cinepath.shots/2\" (expected \"cinepath.shots/1\")");
   EXPECT_EQ(ErrorFor(R"({"camera": {"filmback": "imax"}})")
                 .rfind("shots.json: camera.filmback: unknown filmback \"imax\" (", 0),
             0u);
   EXPECT_EQ(ErrorFor(R"({"drone": "mavic9"})"),
-            "shots.json: drone: unknown drone profile \"mavic9\" (known: px4-multirotor, ardupilot-copter, dji-m30, dji-mini4pro)");
-  EXPECT_EQ(
-      ErrorFor(R"({"actors": [{"name": "hero", "position": {"lat_deg": 1, "lon_deg": 2, "height_m": 3}}]})"),
-      "shots.json: actors[0].position: a lat/lon position needs a WGS84 origin (shots.json \"origin\" or `scene_origin`)");
+            "shots.json: drone: unknown drone profile \"mavic9\" (known: px4-multirotor, ardupilot-copter, "
+            "dji-m30, dji-mini4pro)");
+  EXPECT_EQ(ErrorFor(R"({"actors": [{"name": "hero", "position": {"lat_deg": 1, "lon_deg": 2, "height_m": 3}}]})"),
+            "shots.json: actors[0].position: a lat/lon position needs a WGS84 origin (shots.json \"origin\" or "
+            "`scene_origin`)");
   EXPECT_EQ(ErrorFor(R"({"origin": {"lat_deg": 91, "lon_deg": 0, "height_m": 0}})"),
             "shots.json: origin.lat_deg: must be in [-90, 90]");
-  EXPECT_EQ(
-      ErrorFor(
-          R"({"shots": [{"type": "DOLLY-ZOOM", "subject": "hero", "duration_s": 5, "distance_m": 3, "distance_end_m": 9}]})"),
-      "shots.json: shots[0]: a DOLLY-ZOOM shot needs \"lens\" with frame_height_fraction or focal_length_mm");
+  EXPECT_EQ(ErrorFor(
+                R"({"shots": [{"type": "DOLLY-ZOOM", "subject": "hero", "duration_s": 5, "distance_m": 3,
+            "distance_end_m": 9}]})"),
+            "shots.json: shots[0]: a DOLLY-ZOOM shot needs \"lens\" with frame_height_fraction or focal_length_mm");
   EXPECT_EQ(
       ErrorFor(
           R"({"shots": [{"type": "ORBIT", "subject": "hero", "duration_s": 5, "radius_m": 3, "height_m": 5, "turns": 1,
