@@ -1,0 +1,78 @@
+#include "scene/ray_caster.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace cinepath::scene {
+namespace {
+
+using Eigen::Vector3d;
+
+// A square of side 2 s at height z, centred on (cx, cy), counter-clockwise seen from above.
+void AddSquare(SceneMesh& m, double cx, double cy, double z, double s) {
+  const uint32_t b = static_cast<uint32_t>(m.positions_enu_m.size());
+  m.positions_enu_m.insert(m.positions_enu_m.end(),
+                           {{cx - s, cy - s, z}, {cx + s, cy - s, z}, {cx + s, cy + s, z}, {cx - s, cy + s, z}});
+  m.faces.push_back({b, b + 1, b + 2});
+  m.faces.push_back({b, b + 2, b + 3});
+}
+
+TEST(RayCaster, HitsTheClosestSurfaceWithItsNormalAndFace) {
+  SceneMesh m;
+  AddSquare(m, 0, 0, 0, 50);   // ground, faces 0-1
+  AddSquare(m, 0, 0, 10, 5);   // a roof at 10 m, faces 2-3
+  const RayCaster rc(m);
+  const auto hit = rc.Intersect(Vector3d(1, 2, 100), Vector3d(0, 0, -3));
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->distance_m, 90.0, 1e-9);
+  EXPECT_TRUE(hit->position_enu_m.isApprox(Vector3d(1, 2, 10), 1e-12));
+  EXPECT_GE(hit->face, 2u);
+  EXPECT_TRUE(hit->normal_enu.isApprox(Vector3d::UnitZ()));
+  // Beside the roof the ground is hit.
+  EXPECT_NEAR(rc.Intersect(Vector3d(20, 0, 100), -Vector3d::UnitZ())->distance_m, 100.0, 1e-9);
+  // Looking up from below the ground: nothing above the roof.
+  EXPECT_FALSE(rc.Intersect(Vector3d(20, 0, 50), Vector3d::UnitZ()));
+  // A maximum distance short of the surface misses it.
+  EXPECT_FALSE(rc.Intersect(Vector3d(20, 0, 100), -Vector3d::UnitZ(), 0, 99.0));
+}
+
+TEST(RayCaster, OcclusionAndTheHighestSurfaceBelow) {
+  SceneMesh m;
+  AddSquare(m, 0, 0, 0, 50);
+  AddSquare(m, 0, 0, 10, 5);
+  const RayCaster rc(m);
+  // A line of sight over the roof is clear; through it, blocked.
+  EXPECT_FALSE(rc.Occluded(Vector3d(-20, 0, 12), Vector3d(1, 0, 0), 0, 40));
+  EXPECT_TRUE(rc.Occluded(Vector3d(0, 0, 20), Vector3d(0, 0, -1), 0, 15));
+  EXPECT_FALSE(rc.Occluded(Vector3d(0, 0, 20), Vector3d(0, 0, -1), 0, 9.5));
+  EXPECT_NEAR(rc.SurfaceBelow(1, 1)->position_enu_m.z(), 10.0, 1e-12);     // the roof
+  EXPECT_NEAR(rc.SurfaceBelow(1, 1, 5.0)->position_enu_m.z(), 0.0, 1e-12);  // under the roof: the ground
+  EXPECT_FALSE(rc.SurfaceBelow(100, 0));                                    // off the mesh
+}
+
+TEST(RayCaster, FarFromTheOriginKeepsMillimetres) {
+  // A ground square 10 km east of the origin, slightly tilted: hits stay exact to well under a mm.
+  SceneMesh m;
+  m.positions_enu_m = {{9990, -10, 0.0}, {10010, -10, 0.2}, {10010, 10, 0.2}, {9990, 10, 0.0}};
+  m.faces = {{0, 1, 2}, {0, 2, 3}};
+  const RayCaster rc(m);
+  for (double e = 9991; e < 10010; e += 1.37) {
+    const auto hit = rc.SurfaceBelow(e, 3.3);
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->position_enu_m.z(), 0.01 * (e - 9990), 1e-6) << e;
+  }
+}
+
+TEST(RayCaster, ThroughAnEdgeStillHits) {
+  SceneMesh m;
+  AddSquare(m, 0, 0, 0, 1);  // the diagonal (0,0)-(1,1) is a shared edge
+  const RayCaster rc(m);
+  EXPECT_TRUE(rc.SurfaceBelow(0.25, 0.25));
+  EXPECT_TRUE(rc.SurfaceBelow(0.0, 0.0));
+}
+
+TEST(RayCaster, RefusesAnEmptyMesh) { EXPECT_THROW(RayCaster{SceneMesh{}}, InputError); }
+
+}  // namespace
+}  // namespace cinepath::scene
