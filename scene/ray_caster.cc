@@ -22,7 +22,8 @@ namespace {
 
 [[noreturn]] void ThrowEmbreeError(RTCDevice device, const char* what) {
   const RTCError e = rtcGetDeviceError(device);
-  throw RuntimeError(std::string("ray caster: ") + what + " (Embree error " + std::to_string(static_cast<int>(e)) + ")");
+  throw RuntimeError(std::string("ray caster: ") + what + " (Embree error " + std::to_string(static_cast<int>(e)) +
+                     ")");
 }
 
 }  // namespace
@@ -43,11 +44,10 @@ RayCaster::RayCaster(const SceneMesh& mesh) : embree_(std::make_unique<Embree>()
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
   RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                               vertices_enu_m_.size()));
-  auto* indices = static_cast<uint32_t*>(
-      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), faces_.size()));
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), vertices_enu_m_.size()));
+  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(uint32_t), faces_.size()));
   if (!vertices || !indices) ThrowEmbreeError(embree_->device, "cannot allocate the mesh buffers");
   for (size_t i = 0; i < vertices_enu_m_.size(); ++i) {
     const Eigen::Vector3f p = (vertices_enu_m_[i] - centre_enu_m_).cast<float>();
@@ -72,8 +72,7 @@ RayCaster::~RayCaster() = default;
 
 namespace {
 
-RTCRay MakeRay(const Eigen::Vector3d& origin_local, const Eigen::Vector3d& unit_direction, double tnear,
-               double tfar) {
+RTCRay MakeRay(const Eigen::Vector3d& origin_local, const Eigen::Vector3d& unit_direction, double tnear, double tfar) {
   RTCRay ray;
   ray.org_x = static_cast<float>(origin_local.x());
   ray.org_y = static_cast<float>(origin_local.y());
@@ -126,8 +125,8 @@ std::optional<RayHit> RayCaster::Intersect(const Eigen::Vector3d& origin_enu_m, 
   return hit;
 }
 
-bool RayCaster::Occluded(const Eigen::Vector3d& origin_enu_m, const Eigen::Vector3d& direction,
-                         double min_distance_m, double max_distance_m) const {
+bool RayCaster::Occluded(const Eigen::Vector3d& origin_enu_m, const Eigen::Vector3d& direction, double min_distance_m,
+                         double max_distance_m) const {
   const double length = direction.norm();
   if (!(length > 0) || !origin_enu_m.allFinite() || !(max_distance_m > min_distance_m)) return false;
   RTCRay ray = MakeRay(origin_enu_m - centre_enu_m_, direction / length, std::max(0.0, min_distance_m), max_distance_m);

@@ -20,9 +20,9 @@
 namespace cinepath::scene {
 
 struct RayHit {
-  double distance_m = 0;                                   // along the (normalized) direction
-  uint32_t face = 0;                                       // index into SceneMesh::faces
-  double u = 0, v = 0;                                     // barycentrics of vertices 1 and 2 of the face
+  double distance_m = 0;  // along the (normalized) direction
+  uint32_t face = 0;      // index into SceneMesh::faces
+  double u = 0, v = 0;    // barycentrics of vertices 1 and 2 of the face
   Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal_enu = Eigen::Vector3d::Zero();  // unit geometric normal, counter-clockwise front
 };

@@ -20,8 +20,8 @@ void AddSquare(SceneMesh& m, double cx, double cy, double z, double s) {
 
 TEST(RayCaster, HitsTheClosestSurfaceWithItsNormalAndFace) {
   SceneMesh m;
-  AddSquare(m, 0, 0, 0, 50);   // ground, faces 0-1
-  AddSquare(m, 0, 0, 10, 5);   // a roof at 10 m, faces 2-3
+  AddSquare(m, 0, 0, 0, 50);  // ground, faces 0-1
+  AddSquare(m, 0, 0, 10, 5);  // a roof at 10 m, faces 2-3
   const RayCaster rc(m);
   const auto hit = rc.Intersect(Vector3d(1, 2, 100), Vector3d(0, 0, -3));
   ASSERT_TRUE(hit);
@@ -46,7 +46,7 @@ TEST(RayCaster, OcclusionAndTheHighestSurfaceBelow) {
   EXPECT_FALSE(rc.Occluded(Vector3d(-20, 0, 12), Vector3d(1, 0, 0), 0, 40));
   EXPECT_TRUE(rc.Occluded(Vector3d(0, 0, 20), Vector3d(0, 0, -1), 0, 15));
   EXPECT_FALSE(rc.Occluded(Vector3d(0, 0, 20), Vector3d(0, 0, -1), 0, 9.5));
-  EXPECT_NEAR(rc.SurfaceBelow(1, 1)->position_enu_m.z(), 10.0, 1e-12);     // the roof
+  EXPECT_NEAR(rc.SurfaceBelow(1, 1)->position_enu_m.z(), 10.0, 1e-12);      // the roof
   EXPECT_NEAR(rc.SurfaceBelow(1, 1, 5.0)->position_enu_m.z(), 0.0, 1e-12);  // under the roof: the ground
   EXPECT_FALSE(rc.SurfaceBelow(100, 0));                                    // off the mesh
 }
