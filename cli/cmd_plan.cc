@@ -9,6 +9,7 @@
 #include "cli/common_options.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/ground.h"
 #include "core/number_format.h"
 #include "core/plan_file.h"
 #include "core/scene_file.h"
@@ -23,7 +24,9 @@ class PlanCommand : public Command {
  public:
   void Setup(CLI::App& app) override {
     app.add_option("shots", shots_path_, "Shot list (shots.json, docs/plan.md)")->required();
-    app.add_option("--scene", scene_path_, "scene.json whose \"origin\" places the plan on WGS84");
+    app.add_option("--scene", scene_path_,
+                   "scene.json: its origin places the plan on WGS84, and its mesh is the ground (heights above "
+                   "ground, actors on the ground, terrain clearance)");
     app.add_option("-o,--output", output_, "Where to write plan.json ('-' = stdout)")->required();
     app.add_option("--csv", csv_path_, "Also write the samples as CSV");
     app.add_option("--plot", plot_path_, "Also write an SVG: top-down and side views, frustums, lens curves");
@@ -33,8 +36,18 @@ class PlanCommand : public Command {
 
   int Run() override {
     std::optional<Geodetic> scene_origin;
-    if (!scene_path_.empty()) scene_origin = ReadSceneFile(scene_path_).origin;
-    const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin);
+    std::shared_ptr<const Ground> ground;
+    std::vector<std::string> inputs = {shots_path_};
+    if (!scene_path_.empty()) {
+      const SceneFile scene = ReadSceneFile(scene_path_);
+      scene_origin = scene.origin;
+      inputs.push_back(scene_path_);
+      if (scene.mesh) {
+        ground = LoadGround(scene.RequireMesh());
+        inputs.push_back(scene.mesh->string());
+      }
+    }
+    const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin, ground);
     const Trajectory plan = shots::PlanShots(list);
 
     if (strict_ && !plan.feasibility.feasible()) {
@@ -58,13 +71,13 @@ class PlanCommand : public Command {
     std::vector<std::string> targets = {output_};
     if (!csv_path_.empty()) targets.push_back(csv_path_);
     if (!plot_path_.empty()) targets.push_back(plot_path_);
-    std::vector<std::string> inputs = {shots_path_};
-    if (!scene_path_.empty()) inputs.push_back(scene_path_);
     common_.WriteDepfileIfAsked(targets, inputs);
     return 0;
   }
 
-  FieldFlags field_flags() const override { return {{"scene_origin", "--scene"}, {"progress", "--progress"}}; }
+  FieldFlags field_flags() const override {
+    return {{"scene_origin", "--scene"}, {"scene_mesh", "--scene"}, {"progress", "--progress"}};
+  }
 
  private:
   std::string shots_path_;

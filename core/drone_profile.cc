@@ -20,6 +20,7 @@ const std::vector<DroneProfileField>& DroneProfileFields() {
       {.key = "min_altitude_m", .number = &D::min_altitude_m, .check = C::kAny},
       {.key = "max_altitude_m", .number = &D::max_altitude_m, .check = C::kAny},
       {.key = "min_subject_distance_m", .number = &D::min_subject_distance_m, .check = C::kNonNegative},
+      {.key = "min_terrain_clearance_m", .number = &D::min_terrain_clearance_m, .check = C::kNonNegative},
       {.key = "min_relative_altitude_m", .number = &D::min_relative_altitude_m, .check = C::kAny},
       {.key = "max_relative_altitude_m", .number = &D::max_relative_altitude_m, .check = C::kAny},
       {.key = "max_mission_items", .integer = &D::max_mission_items},

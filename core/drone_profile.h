@@ -45,6 +45,7 @@ struct DroneProfile {
   double min_altitude_m = 1;
   double max_altitude_m = 120;
   double min_subject_distance_m = 2;
+  double min_terrain_clearance_m = 3;  // above the scene's mesh (plan --scene), at every sample
 
   // Mission limits.
   double min_relative_altitude_m = -200;

@@ -43,6 +43,7 @@ std::vector<DroneProfile> MakeProfiles() {
       .min_altitude_m = 1,                // assumed ground clearance
       .max_altitude_m = 120,              // [EU]
       .min_subject_distance_m = 2,        // [CMPC]
+      .min_terrain_clearance_m = 3,       // assumed
       .min_relative_altitude_m = -200,    // assumed (as MSDK v4)
       .max_relative_altitude_m = 500,     // assumed (as MSDK v4)
       .max_mission_items = 2000,          // [PX4] NUM_MISSIONS_SUPPORTED
@@ -62,6 +63,7 @@ std::vector<DroneProfile> MakeProfiles() {
       .min_altitude_m = 1,                // assumed
       .max_altitude_m = 120,              // [EU]
       .min_subject_distance_m = 2,        // [CMPC]
+      .min_terrain_clearance_m = 3,       // assumed
       .min_relative_altitude_m = -200,    // assumed
       .max_relative_altitude_m = 500,     // assumed
       .max_mission_items = 724,           // [AP]
@@ -81,6 +83,7 @@ std::vector<DroneProfile> MakeProfiles() {
       .min_altitude_m = 1,                 // assumed
       .max_altitude_m = 120,               // [EU]
       .min_subject_distance_m = 2,         // [CMPC]
+      .min_terrain_clearance_m = 3,        // assumed
       .min_relative_altitude_m = -200,     // [MSDK]
       .max_relative_altitude_m = 1500,     // assumed (WPML has no lower cap than the aircraft's ceiling)
       .max_mission_items = 65535,          // [WPML] waypoint count
@@ -103,6 +106,7 @@ std::vector<DroneProfile> MakeProfiles() {
       .min_altitude_m = 1,                 // assumed
       .max_altitude_m = 120,               // [EU]
       .min_subject_distance_m = 2,         // [CMPC]
+      .min_terrain_clearance_m = 3,        // assumed
       .min_relative_altitude_m = -200,     // [MSDK]
       .max_relative_altitude_m = 500,      // [MSDK]
       .max_mission_items = 65535,          // [WPML]

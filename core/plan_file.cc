@@ -217,6 +217,7 @@ Json PlanToJson(const Trajectory& plan) {
     violations.push_back(std::move(j));
   }
   report["violations"] = std::move(violations);
+  report["skipped"] = plan.feasibility.skipped;
   doc["feasibility"] = std::move(report);
   return doc;
 }
@@ -315,6 +316,9 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
       v.limit_value = f["limit_value"].AsDouble();
       v.unit = f.StringOr("unit", "");
       plan.feasibility.violations.push_back(std::move(v));
+    }
+    if (auto skipped = report->Find("skipped")) {
+      for (const auto& e : skipped->Elements()) plan.feasibility.skipped.push_back(e.AsString());
     }
   }
   return plan;

@@ -101,6 +101,9 @@ struct FeasibilityViolation {
 
 struct FeasibilityReport {
   std::vector<FeasibilityViolation> violations;
+  // Checks that could not run, each with why ("terrain_clearance: no scene mesh"), so that a feasible
+  // report says what it did not check.
+  std::vector<std::string> skipped;
   bool feasible() const { return violations.empty(); }
 };
 

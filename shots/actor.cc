@@ -12,6 +12,25 @@ namespace cinepath::shots {
 Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline path)
     : name_(std::move(name)), height_m_(height_m), heading_deg_(heading_deg), path_(std::move(path)) {}
 
+Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline path, const Ground* ground,
+             double above_ground_m)
+    : Actor(std::move(name), height_m, heading_deg, std::move(path)) {
+  ground_ = ground;
+  above_ground_m_ = above_ground_m;
+}
+
+Eigen::Vector3d Actor::PositionAt(double time_s) const {
+  Eigen::Vector3d p = path_.Position(time_s);
+  if (!ground_) return p;
+  // The highest surface below the path point, searched from an actor's height above it (or 2 m), so
+  // that ground rising between two keys is followed; where nothing lies below, the highest surface.
+  const double from = p.z() - above_ground_m_ + std::max(height_m_, 2.0);
+  std::optional<double> g = ground_->SurfaceUpM(p.x(), p.y(), from);
+  if (!g) g = ground_->SurfaceUpM(p.x(), p.y());
+  if (g) p.z() = *g + above_ground_m_;
+  return p;
+}
+
 Eigen::Vector3d Actor::AimPointAt(double time_s) const {
   return PositionAt(time_s) + Eigen::Vector3d(0, 0, 0.5 * height_m_);
 }
@@ -24,38 +43,66 @@ double Actor::TravelHeadingDegAt(double time_s) const {
   return NormalizeDeg360(heading_deg_);
 }
 
+namespace {
+
+double GroundUpM(const JsonField& where, const Ground* ground, double east_m, double north_m) {
+  if (!ground) where.Fail("a height above the ground needs the scene's mesh (`scene_mesh`)");
+  const auto up = ground->SurfaceUpM(east_m, north_m);
+  if (!up) where.Fail("no ground at this position: it lies outside " + ground->source());
+  return *up;
+}
+
+}  // namespace
+
 Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, const char* geo_key,
-                              const EnuFrame* frame) {
+                              const PositionContext& context) {
   const bool has_enu = parent.Has(enu_key);
   const bool has_geo = parent.Has(geo_key);
   if (has_enu == has_geo) {
     parent.Fail(std::string("give exactly one of \"") + enu_key + "\" (ENU metres) or \"" + geo_key +
                 "\" (lat/lon/height)");
   }
+  const std::optional<double> above =
+      parent.Has("above_ground_m") ? std::optional(parent["above_ground_m"].AsDouble()) : std::nullopt;
   if (has_enu) {
     const JsonField f = parent[enu_key];
-    if (!f.IsArray() || f.size() != 3) f.Fail("expected [east_m, north_m, up_m]");
+    if (f.IsArray() && f.size() == 2) {
+      const double e = f.At(0).AsDouble(), n = f.At(1).AsDouble();
+      return {e, n, GroundUpM(f, context.ground, e, n) + above.value_or(0.0)};
+    }
+    if (!f.IsArray() || f.size() != 3) f.Fail("expected [east_m, north_m, up_m], or [east_m, north_m] on the ground");
+    if (above) parent["above_ground_m"].Fail("give it with [east_m, north_m], not with an up value");
     return {f.At(0).AsDouble(), f.At(1).AsDouble(), f.At(2).AsDouble()};
   }
   const JsonField g = parent[geo_key];
-  g.RejectUnknownKeys({"lat_deg", "lon_deg", "height_m", "amsl_m"});
-  if (!frame) g.Fail("a lat/lon position needs a WGS84 origin (shots.json \"origin\" or `scene_origin`)");
+  g.RejectUnknownKeys({"lat_deg", "lon_deg", "height_m", "amsl_m", "above_ground_m"});
+  if (!context.frame) g.Fail("a lat/lon position needs a WGS84 origin (shots.json \"origin\" or `scene_origin`)");
   Geodetic geo;
   geo.lat_deg = g["lat_deg"].AsDouble();
   geo.lon_deg = g["lon_deg"].AsDouble();
   if (geo.lat_deg < -90 || geo.lat_deg > 90) g["lat_deg"].Fail("must be in [-90, 90]");
   if (geo.lon_deg < -180 || geo.lon_deg > 180) g["lon_deg"].Fail("must be in [-180, 180]");
-  if (g.Has("height_m") == g.Has("amsl_m")) {
-    g.Fail("give exactly one of \"height_m\" (WGS84 ellipsoidal) or \"amsl_m\" (above mean sea level, EGM96)");
+  const int heights = g.Has("height_m") + g.Has("amsl_m") + g.Has("above_ground_m");
+  if (heights != 1) {
+    g.Fail(
+        "give exactly one of \"height_m\" (WGS84 ellipsoidal), \"amsl_m\" (above mean sea level, EGM96) or "
+        "\"above_ground_m\" (above the scene's mesh)");
+  }
+  if (g.Has("above_ground_m")) {
+    geo.height_m = context.frame->origin().height_m;
+    Eigen::Vector3d p = context.frame->EnuFromGeodetic(geo);
+    p.z() = GroundUpM(g, context.ground, p.x(), p.y()) + g["above_ground_m"].AsDouble();
+    return p;
   }
   geo.height_m = g.Has("height_m")
                      ? g["height_m"].AsDouble()
                      : Egm96Geoid::Default().EllipsoidalFromAmslM(geo.lat_deg, geo.lon_deg, g["amsl_m"].AsDouble());
-  return frame->EnuFromGeodetic(geo);
+  return context.frame->EnuFromGeodetic(geo);
 }
 
-Actor ParseActor(const JsonField& f, const EnuFrame* frame) {
-  f.RejectUnknownKeys({"name", "height_m", "heading_deg", "position_enu_m", "position", "keyframes", "interpolation"});
+Actor ParseActor(const JsonField& f, const PositionContext& context) {
+  f.RejectUnknownKeys({"name", "height_m", "heading_deg", "position_enu_m", "position", "above_ground_m", "keyframes",
+                       "interpolation", "on_ground"});
   const std::string name = f["name"].AsString();
   if (name.empty()) f["name"].Fail("must not be empty");
   const double height_m = f.Has("height_m") ? f["height_m"].AsPositive() : 1.8;
@@ -72,18 +119,23 @@ Actor ParseActor(const JsonField& f, const EnuFrame* frame) {
     if (f.Has("position_enu_m") || f.Has("position")) f.Fail("give either a position or keyframes, not both");
     if (keys->size() == 0) keys->Fail("must hold at least one keyframe");
     for (const auto& k : keys->Elements()) {
-      k.RejectUnknownKeys({"time_s", "position_enu_m", "position"});
+      k.RejectUnknownKeys({"time_s", "position_enu_m", "position", "above_ground_m"});
       const double t = k["time_s"].AsDouble();
       if (!times.empty() && !(t >= times.back() + 1e-3))
         k["time_s"].Fail("keyframe times must increase (by 1 ms or more)");
       times.push_back(t);
-      points.push_back(ParsePosition(k, "position_enu_m", "position", frame));
+      points.push_back(ParsePosition(k, "position_enu_m", "position", context));
     }
   } else {
     times.push_back(0.0);
-    points.push_back(ParsePosition(f, "position_enu_m", "position", frame));
+    points.push_back(ParsePosition(f, "position_enu_m", "position", context));
   }
-  return Actor(name, height_m, heading_deg, PathSpline(std::move(times), std::move(points), kind));
+  PathSpline path(std::move(times), std::move(points), kind);
+  if (f.BoolOr("on_ground", false)) {
+    if (!context.ground) f["on_ground"].Fail("needs the scene's mesh (`scene_mesh`)");
+    return Actor(name, height_m, heading_deg, std::move(path), context.ground, f.DoubleOr("above_ground_m", 0.0));
+  }
+  return Actor(name, height_m, heading_deg, std::move(path));
 }
 
 }  // namespace cinepath::shots

@@ -13,19 +13,33 @@
 #include <Eigen/Core>
 
 #include "core/geodesy.h"
+#include "core/ground.h"
 #include "core/json.h"
 #include "shots/spline.h"
 
 namespace cinepath::shots {
 
+// Where positions in a shot list are resolved: the WGS84 frame for lat/lon, the ground (the scene's
+// mesh) for heights given above it. Either may be null.
+struct PositionContext {
+  PositionContext(const EnuFrame* frame_in = nullptr, const Ground* ground_in = nullptr)  // NOLINT: implicit
+      : frame(frame_in), ground(ground_in) {}
+  const EnuFrame* frame;
+  const Ground* ground;
+};
+
 class Actor {
  public:
   Actor(std::string name, double height_m, double heading_deg, PathSpline path);
+  // An actor kept on the ground: at every time its base is `above_ground_m` above the highest surface
+  // below its path point (ground: non-null, outliving the actor).
+  Actor(std::string name, double height_m, double heading_deg, PathSpline path, const Ground* ground,
+        double above_ground_m);
 
   const std::string& name() const { return name_; }
   double height_m() const { return height_m_; }
 
-  Eigen::Vector3d PositionAt(double time_s) const { return path_.Position(time_s); }
+  Eigen::Vector3d PositionAt(double time_s) const;
   Eigen::Vector3d VelocityAt(double time_s) const { return path_.Velocity(time_s); }
   // Where cameras aim: the base raised by half the actor's height.
   Eigen::Vector3d AimPointAt(double time_s) const;
@@ -40,15 +54,20 @@ class Actor {
   double height_m_;
   double heading_deg_;
   PathSpline path_;
+  const Ground* ground_ = nullptr;  // set: on the ground at every time
+  double above_ground_m_ = 0;
 };
 
-// Parses one element of shots.json "actors" (docs/plan.md). `frame` converts lat/lon/height
-// positions; without it such positions are an InputError naming the field.
-Actor ParseActor(const JsonField& field, const EnuFrame* frame);
+// Parses one element of shots.json "actors" (docs/plan.md): a position or timed keyframes, and
+// "on_ground": true to keep the actor on the surface at every sample (needs the scene's mesh).
+Actor ParseActor(const JsonField& field, const PositionContext& context);
 
-// Reads a position: [e, n, u] ENU metres under `enu_key`, or {"lat_deg", "lon_deg", and
-// "height_m" (WGS84 ellipsoidal) or "amsl_m" (EGM96, core/geoid.h)} under `geo_key` (needs
-// `frame`). Exactly one must be present.
-Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, const char* geo_key, const EnuFrame* frame);
+// Reads a position: [e, n, u] ENU metres under `enu_key`, or {"lat_deg", "lon_deg", and "height_m"
+// (WGS84 ellipsoidal) or "amsl_m" (EGM96, core/geoid.h) or "above_ground_m"} under `geo_key` (needs
+// the frame). Exactly one must be present. A height above the ground is also written as [e, n] with
+// "above_ground_m" beside it in `parent` (default 0): the highest surface at (e, n) plus that (needs
+// the ground). InputError names the field.
+Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, const char* geo_key,
+                              const PositionContext& context);
 
 }  // namespace cinepath::shots

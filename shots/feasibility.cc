@@ -68,7 +68,7 @@ double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, con
 }  // namespace
 
 FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<bool>& cut_before,
-                                   const std::vector<LensRequest>& requests) {
+                                   const std::vector<LensRequest>& requests, const Ground* ground) {
   const auto& S = plan.samples;
   const size_t n = S.size();
   CINEPATH_CHECK(cut_before.size() == n);
@@ -106,7 +106,8 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
     kFNumberMax,
     kFocalRate,
     kFocusRate,
-    kApertureRate
+    kApertureRate,
+    kTerrain
   };
   tracks.emplace_back("horizontal_speed", "m/s", d.max_horizontal_speed_m_s, false);
   tracks.emplace_back("climb_rate", "m/s", d.max_climb_rate_m_s, false);
@@ -128,6 +129,7 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
   tracks.emplace_back("focal_length_rate", "mm/s", c.max_focal_rate_mm_s, false);
   tracks.emplace_back("focus_rate", "m/s", c.max_focus_rate_m_s, false);
   tracks.emplace_back("aperture_rate", "stops/s", c.max_aperture_rate_stops_s, false);
+  tracks.emplace_back("terrain_clearance", "m", d.min_terrain_clearance_m, true);
 
   for (size_t k = 0; k < n; ++k) {
     const long i = static_cast<long>(k);
@@ -198,9 +200,19 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
     tracks[kFocusMin].Add(plan, k, r.focus_distance_m);
     tracks[kFNumberMin].Add(plan, k, r.f_number);
     tracks[kFNumberMax].Add(plan, k, r.f_number);
+    if (ground) {
+      // Above the highest surface under the camera; off the mesh there is nothing to clear.
+      const std::optional<double> ground_up = ground->SurfaceUpM(s.position_enu_m.x(), s.position_enu_m.y());
+      if (ground_up) {
+        tracks[kTerrain].Add(plan, k, s.position_enu_m.z() - *ground_up);
+      } else {
+        tracks[kTerrain].Skip();
+      }
+    }
   }
 
   FeasibilityReport report;
+  if (!ground) report.skipped.push_back("terrain_clearance: no scene mesh to check against");
   for (const auto& t : tracks) {
     report.violations.insert(report.violations.end(), t.violations().begin(), t.violations().end());
   }

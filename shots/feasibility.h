@@ -11,6 +11,7 @@
 
 #include <vector>
 
+#include "core/ground.h"
 #include "core/trajectory.h"
 
 namespace cinepath::shots {
@@ -24,7 +25,10 @@ struct LensRequest {
 
 // `cut_before[i]` is true when sample i starts a shot joined by an explicit cut (no derivative
 // crosses it). `requests` may be empty (lens ranges are then checked on the samples themselves).
+// `ground` (the scene's mesh, or null) adds terrain_clearance: the camera at least the drone's
+// min_terrain_clearance_m above the highest surface under it; without it that check is listed in
+// FeasibilityReport::skipped.
 FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<bool>& cut_before,
-                                   const std::vector<LensRequest>& requests);
+                                   const std::vector<LensRequest>& requests, const Ground* ground = nullptr);
 
 }  // namespace cinepath::shots

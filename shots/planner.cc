@@ -454,7 +454,7 @@ Trajectory Planner::Run(const PlanOptions& options) {
     }
   }
 
-  plan.feasibility = CheckFeasibility(plan, cut_before, requests);
+  plan.feasibility = CheckFeasibility(plan, cut_before, requests, list_.ground.get());
   return plan;
 }
 

@@ -125,7 +125,8 @@ int ShotList::FindActor(const std::string& name) const {
   return -1;
 }
 
-ShotList ParseShotList(const Json& document, const std::string& source, const std::optional<Geodetic>& scene_origin) {
+ShotList ParseShotList(const Json& document, const std::string& source, const std::optional<Geodetic>& scene_origin,
+                       std::shared_ptr<const Ground> ground) {
   const JsonField root(document, source);
   if (!root.IsObject()) root.Fail("expected a shot list (a JSON object)");
   root.RejectUnknownKeys({"schema", "origin", "frame_rate_hz", "camera", "drone", "actors", "shots", "description"});
@@ -136,6 +137,7 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
   RejectOutOfRangeNumbers(root);
   ShotList list;
   list.source = source;
+  list.ground = std::move(ground);
   if (auto o = root.Find("origin")) {
     list.origin = ParseOrigin(*o);
     if (scene_origin && (std::fabs(scene_origin->lat_deg - list.origin->lat_deg) > 1e-9 ||
@@ -159,7 +161,7 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
 
   if (auto actors = root.Find("actors")) {
     for (const auto& a : actors->Elements()) {
-      Actor actor = ParseActor(a, frame ? &*frame : nullptr);
+      Actor actor = ParseActor(a, PositionContext{frame ? &*frame : nullptr, list.ground.get()});
       if (list.FindActor(actor.name()) >= 0) a["name"].Fail("duplicate actor name \"" + actor.name() + "\"");
       list.actors.push_back(std::move(actor));
     }
@@ -178,10 +180,11 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
   return list;
 }
 
-ShotList ReadShotListFile(const std::filesystem::path& path, const std::optional<Geodetic>& scene_origin) {
+ShotList ReadShotListFile(const std::filesystem::path& path, const std::optional<Geodetic>& scene_origin,
+                          std::shared_ptr<const Ground> ground) {
   // Messages name the file by its base name, so they read the same wherever the file lives.
   const std::string name = path.filename().string();
-  return ParseShotList(ParseJsonText(ReadFileToString(path), name), name, scene_origin);
+  return ParseShotList(ParseJsonText(ReadFileToString(path), name), name, scene_origin, std::move(ground));
 }
 
 }  // namespace cinepath::shots

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -57,6 +58,10 @@ struct CameraKey {
 
 enum class OrientationInterpolation { kSlerp, kSquad };
 
+// What a shot's height_m is measured from: the subject's base (the default) or the terrain under the
+// camera (the scene's mesh).
+enum class HeightReference { kSubject, kGround };
+
 struct ShotSpec {
   std::string name;
   ShotType type = ShotType::kOrbit;
@@ -66,6 +71,7 @@ struct ShotSpec {
   Easing easing = Easing::kLinear;
   bool cut = false;      // transition from the previous shot: explicit cut (else continuous)
   double blend_s = 2.0;  // continuous transition: the offset decays over this time (<= duration)
+  HeightReference height_reference = HeightReference::kSubject;
   LensSpec lens;
 
   // Geometry (metres, degrees; which apply depends on the type, see docs/plan.md).
@@ -104,15 +110,19 @@ struct ShotList {
   DroneProfile drone;
   std::vector<Actor> actors;
   std::vector<ShotSpec> shots;
+  std::shared_ptr<const Ground> ground;  // the scene's mesh (plan --scene), or null
 
   int FindActor(const std::string& name) const;  // -1 when absent
 };
 
-// Parses a shot list. `scene_origin` (from --scene scene.json) is used when shots.json has no
-// "origin"; when both are present they must agree within 1e-9 deg / 1e-6 m.
+// Parses a shot list. `scene_origin` (from the scene's scene.json) is used when shots.json has no
+// "origin"; when both are present they must agree within 1e-9 deg / 1e-6 m. `ground` (the scene's
+// mesh) resolves heights above the ground, actors kept on it, and shots whose heights are measured
+// from it; without it those are an InputError naming the key.
 ShotList ParseShotList(const Json& document, const std::string& source,
-                       const std::optional<Geodetic>& scene_origin = std::nullopt);
-ShotList ReadShotListFile(const std::filesystem::path& path,
-                          const std::optional<Geodetic>& scene_origin = std::nullopt);
+                       const std::optional<Geodetic>& scene_origin = std::nullopt,
+                       std::shared_ptr<const Ground> ground = nullptr);
+ShotList ReadShotListFile(const std::filesystem::path& path, const std::optional<Geodetic>& scene_origin = std::nullopt,
+                          std::shared_ptr<const Ground> ground = nullptr);
 
 }  // namespace cinepath::shots

@@ -14,7 +14,7 @@ namespace {
 struct ShotContext {
   const ShotList& list;
   double shot_start_s;
-  const EnuFrame* frame;
+  PositionContext positions;  // frame and ground
 };
 
 Easing ParseEasing(const JsonField& f) {
@@ -270,7 +270,7 @@ void ParseDollyZoom(const JsonField& f, const ShotContext& c, ShotSpec& s) {
 
 void ParseLockedOff(const JsonField& f, const ShotContext& c, ShotSpec& s) {
   if (f.Has("position_enu_m") || f.Has("position")) {
-    s.position_enu_m = ParsePosition(f, "position_enu_m", "position", c.frame);
+    s.position_enu_m = ParsePosition(f, "position_enu_m", "position", c.positions);
   } else {
     if (s.subject < 0) f.Fail("a LOCKED-OFF shot needs a position, or a subject with distance_m/bearing_deg/height_m");
     s.distance_m = f["distance_m"].AsPositive();
@@ -288,11 +288,11 @@ void ParseLockedOff(const JsonField& f, const ShotContext& c, ShotSpec& s) {
 
 // One free key of a KEYFRAMES shot.
 CameraKey ParseCameraKey(const JsonField& k, const ShotContext& c) {
-  k.RejectUnknownKeys({"time_s", "position_enu_m", "position", "look_at", "heading_deg", "pitch_deg", "roll_deg",
-                       "focal_length_mm", "focus_distance_m", "f_number", "easing"});
+  k.RejectUnknownKeys({"time_s", "position_enu_m", "position", "above_ground_m", "look_at", "heading_deg", "pitch_deg",
+                       "roll_deg", "focal_length_mm", "focus_distance_m", "f_number", "easing"});
   CameraKey key;
   key.time_s = k["time_s"].AsNonNegative();
-  key.position_enu_m = ParsePosition(k, "position_enu_m", "position", c.frame);
+  key.position_enu_m = ParsePosition(k, "position_enu_m", "position", c.positions);
   key.world_from_camera = ParseKeyOrientation(k, c.list, key.position_enu_m, c.shot_start_s + key.time_s);
   if (k.Has("focal_length_mm")) key.focal_length_mm = k["focal_length_mm"].AsPositive();
   if (auto fd = k.Find("focus_distance_m")) key.focus_distance_m = fd->AsPositive();
@@ -355,39 +355,46 @@ struct ShotSyntax {
 
 const std::vector<ShotSyntax>& Syntax() {
   static const std::vector<ShotSyntax> syntax = {
-      {ShotType::kChase, {"distance_m", "height_m", "lateral_m", "lag_s"}, true, &ParseChase},
+      {ShotType::kChase, {"distance_m", "height_m", "height_reference", "lateral_m", "lag_s"}, true, &ParseChase},
       {ShotType::kOrbit,
-       {"radius_m", "height_m", "turns", "angular_speed_deg_s", "direction", "start_bearing_deg"},
+       {"radius_m", "height_m", "height_reference", "turns", "angular_speed_deg_s", "direction", "start_bearing_deg"},
        true,
        &ParseOrbit},
       {ShotType::kHelix,
-       {"radius_m", "radius_end_m", "height_m", "height_end_m", "turns", "angular_speed_deg_s", "direction",
-        "start_bearing_deg"},
+       {"radius_m", "radius_end_m", "height_m", "height_end_m", "height_reference", "turns", "angular_speed_deg_s",
+        "direction", "start_bearing_deg"},
        true,
        &ParseHelix},
       {ShotType::kFlyby,
-       {"closest_distance_m", "side", "height_m", "speed_m_s", "travel_bearing_deg", "closest_at_s"},
+       {"closest_distance_m", "side", "height_m", "height_reference", "speed_m_s", "travel_bearing_deg",
+        "closest_at_s"},
        true,
        &ParseFlyby},
       {ShotType::kDolly,
-       {"distance_m", "side", "height_m", "along_start_m", "along_end_m", "travel_bearing_deg"},
+       {"distance_m", "side", "height_m", "height_reference", "along_start_m", "along_end_m", "travel_bearing_deg"},
        true,
        &ParseDolly},
       {ShotType::kCrane,
-       {"distance_m", "distance_end_m", "height_m", "height_end_m", "bearing_deg", "tilt_start_deg"},
+       {"distance_m", "distance_end_m", "height_m", "height_end_m", "height_reference", "bearing_deg",
+        "tilt_start_deg"},
        true,
        &ParseCraneOrDronie},
       {ShotType::kDronie,
-       {"distance_m", "distance_end_m", "height_m", "height_end_m", "bearing_deg", "tilt_start_deg"},
+       {"distance_m", "distance_end_m", "height_m", "height_end_m", "height_reference", "bearing_deg",
+        "tilt_start_deg"},
        true,
        &ParseCraneOrDronie},
       {ShotType::kTopDown,
        {"height_m", "height_end_m", "up_bearing_deg", "rotate_deg", "offset_enu_m"},
        true,
        &ParseTopDown},
-      {ShotType::kDollyZoom, {"distance_m", "distance_end_m", "height_m", "bearing_deg"}, true, &ParseDollyZoom},
+      {ShotType::kDollyZoom,
+       {"distance_m", "distance_end_m", "height_m", "height_reference", "bearing_deg"},
+       true,
+       &ParseDollyZoom},
       {ShotType::kLockedOff,
-       {"position_enu_m", "position", "bearing_deg", "distance_m", "height_m", "heading_deg", "pitch_deg", "pan"},
+       {"position_enu_m", "position", "above_ground_m", "bearing_deg", "distance_m", "height_m", "height_reference",
+        "heading_deg", "pitch_deg", "pan"},
        false,
        &ParseLockedOff},
       {ShotType::kKeyframes, {"keys", "interpolation", "orientation"}, false, &ParseKeyframes},
@@ -435,6 +442,17 @@ void ParseCommonKeys(const JsonField& f, const ShotSyntax& syntax, const ShotLis
     }
   }
   if (f.Has("blend_s")) s.blend_s = f["blend_s"].AsNonNegative();
+  if (auto ref = f.Find("height_reference")) {
+    const std::string r = ref->AsString();
+    if (r == "ground") {
+      if (!list.ground) ref->Fail("\"ground\" needs the scene's mesh (`scene_mesh`)");
+      s.height_reference = HeightReference::kGround;
+    } else if (r != "subject") {
+      ref->Fail(
+          "expected \"subject\" (height above the subject's base) or \"ground\" (above the terrain under "
+          "the camera)");
+    }
+  }
 }
 
 // The lens block, and what a shot type demands of it.
@@ -468,6 +486,7 @@ const std::vector<std::string_view>& ShotTypeKeys(ShotType type) { return Syntax
 
 ShotSpec ParseShotSpec(const JsonField& f, size_t index, const ShotList& list, double shot_start_s,
                        const EnuFrame* frame) {
+  const PositionContext positions{frame, list.ground.get()};
   ShotSpec s;
   s.type = ParseShotType(f["type"]);
   s.type_name = f["type"].AsString();
@@ -477,7 +496,7 @@ ShotSpec ParseShotSpec(const JsonField& f, size_t index, const ShotList& list, d
   known.insert(known.end(), syntax.keys.begin(), syntax.keys.end());
   f.RejectUnknownKeys(known, "unknown key for a " + std::string(ShotTypeName(s.type)) + " shot");
   ParseCommonKeys(f, syntax, list, s);
-  syntax.parse(f, ShotContext{list, shot_start_s, frame}, s);
+  syntax.parse(f, ShotContext{list, shot_start_s, positions}, s);
   ParseShotLens(f, list, s);
   return s;
 }

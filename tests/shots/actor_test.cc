@@ -38,12 +38,24 @@ TEST(Actor, LatLonNeedsAnOriginAndConverts) {
 }
 
 TEST(Actor, BadActorsNameTheField) {
-  const Json doc = Json::parse(R"({"name": "d", "position_enu_m": [1, 2]})");
+  const Json doc = Json::parse(R"({"name": "d", "position_enu_m": [1]})");
   try {
     ParseActor(JsonField(doc, "shots.json", "actors[3]"), nullptr);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "shots.json: actors[3].position_enu_m: expected [east_m, north_m, up_m]");
+    EXPECT_STREQ(e.what(),
+                 "shots.json: actors[3].position_enu_m: expected [east_m, north_m, up_m], or [east_m, north_m] on the "
+                 "ground");
+  }
+  // [east, north] stands on the ground, which needs the scene's mesh.
+  const Json on_ground = Json::parse(R"({"name": "d", "position_enu_m": [1, 2]})");
+  try {
+    ParseActor(JsonField(on_ground, "shots.json", "actors[3]"), nullptr);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(
+        e.what(),
+        "shots.json: actors[3].position_enu_m: a height above the ground needs the scene's mesh (`scene_mesh`)");
   }
   const Json both = Json::parse(R"({"name": "d", "position_enu_m": [1, 2, 3], "keyframes": []})");
   EXPECT_THROW(ParseActor(JsonField(both, "shots.json", "actors[0]"), nullptr), InputError);

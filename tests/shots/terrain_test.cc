@@ -1,0 +1,123 @@
+// Shots on the terrain (plan --scene): heights above the ground, actors kept on it, camera heights
+// measured from it, and the terrain clearance check, against a ground given in closed form.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "shots/planner.h"
+#include "shots/shot_list.h"
+#include "tests/support/input_error.h"
+
+namespace cinepath::shots {
+namespace {
+
+// A slope rising 0.1 m per metre east, with a 5 m plateau east of e = 40 and nothing beyond |n| > 200.
+class SlopeGround : public Ground {
+ public:
+  std::optional<double> SurfaceUpM(double e, double n, double from_up_m) const override {
+    if (std::fabs(n) > 200) return std::nullopt;
+    const double up = e > 40 ? 5.0 + 0.1 * e : 0.1 * e;
+    if (up > from_up_m) return std::nullopt;
+    return up;
+  }
+  const std::string& source() const override { return source_; }
+
+ private:
+  std::string source_ = "slope.glb";
+};
+
+Json Doc(const std::string& actors, const std::string& shots) {
+  return Json::parse(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 10,
+    "camera": {"filmback": "super35", "min_focal_length_mm": 24, "max_focal_length_mm": 70},
+    "drone": "px4-multirotor", "actors": )" +
+                     actors + R"(, "shots": )" + shots + "}");
+}
+
+const std::shared_ptr<const Ground> kGround = std::make_shared<SlopeGround>();
+
+TEST(Terrain, PositionsAboveTheGround) {
+  const ShotList list = ParseShotList(
+      Doc(R"([{"name": "a", "position_enu_m": [10, 0], "above_ground_m": 0.5}, {"name": "b", "position_enu_m": [20, 5]}])",
+          R"([{"type": "ORBIT", "subject": "a", "duration_s": 1, "radius_m": 10, "height_m": 5, "turns": 0.1}])"),
+      "shots.json", std::nullopt, kGround);
+  EXPECT_NEAR(list.actors[0].PositionAt(0).z(), 1.0 + 0.5, 1e-12);
+  EXPECT_NEAR(list.actors[1].PositionAt(0).z(), 2.0, 1e-12);
+}
+
+TEST(Terrain, AnActorOnTheGroundFollowsItAtEverySample) {
+  // Keys at e = 0 and e = 80: the straight line between them would cut under the plateau.
+  const ShotList list = ParseShotList(
+      Doc(R"([{"name": "walker", "on_ground": true, "interpolation": "linear",
+               "keyframes": [{"time_s": 0, "position_enu_m": [0, 0]}, {"time_s": 8, "position_enu_m": [80, 0]}]}])",
+          R"([{"type": "CHASE", "subject": "walker", "duration_s": 8, "distance_m": 10, "height_m": 6}])"),
+      "shots.json", std::nullopt, kGround);
+  const Trajectory plan = PlanShots(list);
+  for (size_t k = 0; k < plan.samples.size(); ++k) {
+    const Eigen::Vector3d p = plan.subjects[0].positions_enu_m[k];
+    EXPECT_NEAR(p.z(), *kGround->SurfaceUpM(p.x(), p.y()), 1e-9) << "t=" << plan.samples[k].time_s;
+  }
+}
+
+TEST(Terrain, CameraHeightAboveTheGroundUnderTheCamera) {
+  const ShotList list =
+      ParseShotList(Doc(R"([{"name": "a", "position_enu_m": [0, 0, 0]}])",
+                        R"([{"type": "FLYBY", "subject": "a", "duration_s": 8, "closest_distance_m": 10, "height_m": 12,
+               "speed_m_s": 10, "travel_bearing_deg": 90, "height_reference": "ground"}])"),
+                    "shots.json", std::nullopt, kGround);
+  const Trajectory plan = PlanShots(list);
+  for (const auto& s : plan.samples) {
+    const Eigen::Vector3d& p = s.position_enu_m;
+    EXPECT_NEAR(p.z() - *kGround->SurfaceUpM(p.x(), p.y()), 12.0, 1e-9) << "t=" << s.time_s;
+  }
+  EXPECT_TRUE(plan.feasibility.skipped.empty());
+}
+
+TEST(Terrain, ClearanceIsCheckedAgainstTheMeshOrSaidToBeSkipped) {
+  // The camera flies east at 6 m above the actor's base at e = 0, into the slope and the plateau.
+  const std::string actors = R"([{"name": "a", "position_enu_m": [0, 0, 0]}])";
+  const std::string shots = R"([{"type": "FLYBY", "subject": "a", "duration_s": 10, "closest_distance_m": 10,
+                                 "height_m": 6, "speed_m_s": 10, "travel_bearing_deg": 90, "closest_at_s": 0}])";
+  const Trajectory on_mesh = PlanShots(ParseShotList(Doc(actors, shots), "shots.json", std::nullopt, kGround));
+  bool found = false;
+  for (const auto& v : on_mesh.feasibility.violations) {
+    if (v.limit != "terrain_clearance") continue;
+    found = true;
+    EXPECT_EQ(v.unit, "m");
+    EXPECT_EQ(v.limit_value, 3.0);
+    // Above e = 30 the slope is within 3 m of the camera: the worst is under the plateau, e = 100.
+    EXPECT_NEAR(v.start_time_s, 3.1, 0.11);
+    EXPECT_NEAR(v.worst_value, 6.0 - 15.0, 1e-6);
+  }
+  EXPECT_TRUE(found);
+  const Trajectory no_mesh = PlanShots(ParseShotList(Doc(actors, shots), "shots.json"));
+  ASSERT_EQ(no_mesh.feasibility.skipped.size(), 1u);
+  EXPECT_EQ(no_mesh.feasibility.skipped[0], "terrain_clearance: no scene mesh to check against");
+}
+
+TEST(Terrain, GroundKeysNeedTheMesh) {
+  EXPECT_EQ(testing::InputErrorMessage([] {
+              ParseShotList(Doc(R"([{"name": "a", "position_enu_m": [0, 0, 0]}])",
+                                R"([{"type": "ORBIT", "subject": "a", "duration_s": 1, "radius_m": 5, "height_m": 5,
+                                     "turns": 0.1, "height_reference": "ground"}])"),
+                            "shots.json");
+            }),
+            "shots.json: shots[0].height_reference: \"ground\" needs the scene's mesh (`scene_mesh`)");
+  EXPECT_EQ(testing::InputErrorMessage([] {
+              ParseShotList(Doc(R"([{"name": "a", "on_ground": true, "position_enu_m": [0, 0, 0]}])",
+                                R"([{"type": "ORBIT", "subject": "a", "duration_s": 1, "radius_m": 5, "height_m": 5,
+                                     "turns": 0.1}])"),
+                            "shots.json");
+            }),
+            "shots.json: actors[0].on_ground: needs the scene's mesh (`scene_mesh`)");
+  // Off the mesh.
+  EXPECT_EQ(testing::InputErrorMessage([] {
+              ParseShotList(Doc(R"([{"name": "a", "position_enu_m": [0, 500]}])",
+                                R"([{"type": "ORBIT", "subject": "a", "duration_s": 1, "radius_m": 5, "height_m": 5,
+                                     "turns": 0.1}])"),
+                            "shots.json", std::nullopt, kGround);
+            }),
+            "shots.json: actors[0].position_enu_m: no ground at this position: it lies outside slope.glb");
+}
+
+}  // namespace
+}  // namespace cinepath::shots
