@@ -6,11 +6,11 @@
 #   scripts/install-deps.sh --check [...]   exit 0 when nothing is missing, 1 otherwise (installs nothing)
 set -euo pipefail
 CHECK=0
-GROUPS=()
+EXTRA_GROUPS=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --check) CHECK=1 ;;
-    --with) GROUPS+=("$2"); shift ;;
+    --with) EXTRA_GROUPS+=("$2"); shift ;;
     *) echo "install-deps: unknown argument '$1'" >&2; exit 2 ;;
   esac
   shift
@@ -28,7 +28,7 @@ PACKAGES=(
   # independent tools the tests compare against
   geographiclib-tools libxml2-utils
 )
-for g in "${GROUPS[@]}"; do
+for g in "${EXTRA_GROUPS[@]+"${EXTRA_GROUPS[@]}"}"; do
   case "$g" in
     fuzz) PACKAGES+=(clang libclang-rt-14-dev) ;;
     *) echo "install-deps: unknown group '$g' (known: fuzz)" >&2; exit 2 ;;
