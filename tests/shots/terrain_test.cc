@@ -37,7 +37,8 @@ const std::shared_ptr<const Ground> kGround = std::make_shared<SlopeGround>();
 
 TEST(Terrain, PositionsAboveTheGround) {
   const ShotList list = ParseShotList(
-      Doc(R"([{"name": "a", "position_enu_m": [10, 0], "above_ground_m": 0.5}, {"name": "b", "position_enu_m": [20, 5]}])",
+      Doc(R"([{"name": "a", "position_enu_m": [10, 0], "above_ground_m": 0.5},
+              {"name": "b", "position_enu_m": [20, 5]}])",
           R"([{"type": "ORBIT", "subject": "a", "duration_s": 1, "radius_m": 10, "height_m": 5, "turns": 0.1}])"),
       "shots.json", std::nullopt, kGround);
   EXPECT_NEAR(list.actors[0].PositionAt(0).z(), 1.0 + 0.5, 1e-12);
