@@ -47,10 +47,12 @@ EnuFrame::EnuFrame(const Geodetic& origin) : origin_(origin) {
   impl_ = std::make_unique<Impl>(Impl{GeographicLib::LocalCartesian(origin_.lat_deg, origin_.lon_deg, origin_.height_m,
                                                                     GeographicLib::Geocentric::WGS84()),
                                       EcefFromGeodetic(origin_), Eigen::Matrix3d::Identity()});
-  // LocalCartesian reports M (row-major) such that ecef_direction = M * enu_direction.
+  // Geocentric::Forward reports M (row-major) with ecef_direction = M * enu_direction at the point.
+  // (LocalCartesian's M is a different matrix: the point's ENU in terms of the origin's ENU, which is
+  // the identity at the origin.)
   std::vector<double> m(9);
   double x, y, z;
-  impl_->local.Forward(origin_.lat_deg, origin_.lon_deg, origin_.height_m, x, y, z, m);
+  GeographicLib::Geocentric::WGS84().Forward(origin_.lat_deg, origin_.lon_deg, origin_.height_m, x, y, z, m);
   impl_->ecef_from_enu = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(m.data());
 }
 

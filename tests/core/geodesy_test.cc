@@ -22,6 +22,9 @@ void ExpectRoundTrip(const Geodetic& origin, const Eigen::Vector3d& enu_m) {
                                          << enu_m.transpose();
   const Eigen::Vector3d via_ecef = frame.EnuFromEcef(frame.EcefFromEnu(enu_m));
   EXPECT_LT((via_ecef - enu_m).norm(), 3e-9);
+  // The ECEF route lands where the geodetic one does (a rotation that is wrong but orthogonal would
+  // still round-trip above).
+  EXPECT_LT((frame.EcefFromEnu(enu_m) - EcefFromGeodetic(g)).norm(), 1e-6);
 }
 
 TEST(Geodesy, LocalCartesianRoundTrips) {
