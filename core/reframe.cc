@@ -1,0 +1,30 @@
+#include "core/reframe.h"
+
+namespace cinepath {
+
+Trajectory ReframeToOrigin(Trajectory plan, const Geodetic& origin) {
+  if (!plan.origin) return plan;
+  const Geodetic& from = *plan.origin;
+  if (from.lat_deg == origin.lat_deg && from.lon_deg == origin.lon_deg && from.height_m == origin.height_m) {
+    return plan;
+  }
+  const EnuFrame source(from), target(origin);
+  const Eigen::Matrix3d rotation = target.enu_from_ecef_rotation() * source.enu_from_ecef_rotation().transpose();
+  const Eigen::Quaterniond turn(rotation);
+  auto point = [&](const Eigen::Vector3d& p) { return target.EnuFromEcef(source.EcefFromEnu(p)); };
+  for (TrajectorySample& s : plan.samples) {
+    s.position_enu_m = point(s.position_enu_m);
+    s.world_from_camera = (turn * s.world_from_camera).normalized();
+  }
+  for (Keyframe& k : plan.keyframes) {
+    k.position_enu_m = point(k.position_enu_m);
+    k.world_from_camera = (turn * k.world_from_camera).normalized();
+  }
+  for (SubjectTrack& subject : plan.subjects) {
+    for (Eigen::Vector3d& p : subject.positions_enu_m) p = point(p);
+  }
+  plan.origin = origin;
+  return plan;
+}
+
+}  // namespace cinepath

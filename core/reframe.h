@@ -1,0 +1,16 @@
+// A plan moved from the ENU frame of its own origin into the ENU frame of another origin (a scene's):
+// positions through ECEF, directions and orientations by the rotation between the two tangent frames.
+// Exact (GeographicLib), so a plan made about one origin lands on a mesh made about another, metres
+// or kilometres away, without the error of shifting by the difference of two flat frames.
+#pragma once
+
+#include "core/geodesy.h"
+#include "core/trajectory.h"
+
+namespace cinepath {
+
+// The plan in the frame of `origin`: samples, keyframes and subjects; `plan.origin` becomes `origin`.
+// A plan without an origin is taken to be in that frame already and is returned unchanged.
+Trajectory ReframeToOrigin(Trajectory plan, const Geodetic& origin);
+
+}  // namespace cinepath
