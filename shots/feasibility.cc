@@ -131,6 +131,13 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
   tracks.emplace_back("aperture_rate", "stops/s", c.max_aperture_rate_stops_s, false);
   tracks.emplace_back("terrain_clearance", "m", d.min_terrain_clearance_m, true);
 
+  // Altitude limits hold above the take-off point, as the autopilots apply them: ENU z = 0, or with
+  // the mesh, the ground under the first sample (the drone takes off below where the plan starts).
+  double takeoff_up_m = 0;
+  if (ground && n > 0) {
+    const Eigen::Vector3d& start = plan.samples[0].position_enu_m;
+    takeoff_up_m = ground->SurfaceUpM(start.x(), start.y()).value_or(0.0);
+  }
   for (size_t k = 0; k < n; ++k) {
     const long i = static_cast<long>(k);
     const auto& s = S[k];
@@ -182,8 +189,8 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
     }
     tracks[kPitchMin].Add(plan, k, s.gimbal_pitch_deg);
     tracks[kPitchMax].Add(plan, k, s.gimbal_pitch_deg);
-    tracks[kAltMin].Add(plan, k, s.position_enu_m.z());
-    tracks[kAltMax].Add(plan, k, s.position_enu_m.z());
+    tracks[kAltMin].Add(plan, k, s.position_enu_m.z() - takeoff_up_m);
+    tracks[kAltMax].Add(plan, k, s.position_enu_m.z() - takeoff_up_m);
     if (!plan.subjects.empty()) {
       double nearest = std::numeric_limits<double>::infinity();
       for (const auto& subj : plan.subjects) {
