@@ -14,6 +14,10 @@ std::unique_ptr<Command> MakeMeshCommand() { return LoadCommandPlugin("libcinepa
 #ifdef CINEPATH_WITH_SHOTS
 std::unique_ptr<Command> MakePlanCommand();
 #endif
+#ifdef CINEPATH_WITH_PREVIEW
+// A plugin module: Embree and OpenImageIO load only for this command.
+std::unique_ptr<Command> MakeRenderCommand() { return LoadCommandPlugin("libcinepath_cmd_render.so"); }
+#endif
 #ifdef CINEPATH_WITH_EXPORT
 std::unique_ptr<Command> MakeExportCommand();
 std::unique_ptr<Command> MakeInfoCommand();
@@ -26,6 +30,10 @@ const std::vector<CommandInfo>& Commands() {
 #endif
 #ifdef CINEPATH_WITH_SHOTS
       {"plan", "shot list -> keyframed, per-frame camera flight with lens tracks (plan.json)", &MakePlanCommand},
+#endif
+#ifdef CINEPATH_WITH_PREVIEW
+      {"render", "plan + scene -> ray-traced thin-lens previews of every frame (depth of field, motion blur)",
+       &MakeRenderCommand},
 #endif
 #ifdef CINEPATH_WITH_EXPORT
       {"export", "plan -> drone missions (QGC .plan/WPL, MAVLink, DJI WPML/MSDK, Litchi CSV)", &MakeExportCommand},

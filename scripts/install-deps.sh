@@ -24,9 +24,9 @@ PACKAGES=(
   libopenimageio-dev openimageio-tools libembree-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
   libfmt-dev libtbb-dev libgtest-dev libbenchmark-dev libstb-dev libmeshoptimizer-dev zlib1g-dev
   # data and tools the pipeline runs
-  proj-data colmap
+  proj-data colmap fonts-dejavu-core ffmpeg
   # independent tools the tests compare against
-  geographiclib-tools libxml2-utils
+  geographiclib-tools libxml2-utils parallel
 )
 for g in "${EXTRA_GROUPS[@]+"${EXTRA_GROUPS[@]}"}"; do
   case "$g" in

@@ -18,7 +18,8 @@ pipeline() {  # pipeline OUT
     --images "$sample/images" --quality draft --draco --no-timestamp -o "$out/scene" 2> /dev/null
   local shots=$sample/shots.json
   [[ -f "$shots" ]] || shots=$SRC/examples/orbit_shots.json
-  "$CINEPATH" plan "$shots" --csv "$out/plan.csv" --plot "$out/plan.svg" -o "$out/plan.json"
+  "$CINEPATH" plan "$shots" --scene "$out/scene/scene.json" --csv "$out/plan.csv" --plot "$out/plan.svg" \
+    -o "$out/plan.json"
   local plan=$out/plan.json
   if has optimize; then
     "$CINEPATH" optimize "$plan" --scene "$out/scene/scene.json" --quality draft --report "$out/report.json" \

@@ -1,0 +1,103 @@
+// cinepath render: plan.json + scene.json -> ray-traced thin-lens previews, one image per planned
+// frame (docs/render.md). A plugin module (cli/command_plugin.h): Embree and OpenImageIO load only
+// when this command runs.
+#include <unistd.h>
+
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/command.h"
+#include "cli/command_plugin.h"
+#include "cli/common_options.h"
+#include "core/number_format.h"
+#include "core/progress.h"
+#include "preview/render_job.h"
+
+namespace cinepath::cli {
+namespace {
+
+using namespace cinepath::preview;
+
+class RenderCommand : public Command {
+ public:
+  void Setup(CLI::App& app) override {
+    app.add_option("plan", plan_path_, "plan.json (docs/plan-format.md)")->required();
+    app.add_option("--scene", scene_path_, "scene.json; its mesh (the GLB beside it) is what is rendered")->required();
+    app.add_option("-o,--output", output_dir_, "Folder for frame_%06d.<ext> (k = sample index)")->required();
+    app.add_option("--frames", frames_, "Sample range A-B (zero-based, inclusive)");
+    app.add_option("--every", every_, "Keep every N-th sample of the range")->check(CLI::PositiveNumber);
+    app.add_option("--shard", shard_, "i/N: this machine's share (every N-th selected frame from the i-th)");
+    app.add_option("--quality", quality_, "draft (pinhole + gather blur) | standard | final")
+        ->check(CLI::IsMember({"draft", "standard", "final"}));
+    app.add_option("--spp", spp_, "Cap on rays per pixel (overrides the preset's)")->check(CLI::PositiveNumber);
+    app.add_option("--format", format_, "png | exr (linear float) | jpg")->check(CLI::IsMember({"png", "exr", "jpg"}));
+    app.add_option("--width-px", width_px_, "Output width; the plan camera's aspect is kept")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--shading", shading_, "flat (vertex colours, unlit) | sun")->check(CLI::IsMember({"flat", "sun"}));
+    app.add_option("--sun", sun_, "Sun AZIMUTH,ELEVATION in degrees for --shading sun (default 135,45)");
+    app.add_option("--exposure", exposure_, "fixed (default) | physical (t * ISO / N^2, 1 at 1/50 s ISO 100 f/4)")
+        ->check(CLI::IsMember({"fixed", "physical"}));
+    app.add_option("--iso", options_.iso, "ISO for --exposure physical")->check(PositiveFinite());
+    app.add_option("--aov", aov_, "Extra EXR images per frame: depth (m), blur (blur-circle px), or depth,blur");
+    app.add_flag("--overlay", options_.overlay, "Burn in the frame's time, shot and lens, and a rule-of-thirds guide");
+    app.add_option("--contact-sheet", contact_sheet_, "Also write a labelled grid of the rendered frames (PNG/JPEG)");
+    app.add_option("--video", video_, "Also write an H.264 MP4 at the plan's frame rate / --every (needs ffmpeg)");
+    app.add_flag("-v,--verbose", verbose_, "One line per frame on stderr: its render time and rays per pixel");
+    common_.Add(app);
+  }
+
+  int Run() override {
+    options_.output_dir = output_dir_;
+    if (!frames_.empty()) options_.frames.range = ParseFrameRange(frames_);
+    options_.frames.every = size_t(every_);
+    if (!shard_.empty()) options_.frames.shard = ParseShard(shard_);
+    options_.quality = ParseRenderQuality(quality_);
+    if (spp_) options_.max_samples = *spp_;
+    options_.format = ParseImageFormat(format_);
+    options_.width_px = width_px_;
+    options_.shading = ParseShading(shading_);
+    if (!sun_.empty()) options_.sun = ParseSunDirection(sun_);
+    options_.exposure = exposure_ == "physical" ? Exposure::kPhysical : Exposure::kFixed;
+    if (!aov_.empty()) ParseAovs(aov_, &options_);
+    if (!contact_sheet_.empty()) options_.contact_sheet = contact_sheet_;
+    if (!video_.empty()) options_.video = video_;
+
+    std::optional<Progress> progress;
+    RenderLog log;
+    log.frame_done = [&](const RenderedFrame& frame, size_t done, size_t total) {
+      if (!progress) progress.emplace("render", double(total), common_.progress_mode());
+      progress->Update(double(done));
+      if (!progress->enabled() && verbose_) {
+        std::fprintf(stderr, "render: frame %zu (%zu/%zu) %.2f s, %.1f rays/px\n", frame.sample_index, done, total,
+                     frame.seconds, frame.mean_samples);
+      }
+    };
+    const RenderSummary summary = RenderPlan(plan_path_, scene_path_, options_, log);
+    if (progress) progress->Finish();
+    common_.WriteDepfileIfAsked(summary.outputs, summary.inputs);
+    return 0;
+  }
+
+  FieldFlags field_flags() const override { return {{"progress", "--progress"}}; }
+
+ private:
+  std::string plan_path_, scene_path_, output_dir_;
+  std::string frames_, shard_, quality_ = "standard", format_ = "png", shading_ = "flat", sun_, exposure_ = "fixed";
+  std::string aov_, contact_sheet_, video_;
+  int every_ = 1;
+  std::optional<int> spp_, width_px_;
+  bool verbose_ = false;
+  RenderOptions options_;
+  CommonOptions common_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> MakeRenderCommand() { return std::make_unique<RenderCommand>(); }
+
+}  // namespace cinepath::cli
+
+CINEPATH_COMMAND_PLUGIN(MakeRenderCommand)

@@ -1,0 +1,272 @@
+#include "preview/frame_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "preview/sample_sequence.h"
+#include "preview/thin_lens_camera.h"
+
+namespace cinepath::preview {
+namespace {
+
+constexpr int kTile = 16;
+constexpr double kSharpPx = 0.5;  // under half a pixel of blur and motion: one ray
+constexpr double kEdgeDepthRatio = 0.02;
+constexpr float kEdgeColor = 0.08f;
+constexpr int kMaxGatherRadiusPx = 48;  // draft: blur wider than 97 px is clipped
+
+struct PrePass {
+  std::vector<Eigen::Vector3f> rgb;
+  std::vector<double> depth_m;
+  std::vector<double> need_px;  // max(blur, motion) at the pixel
+  std::vector<int> kind;        // -2 sky, -1 mesh, >= 0 subject
+  std::vector<uint32_t> face;
+};
+
+double AxisDepth(const ThinLensCamera& camera, const CameraPose& pose, const Eigen::Vector3d& point) {
+  double depth = 0;
+  camera.Project(pose, point, &depth);
+  return depth;
+}
+
+// Pixel motion of what the pixel centre sees, across the shutter: the point reprojected at its ends.
+double MotionPx(const ThinLensCamera& camera, const Trajectory& plan, const SubjectProxies& subjects, double t_mid,
+                double t0, double t1, const TraceHit& hit, const Eigen::Vector3d& direction,
+                const Eigen::Vector3d& origin) {
+  if (!(t1 > t0)) return 0;
+  Eigen::Vector3d point = std::isinf(hit.distance_m) ? origin + 1e7 * direction : hit.position_enu_m;
+  auto at = [&](double t) {
+    Eigen::Vector3d p = point;
+    if (hit.subject >= 0) p += subjects.BaseAt(hit.subject, t) - subjects.BaseAt(hit.subject, t_mid);
+    double depth = 0;
+    const Eigen::Vector2d xy = camera.Project(PoseAt(plan, t), p, &depth);
+    return depth > 0 ? xy : Eigen::Vector2d(1e9, 1e9);
+  };
+  return std::min(1e6, (at(t1) - at(t0)).norm());
+}
+
+PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const ThinLensCamera& camera, double t_mid,
+                       double t0, double t1, bool motion_blur) {
+  const int w = camera.width_px(), h = camera.height_px();
+  PrePass pass;
+  const size_t n = size_t(w) * h;
+  pass.rgb.resize(n);
+  pass.depth_m.resize(n);
+  pass.need_px.resize(n);
+  pass.kind.resize(n);
+  pass.face.resize(n);
+  const CameraPose pose = PoseAt(plan, t_mid);
+  const SubjectProxies subjects(plan);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        const CameraRay ray = camera.Ray(pose, x + 0.5, y + 0.5);
+        TraceHit hit;
+        pass.rgb[i] = scene.Radiance(ray.origin_enu_m, ray.direction_enu, t_mid, &hit);
+        const bool sky = std::isinf(hit.distance_m);
+        pass.depth_m[i] = sky ? std::numeric_limits<double>::infinity() : AxisDepth(camera, pose, hit.position_enu_m);
+        pass.kind[i] = sky ? -2 : hit.subject;
+        pass.face[i] = hit.face;
+        const double blur = camera.BlurPx(pass.depth_m[i]);
+        const double motion =
+            motion_blur ? MotionPx(camera, plan, subjects, t_mid, t0, t1, hit, ray.direction_enu, ray.origin_enu_m) : 0;
+        pass.need_px[i] = std::max(blur, motion);
+      }
+    }
+  });
+  return pass;
+}
+
+// Pixels where the pre-pass sees an edge (another object, a depth step, a colour step): they get
+// edge_samples jittered rays even when sharp, so in-focus edges are antialiased like the box filter.
+std::vector<uint8_t> FindEdges(const PrePass& pass, int w, int h) {
+  std::vector<uint8_t> edge(size_t(w) * h, 0);
+  auto differ = [&](size_t a, size_t b) {
+    if (pass.kind[a] != pass.kind[b]) return true;
+    if (pass.kind[a] == -2) return false;
+    const double da = pass.depth_m[a], db = pass.depth_m[b];
+    if (std::abs(da - db) > kEdgeDepthRatio * std::min(da, db)) return true;
+    return (pass.rgb[a] - pass.rgb[b]).cwiseAbs().maxCoeff() > kEdgeColor;
+  };
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      if (x + 1 < w && differ(i, i + 1)) edge[i] = edge[i + 1] = 1;
+      if (y + 1 < h && differ(i, i + w)) edge[i] = edge[i + w] = 1;
+    }
+  }
+  return edge;
+}
+
+// A blurred pixel spreads over its neighbours: a sharp pixel beside a blurred foreground must be
+// sampled as if blurred too. Per tile of 16 x 16 px, the largest need of every tile whose blur disk
+// (need / 2 from its border) reaches it.
+std::vector<double> DilatedTileNeed(const PrePass& pass, int w, int h) {
+  const int tw = (w + kTile - 1) / kTile, th = (h + kTile - 1) / kTile;
+  std::vector<double> tile_max(size_t(tw) * th, 0.0);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      double& m = tile_max[size_t(y / kTile) * tw + x / kTile];
+      m = std::max(m, pass.need_px[size_t(y) * w + x]);
+    }
+  }
+  std::vector<double> dilated = tile_max;
+  for (int ty = 0; ty < th; ++ty) {
+    for (int tx = 0; tx < tw; ++tx) {
+      const double need = tile_max[size_t(ty) * tw + tx];
+      if (need < kSharpPx) continue;
+      const int reach = int(std::ceil(std::min(need, 1e4) / 2 / kTile));
+      for (int dy = std::max(0, ty - reach); dy <= std::min(th - 1, ty + reach); ++dy) {
+        for (int dx = std::max(0, tx - reach); dx <= std::min(tw - 1, tx + reach); ++dx) {
+          double& d = dilated[size_t(dy) * tw + dx];
+          d = std::max(d, need);
+        }
+      }
+    }
+  }
+  return dilated;
+}
+
+int SamplesFor(double need_px, bool edge, const SamplingPreset& preset, int max_samples) {
+  if (need_px < kSharpPx) return std::min(edge ? preset.edge_samples : 1, max_samples);
+  const double area_px2 = M_PI / 4 * need_px * need_px;
+  const double wanted = std::ceil(preset.samples_per_blur_px2 * std::min(area_px2, 1e7));
+  return int(std::clamp<double>(wanted, std::min(preset.min_blurred_samples, max_samples), max_samples));
+}
+
+// Draft: scatter-as-gather of the pre-pass. A neighbour q adds its colour to p when p lies in q's
+// blur disk (weight 1 / disk area); a neighbour behind p only where p is itself blurred that far, so
+// a sharp foreground does not take in the background.
+std::vector<Eigen::Vector3f> GatherBlur(const PrePass& pass, const std::vector<double>& blur_px,
+                                        const std::vector<double>& tile_need, int w, int h) {
+  std::vector<Eigen::Vector3f> out(pass.rgb.size());
+  const int tw = (w + kTile - 1) / kTile;
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        const double need = tile_need[size_t(y / kTile) * tw + x / kTile];
+        const int radius = std::min(kMaxGatherRadiusPx, int(std::ceil(need / 2)));
+        if (need < kSharpPx || radius == 0) {
+          out[i] = pass.rgb[i];
+          continue;
+        }
+        const double rp = std::max(0.5, blur_px[i] / 2);
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        double weight = 0;
+        for (int qy = std::max(0, y - radius); qy <= std::min(h - 1, y + radius); ++qy) {
+          for (int qx = std::max(0, x - radius); qx <= std::min(w - 1, x + radius); ++qx) {
+            const size_t q = size_t(qy) * w + qx;
+            const double rq = std::clamp(blur_px[q] / 2, 0.5, double(kMaxGatherRadiusPx));
+            const double d2 = double(qx - x) * (qx - x) + double(qy - y) * (qy - y);
+            if (d2 > rq * rq) continue;
+            if (pass.depth_m[q] > pass.depth_m[i] && d2 > rp * rp) continue;
+            const double wq = 1 / (rq * rq);
+            sum += wq * pass.rgb[q].cast<double>();
+            weight += wq;
+          }
+        }
+        out[i] = weight > 0 ? Eigen::Vector3f((sum / weight).cast<float>()) : pass.rgb[i];
+      }
+    }
+  });
+  return out;
+}
+
+}  // namespace
+
+std::pair<double, double> ShutterInterval(const Trajectory& plan, size_t k) {
+  const auto& s = plan.samples;
+  const double t = s[k].time_s;
+  const double half = std::max(0.0, s[k].shutter_s) / 2;
+  const double lo = k > 0 && s[k - 1].shot == s[k].shot ? s[k - 1].time_s : t;
+  const double hi = k + 1 < s.size() && s[k + 1].shot == s[k].shot ? s[k + 1].time_s : t;
+  return {std::max(lo, t - half), std::min(hi, t + half)};
+}
+
+double RelativeExposure(double shutter_s, double iso, double f_number) {
+  const double reference = (1.0 / 50) * 100 / (4.0 * 4.0);
+  return shutter_s * iso / (f_number * f_number) / reference;
+}
+
+std::pair<int, int> OutputSize(const CameraSpec& camera, std::optional<int> width_px) {
+  if (!width_px) return {camera.width_px, camera.height_px};
+  const int height = std::max(1, int(std::lround(double(*width_px) * camera.height_px / camera.width_px)));
+  return {*width_px, height};
+}
+
+FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t k, const FrameSettings& settings) {
+  const TrajectorySample& sample = plan.samples[k];
+  const ThinLensCamera camera(plan.camera, settings.width_px, settings.height_px, sample.focal_length_mm,
+                              sample.f_number, sample.focus_distance_m);
+  const SamplingPreset& preset = settings.preset;
+  const auto [t0, t1] = ShutterInterval(plan, k);
+  const bool motion = preset.motion_blur && t1 > t0;
+  const int w = settings.width_px, h = settings.height_px;
+
+  const PrePass pass = PinholePrePass(scene, plan, camera, sample.time_s, t0, t1, motion);
+  const std::vector<uint8_t> edge = FindEdges(pass, w, h);
+  const std::vector<double> tile_need = DilatedTileNeed(pass, w, h);
+  const int tw = (w + kTile - 1) / kTile;
+
+  FrameImage image;
+  image.width = w;
+  image.height = h;
+  image.rgb_linear.resize(size_t(w) * h);
+  image.depth_m.resize(image.rgb_linear.size());
+  image.blur_px.resize(image.rgb_linear.size());
+  image.samples.resize(image.rgb_linear.size());
+  std::vector<double> blur(image.rgb_linear.size());
+  for (size_t i = 0; i < blur.size(); ++i) {
+    blur[i] = camera.BlurPx(pass.depth_m[i]);
+    image.depth_m[i] = float(pass.depth_m[i]);
+    image.blur_px[i] = float(blur[i]);
+  }
+
+  const int max_samples = std::max(1, preset.max_samples);
+  const SubjectProxies subjects(plan);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        const double need = std::max(pass.need_px[i], tile_need[size_t(y / kTile) * tw + x / kTile]);
+        const int n = preset.gather_blur ? std::min(edge[i] ? preset.edge_samples : 1, max_samples)
+                                         : SamplesFor(need, edge[i] != 0, preset, max_samples);
+        image.samples[i] = uint16_t(std::min(n, 65535));
+        if (n == 1) {
+          image.rgb_linear[i] = pass.rgb[i];
+          continue;
+        }
+        const bool lens = !preset.gather_blur && need >= kSharpPx;
+        const SampleSequence sequence(k, uint32_t(x), uint32_t(y));
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (int s = 0; s < n; ++s) {
+          const PixelSample ps = sequence.Get(uint32_t(s));
+          const double t = motion && lens ? t0 + ps.time * (t1 - t0) : sample.time_s;
+          const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
+          const CameraRay ray = camera.Ray(PoseAt(plan, t), x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
+          sum += scene.Radiance(ray.origin_enu_m, ray.direction_enu, t).cast<double>();
+        }
+        image.rgb_linear[i] = (sum / n).cast<float>();
+      }
+    }
+  });
+  if (preset.gather_blur) {
+    PrePass antialiased = pass;
+    antialiased.rgb = image.rgb_linear;
+    image.rgb_linear = GatherBlur(antialiased, blur, tile_need, w, h);
+  }
+  for (uint16_t n : image.samples) image.total_samples += n;
+  if (settings.exposure == Exposure::kPhysical) {
+    const float scale = float(RelativeExposure(sample.shutter_s, settings.iso, sample.f_number));
+    for (auto& c : image.rgb_linear) c *= scale;
+  }
+  return image;
+}
+
+}  // namespace cinepath::preview

@@ -1,0 +1,143 @@
+#include "preview/preview_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include "core/error.h"
+
+namespace cinepath::preview {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180;
+constexpr float kSkyIrradiance = 0.25f;
+constexpr float kSunIrradiance = 1.0f;
+// 1 / (sin 45 deg + sky): a level surface under the default sun keeps about its flat colour.
+constexpr float kSunNormalisation = 1.0f / (0.70710678f + kSkyIrradiance);
+const Eigen::Vector3f kDefaultSurface(0.5f, 0.5f, 0.5f);  // a mesh without colours
+
+float SrgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+Texture DecodeTexture(const scene::SceneImage& image, size_t index) {
+  const std::string name = "texture" + std::to_string(index) + (image.mime_type == "image/jpeg" ? ".jpg" : ".png");
+  OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(image.encoded.data()), image.encoded.size());
+  auto input = OIIO::ImageInput::open(name, nullptr, &reader);
+  if (!input) throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+    throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + input->geterror());
+  }
+  Texture texture;
+  texture.width = spec.width;
+  texture.height = spec.height;
+  texture.texels.resize(size_t(spec.width) * spec.height);
+  for (size_t i = 0; i < texture.texels.size(); ++i) {
+    const float* p = &pixels[i * spec.nchannels];
+    const float g = spec.nchannels >= 3 ? p[1] : p[0];
+    const float b = spec.nchannels >= 3 ? p[2] : p[0];
+    texture.texels[i] = Eigen::Vector3f(SrgbToLinear(p[0]), SrgbToLinear(g), SrgbToLinear(b));
+  }
+  return texture;
+}
+
+}  // namespace
+
+Eigen::Vector3f Texture::Sample(const Eigen::Vector2f& uv) const {
+  if (texels.empty()) return Eigen::Vector3f::Ones();
+  const float x = uv.x() * width - 0.5f, y = uv.y() * height - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float wx = x - fx, wy = y - fy;
+  auto at = [&](long i, long j) {
+    i = ((i % width) + width) % width;
+    j = ((j % height) + height) % height;
+    return texels[size_t(j) * width + size_t(i)];
+  };
+  const long i = long(fx), j = long(fy);
+  return (1 - wy) * ((1 - wx) * at(i, j) + wx * at(i + 1, j)) + wy * ((1 - wx) * at(i, j + 1) + wx * at(i + 1, j + 1));
+}
+
+PreviewScene::PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun)
+    : mesh_(std::move(mesh)), subjects_(plan), shading_(shading) {
+  caster_ = std::make_unique<scene::RayCaster>(mesh_);
+  for (size_t i = 0; i < mesh_.images.size(); ++i) textures_.push_back(DecodeTexture(mesh_.images[i], i));
+  const double az = sun.azimuth_deg * kDegToRad, el = sun.elevation_deg * kDegToRad;
+  sun_direction_enu_ = Eigen::Vector3d(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el));
+}
+
+PreviewScene::~PreviewScene() = default;
+
+Eigen::Vector3f PreviewScene::Sky(const Eigen::Vector3d& direction) const {
+  const float up = float(std::clamp(direction.z(), -1.0, 1.0));
+  if (up < 0) return Eigen::Vector3f(0.18f, 0.18f, 0.18f);  // below the horizon, off the mesh
+  const Eigen::Vector3f horizon(0.75f, 0.80f, 0.88f), zenith(0.25f, 0.40f, 0.75f);
+  return horizon + std::sqrt(up) * (zenith - horizon);
+}
+
+Eigen::Vector3f PreviewScene::SurfaceColor(const scene::RayHit& hit) const {
+  const auto& f = mesh_.faces[hit.face];
+  const float u = float(hit.u), v = float(hit.v), w = 1 - u - v;
+  Eigen::Vector3f color = kDefaultSurface;
+  if (mesh_.has_colors()) {
+    color = w * mesh_.colors_linear[f[0]] + u * mesh_.colors_linear[f[1]] + v * mesh_.colors_linear[f[2]];
+  }
+  if (!mesh_.face_material.empty()) {
+    const int m = mesh_.face_material[hit.face];
+    if (m >= 0 && size_t(m) < mesh_.materials.size()) {
+      const auto& material = mesh_.materials[m];
+      color = color.cwiseProduct(material.base_color_factor.head<3>());
+      if (material.base_color_image >= 0 && size_t(material.base_color_image) < textures_.size() &&
+          mesh_.has_texcoords()) {
+        const Eigen::Vector2f uv = w * mesh_.texcoords[f[0]] + u * mesh_.texcoords[f[1]] + v * mesh_.texcoords[f[2]];
+        color = color.cwiseProduct(textures_[material.base_color_image].Sample(uv));
+      }
+    }
+  }
+  return color;
+}
+
+Eigen::Vector3f PreviewScene::Light(const Eigen::Vector3d& position, const Eigen::Vector3d& normal,
+                                    double time_s) const {
+  const float sky = kSkyIrradiance * float(0.5 * (1 + normal.z()));
+  const double cosine = normal.dot(sun_direction_enu_);
+  float sun = 0;
+  if (cosine > 0) {
+    const Eigen::Vector3d origin = position + 1e-3 * normal;
+    const bool blocked = caster_->Occluded(origin, sun_direction_enu_, 1e-4, 1e6) ||
+                         (!subjects_.empty() && subjects_.Intersect(origin, sun_direction_enu_, time_s, 1e6));
+    if (!blocked) sun = kSunIrradiance * float(cosine);
+  }
+  return Eigen::Vector3f::Constant((sun + sky) * kSunNormalisation);
+}
+
+Eigen::Vector3f PreviewScene::Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s,
+                                       TraceHit* hit_out) const {
+  const auto mesh_hit = caster_->Intersect(origin, direction);
+  const double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();
+  std::optional<ProxyHit> proxy;
+  if (!subjects_.empty()) proxy = subjects_.Intersect(origin, direction, time_s, mesh_distance);
+  if (!mesh_hit && !proxy) {
+    if (hit_out) *hit_out = TraceHit{std::numeric_limits<double>::infinity(), {}, -1, 0};
+    return Sky(direction);
+  }
+  Eigen::Vector3f color;
+  Eigen::Vector3d normal, position;
+  if (proxy) {
+    position = origin + proxy->distance_m * direction;
+    normal = proxy->normal_enu;
+    color = SubjectColor(proxy->subject);
+    if (hit_out) *hit_out = TraceHit{proxy->distance_m, position, proxy->subject, 0};
+  } else {
+    position = mesh_hit->position_enu_m;
+    normal = mesh_hit->normal_enu;
+    color = SurfaceColor(*mesh_hit);
+    if (hit_out) *hit_out = TraceHit{mesh_hit->distance_m, position, -1, mesh_hit->face};
+  }
+  if (shading_ == Shading::kFlat) return color;
+  if (normal.dot(direction) > 0) normal = -normal;  // two-sided: light the side the ray sees
+  return color.cwiseProduct(Light(position, normal, time_s));
+}
+
+}  // namespace cinepath::preview

@@ -1,0 +1,66 @@
+// What a frame is traced against: the scene mesh (scene/ray_caster.h, Embree), its colours and
+// textures, the plan's subject proxies, and the light. Radiance is linear RGB.
+//
+// Shading (docs/render.md, "Shading"):
+//   flat  each surface shows its colour unlit (vertex colour x base colour x texture), as an emission
+//         shader with no bounces; rays that miss see a sky gradient.
+//   sun   colour x (sun * max(0, n.l) * visible + sky * (1 + n.up)/2): a directional sun of
+//         irradiance 1 (one shadow ray) and a uniform sky of 0.25 (no bounces), normalised so a level
+//         surface under a 45 deg sun shows about its flat colour.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "preview/render_options.h"
+#include "preview/subject_proxies.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_mesh.h"
+
+namespace cinepath::preview {
+
+// A decoded base-colour texture, linear RGB, rows from the top (glTF uv: u right, v down).
+struct Texture {
+  int width = 0;
+  int height = 0;
+  std::vector<Eigen::Vector3f> texels;
+  Eigen::Vector3f Sample(const Eigen::Vector2f& uv) const;  // bilinear, wrapping (glTF REPEAT)
+};
+
+struct TraceHit {
+  double distance_m = 0;
+  Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
+  int subject = -1;  // >= 0 for a subject proxy
+  uint32_t face = 0;
+};
+
+class PreviewScene {
+ public:
+  // Builds the BVH and decodes the textures (OpenImageIO). InputError for an empty or broken mesh.
+  PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun);
+  ~PreviewScene();
+
+  // Radiance along a unit-direction ray at time t: the shade of the closest surface (mesh or subject
+  // proxy), or the sky; `hit_out` gets that surface (distance +inf for the sky).
+  Eigen::Vector3f Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s,
+                           TraceHit* hit_out = nullptr) const;
+  Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
+
+  const scene::SceneMesh& mesh() const { return mesh_; }
+
+ private:
+  Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
+  Eigen::Vector3f Light(const Eigen::Vector3d& position, const Eigen::Vector3d& normal, double time_s) const;
+
+  scene::SceneMesh mesh_;
+  std::unique_ptr<scene::RayCaster> caster_;
+  SubjectProxies subjects_;
+  std::vector<Texture> textures_;  // one per mesh image
+  Shading shading_;
+  Eigen::Vector3d sun_direction_enu_;  // towards the sun
+};
+
+}  // namespace cinepath::preview

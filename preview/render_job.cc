@@ -1,0 +1,259 @@
+#include "preview/render_job.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/number_format.h"
+#include "core/plan_file.h"
+#include "core/reframe.h"
+#include "core/scene_file.h"
+#include "preview/image_files.h"
+#include "preview/preview_scene.h"
+#include "preview/thin_lens_camera.h"
+#include "scene/glb_reader.h"
+
+namespace cinepath::preview {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kThumbWidthPx = 320;
+constexpr int kSheetColumns = 4;
+constexpr int kLabelPx = 12;
+
+std::vector<std::string> LabelLines(const Trajectory& plan, size_t k) {
+  const TrajectorySample& s = plan.samples[k];
+  const std::string focus = std::isinf(s.focus_distance_m) ? "inf" : FormatSignificant(s.focus_distance_m, 3) + " m";
+  return {"#" + std::to_string(k) + "  t " + FormatFixed(s.time_s, 3) + " s  " + s.shot,
+          FormatSignificant(s.focal_length_mm, 4) + " mm  focus " + focus + "  f/" + FormatSignificant(s.f_number, 3)};
+}
+
+void CheckWritableFolder(const fs::path& dir) {
+  try {
+    EnsureDirectory(dir);
+  } catch (const Error& e) {
+    throw InputError(dir.string() + ": cannot create the output folder (" + e.what() + ")");
+  }
+  const fs::path probe = dir / (".cinepath-render-probe" + std::to_string(getpid()));
+  FILE* f = std::fopen(probe.c_str(), "w");
+  if (!f) throw InputError(dir.string() + ": the output folder is not writable");
+  std::fclose(f);
+  fs::remove(probe);
+}
+
+std::string FindOnPath(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
+    if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
+  }
+  return {};
+}
+
+// The rule of thirds and the frame's label, burnt in.
+void BurnOverlay(Srgb8Image* image, const Trajectory& plan, size_t k) {
+  auto blend = [&](int x, int y) {
+    uint8_t* p = &image->rgb[3 * (size_t(y) * image->width + x)];
+    for (int c = 0; c < 3; ++c) p[c] = uint8_t((p[c] + 255 * 2) / 3);
+  };
+  for (int third = 1; third <= 2; ++third) {
+    const int x = image->width * third / 3, y = image->height * third / 3;
+    for (int j = 0; j < image->height; ++j) blend(x, j);
+    for (int i = 0; i < image->width; ++i) blend(i, y);
+  }
+  const int size = std::max(10, image->height / 36);
+  const auto lines = LabelLines(plan, k);
+  for (size_t l = 0; l < lines.size(); ++l)
+    DrawText(image, size / 2, size / 2 + int(l) * (size + size / 3), size, lines[l]);
+}
+
+Srgb8Image Thumbnail(const FrameImage& frame) {
+  const int tw = std::min(kThumbWidthPx, frame.width);
+  const int th = std::max(1, int(std::lround(double(tw) * frame.height / frame.width)));
+  std::vector<Eigen::Vector3f> small(size_t(tw) * th, Eigen::Vector3f::Zero());
+  std::vector<int> count(small.size(), 0);
+  for (int y = 0; y < frame.height; ++y) {
+    for (int x = 0; x < frame.width; ++x) {
+      const size_t t = size_t(std::min(th - 1, y * th / frame.height)) * tw + std::min(tw - 1, x * tw / frame.width);
+      small[t] += frame.rgb_linear[size_t(y) * frame.width + x];
+      ++count[t];
+    }
+  }
+  for (size_t i = 0; i < small.size(); ++i) small[i] /= float(std::max(1, count[i]));
+  return EncodeSrgb8(small, tw, th);
+}
+
+Srgb8Image ContactSheet(const std::vector<Srgb8Image>& thumbs, const std::vector<std::vector<std::string>>& labels) {
+  const int tw = thumbs.front().width, th = thumbs.front().height;
+  const int columns = std::min<int>(kSheetColumns, int(thumbs.size()));
+  const int rows = (int(thumbs.size()) + columns - 1) / columns;
+  const int pad = 6, label_h = 2 * (kLabelPx + 4) + 2;
+  const int cell_w = tw + pad, cell_h = th + label_h + pad;
+  Srgb8Image sheet{pad + columns * cell_w, pad + rows * cell_h, {}};
+  sheet.rgb.assign(size_t(sheet.width) * sheet.height * 3, 24);
+  for (size_t i = 0; i < thumbs.size(); ++i) {
+    const int x0 = pad + int(i % columns) * cell_w, y0 = pad + int(i / columns) * cell_h;
+    for (int y = 0; y < thumbs[i].height; ++y) {
+      std::copy_n(&thumbs[i].rgb[size_t(y) * thumbs[i].width * 3], thumbs[i].width * 3,
+                  &sheet.rgb[(size_t(y0 + y) * sheet.width + x0) * 3]);
+    }
+    for (size_t l = 0; l < labels[i].size(); ++l) {
+      DrawText(&sheet, x0 + 2, y0 + th + 2 + int(l) * (kLabelPx + 4), kLabelPx, labels[i][l]);
+    }
+  }
+  return sheet;
+}
+
+// Frames piped as raw RGB into ffmpeg (libx264, yuv420p, the plan's rate / every), into a temporary
+// file renamed on success.
+class VideoWriter {
+ public:
+  VideoWriter(const fs::path& target, int width, int height, double rate_hz) : target_(target) {
+    temp_ = target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) + ".mp4");
+    std::ostringstream command;
+    command << "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s " << width << "x" << height << " -r "
+            << FormatSignificant(rate_hz, 9) << " -i - -vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt yuv420p"
+            << " -movflags +faststart '" << temp_.string() << "'";
+    pipe_ = popen(command.str().c_str(), "w");
+    if (!pipe_) throw RuntimeError(target.string() + ": cannot start ffmpeg");
+  }
+  ~VideoWriter() {
+    if (pipe_) pclose(pipe_);
+    std::error_code ignored;
+    fs::remove(temp_, ignored);
+  }
+  void Add(const Srgb8Image& frame) {
+    if (std::fwrite(frame.rgb.data(), 1, frame.rgb.size(), pipe_) != frame.rgb.size()) {
+      throw RuntimeError(target_.string() + ": ffmpeg stopped reading frames");
+    }
+  }
+  void Finish() {
+    const int status = pclose(pipe_);
+    pipe_ = nullptr;
+    if (status != 0)
+      throw RuntimeError(target_.string() + ": ffmpeg failed (exit status " + std::to_string(status) + ")");
+    fs::rename(temp_, target_);
+  }
+
+ private:
+  fs::path target_, temp_;
+  FILE* pipe_ = nullptr;
+};
+
+}  // namespace
+
+std::string FrameLabel(const Trajectory& plan, size_t k) {
+  const auto lines = LabelLines(plan, k);
+  return lines[0] + "  " + lines[1];
+}
+
+std::string FrameFileName(size_t k, ImageFormat format) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%06zu.%s", k, FileExtension(format));
+  return name;
+}
+
+RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, const RenderOptions& options,
+                         const RenderLog& log) {
+  RenderSummary summary;
+  // Everything that can be refused, before anything is written.
+  const SceneFile scene_file = ReadSceneFile(scene_json);
+  // A plan planned about another origin than the mesh's is moved into the mesh's frame (exact).
+  const Trajectory plan =
+      scene_file.origin ? ReframeToOrigin(ReadPlanFile(plan_json), *scene_file.origin) : ReadPlanFile(plan_json);
+  summary.inputs.push_back(plan_json.string());
+  const std::vector<size_t> frames = SelectFrames(plan.samples.size(), options.frames);
+  if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");
+  const auto [width, height] = OutputSize(plan.camera, options.width_px);
+  for (size_t k : frames) {  // the lens of every frame, as the camera will take it
+    const auto& s = plan.samples[k];
+    ThinLensCamera(plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
+  }
+  summary.inputs.push_back(scene_json.string());
+  const fs::path& glb = scene_file.RequireMesh();
+  summary.inputs.push_back(glb.string());
+  if (options.video && FindOnPath("ffmpeg").empty()) {
+    throw RuntimeError("--video needs ffmpeg on PATH (Debian package ffmpeg); nothing was rendered");
+  }
+  const bool labels = options.overlay || options.contact_sheet;
+  if (labels) RequireLabelFont();
+  CheckWritableFolder(options.output_dir);
+  const PreviewScene scene(scene::ReadGlbFile(glb), plan, options.shading, options.sun);
+
+  FrameSettings settings;
+  settings.width_px = width;
+  settings.height_px = height;
+  settings.preset = PresetFor(options.quality);
+  if (options.max_samples) settings.preset.max_samples = *options.max_samples;
+  settings.exposure = options.exposure;
+  settings.iso = options.iso;
+
+  std::unique_ptr<VideoWriter> video;
+  if (options.video) {
+    video = std::make_unique<VideoWriter>(*options.video, width, height, plan.frame_rate_hz / options.frames.every);
+  }
+  std::vector<Srgb8Image> thumbs;
+  std::vector<std::vector<std::string>> thumb_labels;
+  for (size_t done = 0; done < frames.size(); ++done) {
+    const size_t k = frames[done];
+    const auto start = std::chrono::steady_clock::now();
+    const FrameImage frame = RenderFrame(scene, plan, k, settings);
+    const fs::path path = options.output_dir / FrameFileName(k, options.format);
+    Srgb8Image encoded;
+    if (options.format != ImageFormat::kExr || video) {
+      encoded = EncodeSrgb8(frame.rgb_linear, width, height);
+      if (options.overlay) BurnOverlay(&encoded, plan, k);
+    }
+    if (options.format == ImageFormat::kExr) {
+      std::vector<float> values(frame.rgb_linear.size() * 3);
+      for (size_t i = 0; i < frame.rgb_linear.size(); ++i) {
+        for (int c = 0; c < 3; ++c) values[3 * i + c] = frame.rgb_linear[i][c];
+      }
+      WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
+    } else {
+      WriteSrgb8Atomic(path, encoded);
+    }
+    summary.outputs.push_back(path.string());
+    const std::string stem = path.stem().string();
+    if (options.aov_depth) {
+      const fs::path aov = options.output_dir / (stem + ".depth.exr");
+      WriteExrAtomic(aov, width, height, {"Z"}, frame.depth_m);
+      summary.outputs.push_back(aov.string());
+    }
+    if (options.aov_blur) {
+      const fs::path aov = options.output_dir / (stem + ".blur.exr");
+      WriteExrAtomic(aov, width, height, {"Y"}, frame.blur_px);
+      summary.outputs.push_back(aov.string());
+    }
+    if (video) video->Add(encoded);
+    if (options.contact_sheet) {
+      thumbs.push_back(Thumbnail(frame));
+      thumb_labels.push_back(LabelLines(plan, k));
+    }
+    RenderedFrame rendered{k, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                           double(frame.total_samples) / (double(width) * height)};
+    summary.frames.push_back(rendered);
+    if (log.frame_done) log.frame_done(rendered, done + 1, frames.size());
+  }
+  if (options.contact_sheet && !thumbs.empty()) {
+    WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(thumbs, thumb_labels));
+    summary.outputs.push_back(options.contact_sheet->string());
+  }
+  if (video) {
+    video->Finish();
+    summary.outputs.push_back(options.video->string());
+  }
+  return summary;
+}
+
+}  // namespace cinepath::preview

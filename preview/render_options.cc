@@ -1,0 +1,88 @@
+#include "preview/render_options.h"
+
+#include <sstream>
+
+#include "core/error.h"
+
+namespace cinepath::preview {
+
+SamplingPreset PresetFor(RenderQuality quality) {
+  SamplingPreset preset;
+  switch (quality) {
+    case RenderQuality::kDraft:
+      preset.gather_blur = true;
+      preset.edge_samples = 4;
+      preset.max_samples = 4;
+      preset.motion_blur = false;
+      break;
+    case RenderQuality::kStandard:
+      preset.edge_samples = 4;
+      preset.samples_per_blur_px2 = 1.0;
+      preset.min_blurred_samples = 16;
+      preset.max_samples = 128;
+      break;
+    case RenderQuality::kFinal:
+      preset.edge_samples = 16;
+      preset.samples_per_blur_px2 = 4.0;
+      preset.min_blurred_samples = 64;
+      preset.max_samples = 1024;
+      break;
+  }
+  return preset;
+}
+
+RenderQuality ParseRenderQuality(const std::string& text) {
+  if (text == "draft") return RenderQuality::kDraft;
+  if (text == "standard") return RenderQuality::kStandard;
+  if (text == "final") return RenderQuality::kFinal;
+  throw InputError("--quality: expected draft, standard or final, got '" + text + "'");
+}
+
+ImageFormat ParseImageFormat(const std::string& text) {
+  if (text == "png") return ImageFormat::kPng;
+  if (text == "exr") return ImageFormat::kExr;
+  if (text == "jpg" || text == "jpeg") return ImageFormat::kJpg;
+  throw InputError("--format: expected png, exr or jpg, got '" + text + "'");
+}
+
+Shading ParseShading(const std::string& text) {
+  if (text == "flat") return Shading::kFlat;
+  if (text == "sun") return Shading::kSun;
+  throw InputError("--shading: expected flat or sun, got '" + text + "'");
+}
+
+void ParseAovs(const std::string& text, RenderOptions* options) {
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    if (item == "depth") {
+      options->aov_depth = true;
+    } else if (item == "blur") {
+      options->aov_blur = true;
+    } else {
+      throw InputError("--aov: expected depth, blur or depth,blur, got '" + text + "'");
+    }
+  }
+}
+
+SunDirection ParseSunDirection(const std::string& text) {
+  SunDirection sun;
+  char comma = 0;
+  std::istringstream is(text);
+  if (!(is >> sun.azimuth_deg >> comma >> sun.elevation_deg) || comma != ',' || !is.eof() ||
+      !(sun.elevation_deg > 0 && sun.elevation_deg <= 90) || !(sun.azimuth_deg >= -360 && sun.azimuth_deg <= 360)) {
+    throw InputError("--sun: expected AZIMUTH,ELEVATION in degrees (elevation in (0, 90]), got '" + text + "'");
+  }
+  return sun;
+}
+
+const char* FileExtension(ImageFormat format) {
+  switch (format) {
+    case ImageFormat::kPng: return "png";
+    case ImageFormat::kExr: return "exr";
+    case ImageFormat::kJpg: return "jpg";
+  }
+  return "png";
+}
+
+}  // namespace cinepath::preview

@@ -1,0 +1,68 @@
+// What `cinepath render` is asked for (cli/cmd_render.cc binds its flags onto this), and the quality
+// presets with the figures they were tuned to (docs/render.md, "Presets"; bench/RESULTS.md).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "preview/frame_selection.h"
+
+namespace cinepath::preview {
+
+enum class RenderQuality { kDraft, kStandard, kFinal };
+enum class Shading { kFlat, kSun };
+enum class ImageFormat { kPng, kExr, kJpg };
+enum class Exposure { kFixed, kPhysical };
+
+// How many rays a pixel gets. A pinhole pre-pass finds each pixel's depth, and so its blur and its
+// motion in pixels; a pixel sharp and still gets one ray (edge_samples where the pre-pass sees an
+// edge), a blurred or moving one samples_per_blur_px2 per pixel of its blur (or streak) area, at least
+// min_blurred_samples, at most max_samples.
+struct SamplingPreset {
+  bool gather_blur = false;  // draft: no lens rays; a depth-aware gather blur of the pinhole image
+  int edge_samples = 4;
+  double samples_per_blur_px2 = 1.0;
+  int min_blurred_samples = 8;
+  int max_samples = 64;
+  bool motion_blur = true;
+};
+
+SamplingPreset PresetFor(RenderQuality quality);
+
+struct SunDirection {
+  double azimuth_deg = 135;  // compass, clockwise from north
+  double elevation_deg = 45;
+};
+
+struct RenderOptions {
+  std::filesystem::path output_dir;
+  FrameSelection frames;
+  RenderQuality quality = RenderQuality::kStandard;
+  std::optional<int> max_samples;  // --spp: the cap on rays per pixel (overrides the preset's)
+  ImageFormat format = ImageFormat::kPng;
+  std::optional<int> width_px;  // the aspect of the plan's camera is kept
+  Shading shading = Shading::kFlat;
+  SunDirection sun;
+  Exposure exposure = Exposure::kFixed;
+  double iso = 100;  // --exposure physical: relative exposure t * ISO / N^2, 1 at 1/50 s, ISO 100, f/4
+  bool aov_depth = false;
+  bool aov_blur = false;
+  bool overlay = false;
+  std::optional<std::filesystem::path> contact_sheet;
+  std::optional<std::filesystem::path> video;
+};
+
+// "draft" | "standard" | "final" -> RenderQuality, etc.; InputError naming the flag otherwise.
+RenderQuality ParseRenderQuality(const std::string& text);
+ImageFormat ParseImageFormat(const std::string& text);
+Shading ParseShading(const std::string& text);
+// "depth,blur" (either or both); InputError naming `--aov` for anything else.
+void ParseAovs(const std::string& text, RenderOptions* options);
+// "AZ,EL" in degrees; InputError naming `--sun`.
+SunDirection ParseSunDirection(const std::string& text);
+
+const char* FileExtension(ImageFormat format);
+
+}  // namespace cinepath::preview

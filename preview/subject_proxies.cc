@@ -1,0 +1,70 @@
+#include "preview/subject_proxies.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace cinepath::preview {
+
+Eigen::Vector3d SubjectProxies::BaseAt(size_t subject, double time_s) const {
+  const auto& samples = plan_->samples;
+  const auto& positions = plan_->subjects[subject].positions_enu_m;
+  const size_t n = std::min(samples.size(), positions.size());
+  if (n == 0) return Eigen::Vector3d::Zero();
+  if (time_s <= samples[0].time_s || n == 1) return positions[0];
+  if (time_s >= samples[n - 1].time_s) return positions[n - 1];
+  const auto next = std::upper_bound(samples.begin(), samples.begin() + n, time_s,
+                                     [](double t, const TrajectorySample& s) { return t < s.time_s; });
+  const size_t b = next - samples.begin();
+  const size_t a = b - 1;
+  const double span = samples[b].time_s - samples[a].time_s;
+  const double w = span > 0 ? (time_s - samples[a].time_s) / span : 0;
+  return positions[a] + w * (positions[b] - positions[a]);
+}
+
+std::optional<ProxyHit> SubjectProxies::Intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                                  double time_s, double max_distance_m) const {
+  std::optional<ProxyHit> best;
+  for (size_t i = 0; i < plan_->subjects.size(); ++i) {
+    const double height = plan_->subjects[i].height_m;
+    const double radius = std::max(0.05, kProxyRadiusPerHeight * height);
+    const Eigen::Vector3d base = BaseAt(i, time_s);
+    const Eigen::Vector3d o = origin - base;
+    auto consider = [&](double t, const Eigen::Vector3d& normal) {
+      if (t > 1e-6 && t < max_distance_m && (!best || t < best->distance_m)) best = ProxyHit{t, int(i), normal};
+    };
+    // The side: |(o + t d)_xy| = r, 0 <= z <= height.
+    const double a = direction.x() * direction.x() + direction.y() * direction.y();
+    const double b = o.x() * direction.x() + o.y() * direction.y();
+    const double c = o.x() * o.x() + o.y() * o.y() - radius * radius;
+    if (a > 0) {
+      const double disc = b * b - a * c;
+      if (disc >= 0) {
+        const double root = std::sqrt(disc);
+        for (double t : {(-b - root) / a, (-b + root) / a}) {
+          const Eigen::Vector3d p = o + t * direction;
+          if (p.z() >= 0 && p.z() <= height) {
+            consider(t, Eigen::Vector3d(p.x(), p.y(), 0).normalized());
+            break;
+          }
+        }
+      }
+    }
+    // The top cap (seen from above: drone shots look down on their subjects).
+    if (direction.z() != 0) {
+      const double t = (height - o.z()) / direction.z();
+      const Eigen::Vector3d p = o + t * direction;
+      if (p.x() * p.x() + p.y() * p.y() <= radius * radius) consider(t, Eigen::Vector3d::UnitZ());
+    }
+  }
+  return best;
+}
+
+Eigen::Vector3f SubjectColor(size_t subject) {
+  static const std::array<Eigen::Vector3f, 6> palette = {
+      Eigen::Vector3f(0.90f, 0.30f, 0.02f), Eigen::Vector3f(0.80f, 0.05f, 0.60f), Eigen::Vector3f(0.02f, 0.65f, 0.80f),
+      Eigen::Vector3f(0.90f, 0.80f, 0.02f), Eigen::Vector3f(0.40f, 0.15f, 0.90f), Eigen::Vector3f(0.30f, 0.85f, 0.05f)};
+  return palette[subject % palette.size()];
+}
+
+}  // namespace cinepath::preview

@@ -1,0 +1,85 @@
+#include "preview/thin_lens_camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/optics.h"
+
+namespace cinepath::preview {
+
+ThinLensCamera::ThinLensCamera(const CameraSpec& camera, int width_px, int height_px, double focal_length_mm,
+                               double f_number, double focus_distance_m)
+    : width_px_(width_px),
+      height_px_(height_px),
+      sensor_width_mm_(camera.sensor_width_mm),
+      image_height_mm_(ImageExtentOnSensorMm(camera.sensor_width_mm, width_px, height_px).height_mm),
+      focal_length_mm_(focal_length_mm),
+      f_number_(f_number),
+      focus_distance_m_(focus_distance_m),
+      lens_radius_m_(focal_length_mm / f_number / 2 / 1000) {
+  ValidateFocalLengthMm(focal_length_mm);
+  ValidateFNumber(f_number);
+  if (!std::isinf(focus_distance_m)) ValidateFocusDistanceM(focus_distance_m, focal_length_mm);
+}
+
+CameraRay ThinLensCamera::Ray(const CameraPose& pose, double x_px, double y_px, double lens_u, double lens_v) const {
+  const Eigen::Vector3d pinhole((x_px / width_px_ - 0.5) * sensor_width_mm_ / focal_length_mm_,
+                                (y_px / height_px_ - 0.5) * image_height_mm_ / focal_length_mm_, 1.0);
+  Eigen::Vector3d origin_cam = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction_cam = pinhole;
+  if (lens_u != 0 || lens_v != 0) {
+    origin_cam = Eigen::Vector3d(lens_u * lens_radius_m_, lens_v * lens_radius_m_, 0);
+    // Toward the point on the plane of focus; at infinity, parallel to the pinhole ray.
+    if (!std::isinf(focus_distance_m_)) direction_cam = pinhole * focus_distance_m_ - origin_cam;
+  }
+  return {pose.position_enu_m + pose.world_from_camera * origin_cam,
+          (pose.world_from_camera * direction_cam).normalized()};
+}
+
+Eigen::Vector2d ThinLensCamera::Project(const CameraPose& pose, const Eigen::Vector3d& point_enu_m,
+                                        double* depth_m) const {
+  const Eigen::Vector3d p = pose.world_from_camera.conjugate() * (point_enu_m - pose.position_enu_m);
+  *depth_m = p.z();
+  const double x_mm = p.x() / p.z() * focal_length_mm_;
+  const double y_mm = p.y() / p.z() * focal_length_mm_;
+  return {(x_mm / sensor_width_mm_ + 0.5) * width_px_, (y_mm / image_height_mm_ + 0.5) * height_px_};
+}
+
+double ThinLensCamera::BlurPx(double depth_m) const {
+  if (!(depth_m > focal_length_mm_ / 1000)) return 0;
+  const double s = focus_distance_m_;
+  const double c_mm = BlurCircleMm(focal_length_mm_, f_number_, s, depth_m);
+  const double ray_traced = std::isinf(s) ? 1.0 : (s - focal_length_mm_ / 1000) / s;
+  return c_mm * ray_traced * pixels_per_mm();
+}
+
+Eigen::Vector2d ConcentricDisk(double u1, double u2) {
+  const double a = 2 * u1 - 1, b = 2 * u2 - 1;
+  if (a == 0 && b == 0) return {0, 0};
+  double r, phi;
+  if (std::abs(a) > std::abs(b)) {
+    r = a;
+    phi = M_PI / 4 * (b / a);
+  } else {
+    r = b;
+    phi = M_PI / 2 - M_PI / 4 * (a / b);
+  }
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+CameraPose PoseAt(const Trajectory& plan, double time_s) {
+  const auto& samples = plan.samples;
+  if (time_s <= samples.front().time_s) return {samples.front().position_enu_m, samples.front().world_from_camera};
+  if (time_s >= samples.back().time_s) return {samples.back().position_enu_m, samples.back().world_from_camera};
+  const auto next = std::upper_bound(samples.begin(), samples.end(), time_s,
+                                     [](double t, const TrajectorySample& s) { return t < s.time_s; });
+  const TrajectorySample& b = *next;
+  const TrajectorySample& a = *(next - 1);
+  const double span = b.time_s - a.time_s;
+  const double w = span > 0 ? (time_s - a.time_s) / span : 0;
+  return {a.position_enu_m + w * (b.position_enu_m - a.position_enu_m),
+          a.world_from_camera.slerp(w, b.world_from_camera).normalized()};
+}
+
+}  // namespace cinepath::preview

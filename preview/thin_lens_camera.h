@@ -1,0 +1,76 @@
+// The camera of one frame as render traces it: a thin lens with the plan's filmback, focal length,
+// focus distance and f-number, posed by world_from_camera (camera x right, y down, z forward; ENU).
+//
+// Sensor fit (core/optics.h, ImageExtentOnSensorMm): the image spans the sensor's full width w, and
+// w * H / W of its height. Pixel (x, y) (continuous, 0..W, 0..H, y down) looks along
+//   d_cam = ((x/W - 1/2) w, (y/H - 1/2) w H/W, f) / f.
+// Thin lens (pbrt's convention, as Cycles and Mitsuba): a point on the lens disk of diameter
+// A = f/N, in the plane z = 0, aims at the point s * d_cam on the plane of focus z = s (s = infinity
+// keeps d_cam). A point at depth z is then blurred over c * (s - f)/s on the sensor, c being core's
+// blur circle c = (f^2/N)|1/s - 1/z|/(1 - f/s) (docs/render.md, "Blur convention").
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "core/trajectory.h"
+
+namespace cinepath::preview {
+
+struct CameraRay {
+  Eigen::Vector3d origin_enu_m;
+  Eigen::Vector3d direction_enu;  // unit
+};
+
+struct CameraPose {
+  Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond world_from_camera = Eigen::Quaterniond::Identity();
+};
+
+class ThinLensCamera {
+ public:
+  // InputError for a focal length, f-number or focus distance core/optics.h refuses.
+  ThinLensCamera(const CameraSpec& camera, int width_px, int height_px, double focal_length_mm, double f_number,
+                 double focus_distance_m);
+
+  int width_px() const { return width_px_; }
+  int height_px() const { return height_px_; }
+  double focal_length_mm() const { return focal_length_mm_; }
+  double f_number() const { return f_number_; }
+  double focus_distance_m() const { return focus_distance_m_; }
+
+  // The ray through image point (x, y) from lens point (lens_u, lens_v) on the unit disk (0, 0 is the
+  // centre: a pinhole ray), for the camera at `pose`.
+  CameraRay Ray(const CameraPose& pose, double x_px, double y_px, double lens_u = 0, double lens_v = 0) const;
+
+  // Where an ENU point lands in the image (continuous pixels) through the lens centre, and its depth
+  // along the optical axis; depth <= 0 means behind the camera.
+  Eigen::Vector2d Project(const CameraPose& pose, const Eigen::Vector3d& point_enu_m, double* depth_m) const;
+
+  // The blur-circle diameter in pixels these rays give a point at depth z (the convention above);
+  // 0 on the plane of focus.
+  double BlurPx(double depth_m) const;
+
+  // Pixels per millimetre on the sensor (W / w).
+  double pixels_per_mm() const { return width_px_ / sensor_width_mm_; }
+
+ private:
+  int width_px_;
+  int height_px_;
+  double sensor_width_mm_;
+  double image_height_mm_;
+  double focal_length_mm_;
+  double f_number_;
+  double focus_distance_m_;  // +inf = infinity
+  double lens_radius_m_;
+};
+
+// Concentric map of [0,1)^2 onto the unit disk (Shirley and Chiu 1997): uniform and low-distortion,
+// so stratified lens samples stay stratified.
+Eigen::Vector2d ConcentricDisk(double u1, double u2);
+
+// The pose at time t, between the samples around it: position linear, orientation slerp; clamped to
+// the plan's first and last sample.
+CameraPose PoseAt(const Trajectory& plan, double time_s);
+
+}  // namespace cinepath::preview

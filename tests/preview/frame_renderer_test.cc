@@ -1,0 +1,264 @@
+// Known answers, measured in rendered images: the blur of an edge, the plane of focus, the pinhole
+// limit, a uniform emitter, a motion streak, the exposure, the sensor fit; and the same pixels at any
+// thread count and far from the origin.
+#include "preview/frame_renderer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <numeric>
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include "core/optics.h"
+#include "preview/thin_lens_camera.h"
+
+namespace cinepath::preview {
+namespace {
+
+constexpr int kWidth = 240;
+constexpr int kHeight = 24;
+
+// A wall facing the camera, `distance_m` north of `camera`, black west of the camera and white east
+// of it (or all `color` when given).
+scene::SceneMesh Wall(const Eigen::Vector3d& camera, double distance_m,
+                      std::optional<Eigen::Vector3f> color = std::nullopt) {
+  scene::SceneMesh mesh;
+  const double y = camera.y() + distance_m;
+  for (int half = 0; half < 2; ++half) {
+    const double x0 = camera.x() + (half == 0 ? -60 : 0), x1 = camera.x() + (half == 0 ? 0 : 60);
+    const uint32_t base = uint32_t(mesh.positions_enu_m.size());
+    for (const auto& [x, z] : {std::pair{x0, -60.0}, {x1, -60.0}, {x1, 60.0}, {x0, 60.0}}) {
+      mesh.positions_enu_m.emplace_back(x, y, camera.z() + z);
+      mesh.colors_linear.push_back(color.value_or(Eigen::Vector3f::Constant(half == 0 ? 0.0f : 1.0f)));
+    }
+    mesh.faces.push_back({base, base + 1, base + 2});
+    mesh.faces.push_back({base, base + 2, base + 3});
+  }
+  return mesh;
+}
+
+// Three samples at 30 Hz, the camera still at `camera` looking north, level.
+Trajectory StillCamera(const Eigen::Vector3d& camera, double focal_mm, double f_number, double focus_m,
+                       double shutter_s = 1.0 / 50) {
+  Trajectory plan;
+  plan.camera.sensor_width_mm = 36;
+  plan.camera.sensor_height_mm = 24;
+  plan.camera.width_px = kWidth;
+  plan.camera.height_px = kHeight;
+  Eigen::Matrix3d r;
+  r << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  for (int k = 0; k < 3; ++k) {
+    TrajectorySample s;
+    s.time_s = k / 30.0;
+    s.position_enu_m = camera;
+    s.world_from_camera = Eigen::Quaterniond(r);
+    s.focal_length_mm = focal_mm;
+    s.f_number = f_number;
+    s.focus_distance_m = focus_m;
+    s.shutter_s = shutter_s;
+    s.shot = "test";
+    plan.samples.push_back(s);
+  }
+  return plan;
+}
+
+FrameSettings Settings(RenderQuality quality, int max_samples) {
+  FrameSettings settings;
+  settings.width_px = kWidth;
+  settings.height_px = kHeight;
+  settings.preset = PresetFor(quality);
+  settings.preset.max_samples = max_samples;
+  return settings;
+}
+
+FrameImage Render(scene::SceneMesh mesh, const Trajectory& plan, const FrameSettings& settings, size_t k = 1) {
+  const PreviewScene scene(std::move(mesh), plan, Shading::kFlat, SunDirection{});
+  return RenderFrame(scene, plan, k, settings);
+}
+
+// The red channel averaged down each column.
+std::vector<double> ColumnProfile(const FrameImage& image) {
+  std::vector<double> profile(image.width, 0.0);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) profile[x] += image.rgb_linear[size_t(y) * image.width + x].x();
+  }
+  for (double& p : profile) p /= image.height;
+  return profile;
+}
+
+// A step edge at x = 0 blurred by a disk of diameter c, then by the 1-px box of a pixel centred at x:
+// the share of the disk's area east of the edge, averaged over the pixel.
+double DiskEdge(double x, double c) {
+  double sum = 0;
+  constexpr int kSub = 32;
+  for (int i = 0; i < kSub; ++i) {
+    const double u = x - 0.5 + (i + 0.5) / kSub;
+    const double r = c / 2;
+    const double h = std::clamp(-u, -r, r);  // signed distance from the disk centre to the edge
+    sum += (r * r * std::acos(h / r) - h * std::sqrt(r * r - h * h)) / (M_PI * r * r);
+  }
+  return sum / kSub;
+}
+
+// The diameter whose disk-edge profile fits the measured one best (least squares, 0.01 px steps).
+double FitBlurDiameter(const std::vector<double>& profile, double guess) {
+  double best_c = 0, best_error = std::numeric_limits<double>::infinity();
+  for (double c = 0.5 * guess; c <= 1.5 * guess; c += 0.01) {
+    double error = 0;
+    for (int x = 0; x < int(profile.size()); ++x) {
+      const double d = profile[x] - DiskEdge(x + 0.5 - kWidth / 2.0, c);
+      error += d * d;
+    }
+    if (error < best_error) best_error = error, best_c = c;
+  }
+  return best_c;
+}
+
+TEST(FrameRenderer, AnEdgeOutOfFocusBlursOverTheBlurCircle) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  const Trajectory plan = StillCamera(camera, 100, 1.4, 3);
+  const FrameImage image = Render(Wall(camera, 20), plan, Settings(RenderQuality::kFinal, 512));
+  const double predicted = ThinLensCamera(plan.camera, kWidth, kHeight, 100, 1.4, 3).BlurPx(20);
+  ASSERT_GT(predicted, 10);  // the test means something only when the blur spans many pixels
+  const double fitted = FitBlurDiameter(ColumnProfile(image), predicted);
+  std::printf("edge blur fitted %.3f px, predicted %.3f px\n", fitted, predicted);
+  EXPECT_LT(std::abs(fitted - predicted), std::max(1.0, 0.03 * predicted))
+      << "fitted " << fitted << " px, predicted " << predicted << " px";
+}
+
+TEST(FrameRenderer, ThePlaneOfFocusRendersSharp) {
+  for (const Eigen::Vector3d camera : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10000, -10000, 300)}) {
+    const Trajectory plan = StillCamera(camera, 100, 1.4, 20);
+    const std::vector<double> profile =
+        ColumnProfile(Render(Wall(camera, 20), plan, Settings(RenderQuality::kStandard, 128)));
+    // The edge projects onto the boundary between columns 119 and 120: no float jitter at 14 km.
+    EXPECT_LT(profile[118], 1e-6) << camera.transpose();
+    EXPECT_LT(profile[119], 1e-6) << camera.transpose();
+    EXPECT_GT(profile[120], 1 - 1e-6) << camera.transpose();
+    EXPECT_GT(profile[121], 1 - 1e-6) << camera.transpose();
+  }
+}
+
+TEST(FrameRenderer, ALargeFNumberMatchesAPinholeRender) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  const FrameImage pinhole =
+      Render(Wall(camera, 20), StillCamera(camera, 100, 1.4, 20), Settings(RenderQuality::kStandard, 128));
+  const FrameImage stopped_down =
+      Render(Wall(camera, 20), StillCamera(camera, 100, 64, 3), Settings(RenderQuality::kStandard, 128));
+  double max_difference = 0;
+  for (size_t i = 0; i < pinhole.rgb_linear.size(); ++i) {
+    max_difference = std::max(max_difference, double((pinhole.rgb_linear[i] - stopped_down.rgb_linear[i]).norm()));
+  }
+  EXPECT_LT(max_difference, 0.02);
+}
+
+TEST(FrameRenderer, AUniformEmitterGivesAUniformImage) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  const Eigen::Vector3f color(0.3f, 0.5f, 0.7f);
+  const FrameImage image =
+      Render(Wall(camera, 20, color), StillCamera(camera, 100, 1.4, 3), Settings(RenderQuality::kStandard, 64));
+  for (const auto& c : image.rgb_linear) ASSERT_LT((c - color).norm(), 1e-5);
+  EXPECT_GT(image.total_samples, uint64_t(kWidth) * kHeight * 16);  // it was blurred, and sampled so
+}
+
+// The variance of the red channel's column profile, as a distribution along x.
+double ProfileVariance(const std::vector<double>& profile) {
+  double mass = 0, mean = 0, second = 0;
+  for (size_t x = 0; x < profile.size(); ++x) {
+    mass += profile[x];
+    mean += profile[x] * (x + 0.5);
+    second += profile[x] * (x + 0.5) * (x + 0.5);
+  }
+  mean /= mass;
+  return second / mass - mean * mean;
+}
+
+TEST(FrameRenderer, AMotionStreakHasTheProjectedLengthOfSpeedTimesShutter) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  Trajectory plan = StillCamera(camera, 100, 64, 20, 1.0 / 50);
+  const double speed_m_s = 10;
+  SubjectTrack runner;
+  runner.name = "runner";
+  runner.height_m = 1.8;
+  for (const auto& s : plan.samples) runner.positions_enu_m.emplace_back(speed_m_s * s.time_s - 1.0 / 3, 20, -0.9);
+  plan.subjects.push_back(runner);
+  scene::SceneMesh black_wall = Wall(camera, 40, Eigen::Vector3f::Zero());
+  FrameSettings settings = Settings(RenderQuality::kFinal, 256);
+  const FrameImage moving = Render(black_wall, plan, settings);
+  settings.preset.motion_blur = false;
+  const FrameImage still = Render(black_wall, plan, settings);
+  // A box of the proxy's width convolved with a box of the streak's length: variances add, L^2 / 12.
+  const double streak_px =
+      std::sqrt(12 * (ProfileVariance(ColumnProfile(moving)) - ProfileVariance(ColumnProfile(still))));
+  const double expected_px = speed_m_s / 50 * 100 / 20 * kWidth / 36.0;  // m -> mm on the sensor -> px
+  EXPECT_NEAR(streak_px, expected_px, std::max(1.0, 0.03 * expected_px));
+  std::printf("streak %.3f px, expected %.3f px\n", streak_px, expected_px);
+}
+
+TEST(FrameRenderer, PhysicalExposureDoublesWhenTheShutterDoubles) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  const Eigen::Vector3f color(0.1f, 0.2f, 0.3f);
+  FrameSettings settings = Settings(RenderQuality::kStandard, 16);
+  settings.exposure = Exposure::kPhysical;
+  const FrameImage fast = Render(Wall(camera, 20, color), StillCamera(camera, 100, 4, 20, 1.0 / 100), settings);
+  const FrameImage slow = Render(Wall(camera, 20, color), StillCamera(camera, 100, 4, 20, 1.0 / 50), settings);
+  EXPECT_NEAR(slow.rgb_linear[100].x() / fast.rgb_linear[100].x(), 2.0, 1e-5);
+  EXPECT_NEAR(slow.rgb_linear[100].z(), 0.3, 1e-6);  // 1/50 s, ISO 100, f/4 is exposure 1
+}
+
+TEST(FrameRenderer, ASubjectPlannedAtAFrameHeightFractionFillsItInTheImage) {
+  // Super 35 with a 16:9 image: the image uses 24.89 x 14.00 mm of the 18.67 mm high filmback.
+  const Eigen::Vector3d camera(0, 0, 0);
+  Trajectory plan = StillCamera(camera, 35, 64, 20);
+  plan.camera.sensor_width_mm = 24.89;
+  plan.camera.sensor_height_mm = 18.67;
+  plan.camera.width_px = 320;
+  plan.camera.height_px = 180;
+  SubjectTrack person;
+  person.name = "person";
+  person.height_m = 1.8;
+  person.positions_enu_m.assign(3, Eigen::Vector3d(0, 20, -0.9));
+  plan.subjects.push_back(person);
+  FrameSettings settings = Settings(RenderQuality::kStandard, 64);
+  settings.width_px = 320;
+  settings.height_px = 180;
+  const FrameImage image = Render(Wall(camera, 40, Eigen::Vector3f::Zero()), plan, settings);
+  double rows = 0;  // the subject's coverage down the centre column (antialiased rows count in part)
+  for (int y = 0; y < image.height; ++y) rows += image.rgb_linear[size_t(y) * image.width + 160].x() / 0.9;
+  const double planned = 1.8 * 35 / 20 / (24.89 * 180 / 320);
+  EXPECT_NEAR(rows / image.height, planned, 1.0 / image.height);
+}
+
+TEST(FrameRenderer, TheSamePixelsOnOneThreadAndOnAll) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  const Trajectory plan = StillCamera(camera, 100, 1.4, 3);
+  const FrameSettings settings = Settings(RenderQuality::kStandard, 64);
+  const FrameImage all = Render(Wall(camera, 20), plan, settings);
+  FrameImage one;
+  tbb::task_arena arena(1);
+  arena.execute([&] { one = Render(Wall(camera, 20), plan, settings); });
+  ASSERT_EQ(all.rgb_linear.size(), one.rgb_linear.size());
+  EXPECT_EQ(std::memcmp(all.rgb_linear.data(), one.rgb_linear.data(), all.rgb_linear.size() * sizeof(Eigen::Vector3f)),
+            0);
+}
+
+TEST(FrameRenderer, ShutterIntervalStaysWithinTheShot) {
+  Trajectory plan = StillCamera(Eigen::Vector3d::Zero(), 50, 2, 10, 1.0 / 50);
+  auto [t0, t1] = ShutterInterval(plan, 1);
+  EXPECT_NEAR(t0, 1.0 / 30 - 0.01, 1e-12);
+  EXPECT_NEAR(t1, 1.0 / 30 + 0.01, 1e-12);
+  plan.samples[2].shot = "next";  // a cut after sample 1
+  std::tie(t0, t1) = ShutterInterval(plan, 1);
+  EXPECT_NEAR(t1, 1.0 / 30, 1e-12);
+}
+
+TEST(FrameRenderer, OutputSizeKeepsTheCamerasAspect) {
+  CameraSpec camera;
+  EXPECT_EQ(OutputSize(camera, std::nullopt), (std::pair{3840, 2160}));
+  EXPECT_EQ(OutputSize(camera, 640), (std::pair{640, 360}));
+}
+
+}  // namespace
+}  // namespace cinepath::preview

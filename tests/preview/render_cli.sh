@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# `cinepath render` through the real binary, on the bundled sample:
+#   - two shards (--shard 0/2, 1/2) give exactly the files of one full run, byte for byte;
+#   - the GNU parallel example of docs/scale-out.md gives the same files again;
+#   - a missing mesh, a GLB without geometry, a frame range outside the plan and an unwritable output
+#     folder exit 2 and write nothing; --video without ffmpeg says so;
+#   - --overlay, --contact-sheet, --aov and --format exr write what they promise.
+#   render_cli.sh CINEPATH SOURCE_DIR
+set -euo pipefail
+CINEPATH=$1
+SRC=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+sample=$SRC/data/brighton_beach
+
+"$CINEPATH" mesh --colmap "$sample/colmap/sparse_default" --refs "$sample/refs_gps.txt" --images "$sample/images" \
+  --quality draft --draco --no-timestamp -o "$work/scene" 2> /dev/null
+"$CINEPATH" plan "$SRC/examples/orbit_shots.json" -o "$work/plan.json"
+render=("$CINEPATH" render "$work/plan.json" --scene "$work/scene/scene.json" --every 40 --width-px 96 --spp 16)
+
+# Shards against one run.
+"${render[@]}" -o "$work/full"
+n=$(ls "$work/full" | wc -l)
+[[ $n -ge 3 ]] || fail "expected several frames, got $n"
+"${render[@]}" --shard 0/2 -o "$work/shards"
+"${render[@]}" --shard 1/2 -o "$work/shards"
+diff -r "$work/full" "$work/shards" > /dev/null || fail "two shards differ from one full run"
+echo "shards: $n frames identical to one run"
+
+# The GNU parallel example (docs/scale-out.md).
+if command -v parallel > /dev/null; then
+  parallel --will-cite -j 2 "${render[@]}" --shard {}/4 -o "$work/parallel" ::: 0 1 2 3
+  diff -r "$work/full" "$work/parallel" > /dev/null || fail "GNU parallel shards differ from one full run"
+  echo "GNU parallel: identical"
+fi
+
+# Bad input: exit 2, nothing written.
+expect_refusal() {  # expect_refusal OUTDIR WORDS-IN-MESSAGE -- ARGS...
+  local out=$1 words=$2
+  shift 3
+  set +e
+  "$@" -o "$out" 2> "$work/stderr"
+  local code=$?
+  set -e
+  [[ $code -eq 2 ]] || fail "exit $code (expected 2) for: $* ($(cat "$work/stderr"))"
+  grep -q -- "$words" "$work/stderr" || fail "message lacks '$words': $(cat "$work/stderr")"
+  [[ ! -e $out ]] || [[ -z $(ls -A "$out") ]] || fail "$out was written to"
+}
+mkdir -p "$work/missing_mesh"
+sed 's/"mesh": *"scene.glb"/"mesh": "absent.glb"/' "$work/scene/scene.json" > "$work/missing_mesh/scene.json"
+grep -q absent.glb "$work/missing_mesh/scene.json" || fail "could not point scene.json at a missing mesh"
+expect_refusal "$work/out1" "absent.glb" -- "$CINEPATH" render "$work/plan.json" --scene "$work/missing_mesh/scene.json"
+expect_refusal "$work/out2" "outside the plan" -- "$CINEPATH" render "$work/plan.json" \
+  --scene "$work/scene/scene.json" --frames 0-99999999
+# A GLB holding no geometry: the 12-byte header and one JSON chunk {"asset":{"version":"2.0"}}.
+mkdir -p "$work/empty"
+printf 'glTF\x02\x00\x00\x00\x30\x00\x00\x00\x1c\x00\x00\x00JSON{"asset":{"version":"2.0"}} ' > "$work/empty/scene.glb"
+sed 's/"mesh": *"scene.glb"/"mesh": "scene.glb"/' "$work/scene/scene.json" > "$work/empty/scene.json"
+expect_refusal "$work/out3" "scene.glb" -- "$CINEPATH" render "$work/plan.json" --scene "$work/empty/scene.json"
+touch "$work/a_file"
+expect_refusal "$work/a_file/frames" "a_file" -- "$CINEPATH" render "$work/plan.json" --scene "$work/scene/scene.json"
+echo "bad input: exit 2, nothing written"
+
+# --video without ffmpeg on PATH: a clear message, nothing rendered.
+mkdir -p "$work/bin"
+set +e
+PATH=$work/bin "$CINEPATH" render "$work/plan.json" --scene "$work/scene/scene.json" --every 40 --width-px 32 \
+  --video "$work/v.mp4" -o "$work/novideo" 2> "$work/stderr"
+code=$?
+set -e
+[[ $code -ne 0 ]] || fail "--video without ffmpeg succeeded"
+grep -q ffmpeg "$work/stderr" || fail "--video without ffmpeg: $(cat "$work/stderr")"
+[[ ! -e $work/novideo ]] || [[ -z $(ls -A "$work/novideo") ]] || fail "--video without ffmpeg rendered frames"
+
+# Overlay, contact sheet, AOVs, EXR.
+"${render[@]}" --frames 0-80 --overlay --contact-sheet "$work/sheet.png" --aov depth,blur --format exr -o "$work/extras"
+for f in frame_000000.exr frame_000040.exr frame_000080.exr frame_000040.depth.exr frame_000040.blur.exr; do
+  [[ -s $work/extras/$f ]] || fail "missing $f"
+done
+[[ $(head -c 8 "$work/sheet.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] || fail "sheet.png is not a PNG"
+echo "extras: EXR frames, depth and blur AOVs, contact sheet"

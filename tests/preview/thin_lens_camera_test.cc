@@ -1,0 +1,83 @@
+#include "preview/thin_lens_camera.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/optics.h"
+
+namespace cinepath::preview {
+namespace {
+
+// Looking north, level: camera x -> east, y -> down, z -> north.
+CameraPose LookingNorth() {
+  Eigen::Matrix3d r;
+  r << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  return {Eigen::Vector3d(10, -20, 5), Eigen::Quaterniond(r)};
+}
+
+TEST(ThinLensCamera, ProjectInvertsThePinholeRayAndUsesTheSensorFit) {
+  CameraSpec spec;  // Super 35, 24.89 x 18.67 mm, 3840 x 2160
+  const ThinLensCamera camera(spec, 3840, 2160, 35, 2.8, 10);
+  const CameraPose pose = LookingNorth();
+  const CameraRay ray = camera.Ray(pose, 100.25, 2000.5);
+  double depth = 0;
+  const Eigen::Vector2d xy = camera.Project(pose, ray.origin_enu_m + 7 * ray.direction_enu, &depth);
+  EXPECT_NEAR(xy.x(), 100.25, 1e-9);
+  EXPECT_NEAR(xy.y(), 2000.5, 1e-9);
+  EXPECT_GT(depth, 0);
+  // The top edge of the image looks up by atan(h/2 / f) with h = w * 2160/3840 = 14.0 mm, not 18.67.
+  const CameraRay top = camera.Ray(pose, 1920, 0);
+  const double up_deg = std::asin(top.direction_enu.z()) * 180 / M_PI;
+  EXPECT_NEAR(up_deg, std::atan(24.89 * 2160 / 3840 / 2 / 35) * 180 / M_PI, 1e-9);
+}
+
+TEST(ThinLensCamera, LensRaysMeetOnThePlaneOfFocus) {
+  CameraSpec spec;
+  const ThinLensCamera camera(spec, 640, 360, 85, 1.4, 12);
+  const CameraPose pose = LookingNorth();
+  const CameraRay centre = camera.Ray(pose, 300, 100);
+  const Eigen::Vector3d on_focus_plane = centre.origin_enu_m + centre.direction_enu * (12 / centre.direction_enu.y());
+  for (const auto& [u, v] : {std::pair{1.0, 0.0}, {0.0, -1.0}, {0.6, 0.8}}) {
+    const CameraRay ray = camera.Ray(pose, 300, 100, u, v);
+    EXPECT_NEAR((ray.origin_enu_m - centre.origin_enu_m).norm(), 0.085 / 1.4 / 2, 1e-12);
+    const double t = (on_focus_plane.y() - ray.origin_enu_m.y()) / ray.direction_enu.y();
+    EXPECT_LT((ray.origin_enu_m + t * ray.direction_enu - on_focus_plane).norm(), 1e-9);
+  }
+}
+
+TEST(ThinLensCamera, BlurIsCoresBlurCircleTimesTheRayTracersFactor) {
+  CameraSpec spec;
+  const ThinLensCamera camera(spec, 1000, 500, 50, 2, 5);
+  const double expected = BlurCircleMm(50, 2, 5, 20) * (5 - 0.05) / 5 * 1000 / spec.sensor_width_mm;
+  EXPECT_NEAR(camera.BlurPx(20), expected, 1e-12);
+  EXPECT_NEAR(camera.BlurPx(5), 0, 1e-12);
+  const ThinLensCamera at_infinity(spec, 1000, 500, 50, 2, std::numeric_limits<double>::infinity());
+  EXPECT_NEAR(at_infinity.BlurPx(std::numeric_limits<double>::infinity()), 0, 1e-12);
+  EXPECT_NEAR(at_infinity.BlurPx(100), 50.0 * 50 / 2 / 100000 * 1000 / spec.sensor_width_mm, 1e-9);
+}
+
+TEST(ThinLensCamera, ConcentricDiskStaysOnTheDiskAndCoversIt) {
+  double max_r = 0;
+  for (int i = 0; i <= 20; ++i) {
+    for (int j = 0; j <= 20; ++j) max_r = std::max(max_r, ConcentricDisk(i / 20.0, j / 20.0).norm());
+  }
+  EXPECT_NEAR(max_r, 1.0, 1e-12);
+  EXPECT_NEAR(ConcentricDisk(0.5, 0.5).norm(), 0.0, 1e-12);
+}
+
+TEST(ThinLensCamera, PoseAtInterpolatesBetweenSamples) {
+  Trajectory plan;
+  plan.samples.resize(2);
+  plan.samples[0].time_s = 0;
+  plan.samples[1].time_s = 1;
+  plan.samples[1].position_enu_m = Eigen::Vector3d(10, 0, 0);
+  plan.samples[1].world_from_camera = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  const CameraPose mid = PoseAt(plan, 0.25);
+  EXPECT_NEAR(mid.position_enu_m.x(), 2.5, 1e-12);
+  EXPECT_NEAR(mid.world_from_camera.angularDistance(Eigen::Quaterniond::Identity()), M_PI / 8, 1e-12);
+  EXPECT_NEAR(PoseAt(plan, 9).position_enu_m.x(), 10, 1e-12);
+}
+
+}  // namespace
+}  // namespace cinepath::preview
