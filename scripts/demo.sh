@@ -21,15 +21,23 @@ if has mesh; then
   ls -l "$OUT/scene"
 fi
 
-SHOTS=$(ls "$ROOT"/examples/*shots*.json 2> /dev/null | head -1 || true)
-if has plan && [[ -n "$SHOTS" ]]; then
-  step "cinepath plan: $(basename "$SHOTS") -> plan.json (+ CSV and SVG plot)"
-  "$CINEPATH" plan "$SHOTS" --csv "$OUT/plan.csv" --plot "$OUT/plan.svg" -o "$OUT/plan.json"
+SHOTS=$SAMPLE/shots.json
+PLAN_ARGS=()
+[[ -f "$OUT/scene/scene.json" ]] && PLAN_ARGS=(--scene "$OUT/scene/scene.json")
+if has plan; then
+  step "cinepath plan: the sample's shots on its ground -> plan.json (+ CSV and SVG plot)"
+  "$CINEPATH" plan "$SHOTS" "${PLAN_ARGS[@]}" --csv "$OUT/plan.csv" --plot "$OUT/plan.svg" -o "$OUT/plan.json"
+  if has render && [[ -f "$OUT/scene/scene.json" ]]; then
+    step "cinepath render: every 3 s of the plan, 640 px, sun shading, with a contact sheet"
+    "$CINEPATH" render "$OUT/plan.json" --scene "$OUT/scene/scene.json" --every 90 --width-px 640 --shading sun \
+      --overlay --contact-sheet "$OUT/contact_sheet.png" -o "$OUT/frames"
+    ls "$OUT/frames" | head -3
+  fi
   if has export; then
     step "cinepath export: plan.json -> missions for QGroundControl, MAVLink, DJI and Litchi"
     mkdir -p "$OUT/missions"
     "$CINEPATH" export "$OUT/plan.json" --format qgc-plan --format qgc-wpl --format mavlink-bin \
-      --format dji-wpml --format dji-msdk-json --format litchi-csv -o "$OUT/missions"
+      --format dji-wpml --format dji-msdk-json --format litchi-csv --force -o "$OUT/missions"
     ls -l "$OUT/missions"
   fi
 fi
