@@ -142,9 +142,10 @@ int SamplesFor(double need_px, bool edge, const SamplingPreset& preset, int max_
 // Draft: scatter-as-gather of the pre-pass. A neighbour q adds its colour to p when p lies in q's
 // blur disk (weight 1 / disk area); a neighbour behind p only where p is itself blurred that far, so
 // a sharp foreground does not take in the background.
-std::vector<Eigen::Vector3f> GatherBlur(const PrePass& pass, const std::vector<double>& blur_px,
-                                        const std::vector<double>& tile_need, int w, int h) {
-  std::vector<Eigen::Vector3f> out(pass.rgb.size());
+std::vector<Eigen::Vector3f> GatherBlur(const std::vector<Eigen::Vector3f>& rgb, const PrePass& pass,
+                                        const std::vector<double>& blur_px, const std::vector<double>& tile_need, int w,
+                                        int h) {
+  std::vector<Eigen::Vector3f> out(rgb.size());
   const int tw = (w + kTile - 1) / kTile;
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
@@ -153,7 +154,7 @@ std::vector<Eigen::Vector3f> GatherBlur(const PrePass& pass, const std::vector<d
         const double need = tile_need[size_t(y / kTile) * tw + x / kTile];
         const int radius = std::min(kMaxGatherRadiusPx, int(std::ceil(need / 2)));
         if (need < kSharpPx || radius == 0) {
-          out[i] = pass.rgb[i];
+          out[i] = rgb[i];
           continue;
         }
         const double rp = std::max(0.5, blur_px[i] / 2);
@@ -167,11 +168,11 @@ std::vector<Eigen::Vector3f> GatherBlur(const PrePass& pass, const std::vector<d
             if (d2 > rq * rq) continue;
             if (pass.depth_m[q] > pass.depth_m[i] && d2 > rp * rp) continue;
             const double wq = 1 / (rq * rq);
-            sum += wq * pass.rgb[q].cast<double>();
+            sum += wq * rgb[q].cast<double>();
             weight += wq;
           }
         }
-        out[i] = weight > 0 ? Eigen::Vector3f((sum / weight).cast<float>()) : pass.rgb[i];
+        out[i] = weight > 0 ? Eigen::Vector3f((sum / weight).cast<float>()) : rgb[i];
       }
     }
   });
@@ -256,11 +257,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
       }
     }
   });
-  if (preset.gather_blur) {
-    PrePass antialiased = pass;
-    antialiased.rgb = image.rgb_linear;
-    image.rgb_linear = GatherBlur(antialiased, blur, tile_need, w, h);
-  }
+  if (preset.gather_blur) image.rgb_linear = GatherBlur(image.rgb_linear, pass, blur, tile_need, w, h);
   for (uint16_t n : image.samples) image.total_samples += n;
   if (settings.exposure == Exposure::kPhysical) {
     const float scale = float(RelativeExposure(sample.shutter_s, settings.iso, sample.f_number));
