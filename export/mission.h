@@ -99,10 +99,12 @@ struct Mission {
   int plan_sample_count = 0;
   int cut_count = 0;             // transits inserted at "cut" transitions
   double transit_speed_mps = 0;  // speed of those transits
-  // The plan's own fence (plan.json "drone"): altitude band of the ENU up coordinate about the
-  // origin, and the drone's horizontal speed limit.
+  // The plan's own fence (plan.json "drone"): altitude band above home (the ENU up coordinate less
+  // home's, as plan's feasibility measures it above the take-off point), and the drone's horizontal
+  // speed limit.
   double fence_min_up_m = -std::numeric_limits<double>::infinity();
   double fence_max_up_m = std::numeric_limits<double>::infinity();
+  double home_up_m = 0;  // home's ENU up coordinate about the origin
   double plan_max_horizontal_speed_mps = std::numeric_limits<double>::infinity();
   std::string plan_drone_name;
 };

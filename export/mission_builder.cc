@@ -119,6 +119,10 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
   mission.sensor_diagonal_mm = std::hypot(camera.sensor_width_mm, camera.sensor_height_mm);
   mission.plan_sample_count = static_cast<int>(samples.size());
   const DroneProfile& drone = options.drone ? *options.drone : trajectory.drone;
+  mission.home_up_m =
+      EnuFrame(*origin)
+          .EnuFromGeodetic(Geodetic{mission.home.lat_deg, mission.home.lon_deg, mission.home.ellipsoidal_height_m})
+          .z();
   mission.fence_min_up_m = drone.min_altitude_m;
   mission.fence_max_up_m = drone.max_altitude_m;
   mission.plan_max_horizontal_speed_mps = drone.max_horizontal_speed_m_s;

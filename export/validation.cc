@@ -91,10 +91,10 @@ std::vector<Violation> ValidateMission(const Mission& mission, Format format, co
               fmt::format("altitude {:.2f} m relative to home outside [{:g} ({}), {:g} ({})] m", wp.relative_alt_m,
                           min_alt, min_alt_src, max_alt, max_alt_src));
     }
-    const double up_m = wp.position_enu_m.z();
+    const double up_m = wp.position_enu_m.z() - mission.home_up_m;
     if (up_m < mission.fence_min_up_m || up_m > mission.fence_max_up_m) {
       out.Add(w, "drone altitude band",
-              fmt::format("height {:.2f} m above the origin outside the drone's altitude band [{:g}, {:g}] m", up_m,
+              fmt::format("height {:.2f} m above home outside the drone's altitude band [{:g}, {:g}] m", up_m,
                           mission.fence_min_up_m, mission.fence_max_up_m));
     }
     if (is_leg_start && n > 1 && !wp.transit_after) {

@@ -36,8 +36,8 @@ if has plan; then
   if has export; then
     step "cinepath export: plan.json -> missions for QGroundControl, MAVLink, DJI and Litchi"
     mkdir -p "$OUT/missions"
-    "$CINEPATH" export "$OUT/plan.json" --format qgc-plan --format qgc-wpl --format mavlink-bin \
-      --format dji-wpml --format dji-msdk-json --format litchi-csv --force -o "$OUT/missions"
+    "$CINEPATH" export "$OUT/plan.json" "${PLAN_ARGS[@]}" --format qgc-plan --format qgc-wpl --format mavlink-bin \
+      --format dji-wpml --format dji-msdk-json --format litchi-csv -o "$OUT/missions"
     ls -l "$OUT/missions"
   fi
 fi
