@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Start-up time of subcommands that write no images (goal < 20 ms), against a process that links
-# OpenImageIO (oiiotool, ~250 ms per stack.md) as the peer. Needs hyperfine (Debian package).
+# OpenImageIO (oiiotool, ~250 ms of dynamic linking, docs/dependencies.md) as the peer. Needs hyperfine (Debian package).
 #   bench/startup.sh BUILD
 set -euo pipefail
 BUILD=${1:-build}

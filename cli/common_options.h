@@ -1,4 +1,4 @@
-// Options every stage shares (style.md "mixins"): --progress and --depfile.
+// Options every stage shares : --progress and --depfile.
 //   CommonOptions common;  common.Add(app);            // in Setup()
 //   Progress p("mesh", n, common.progress_mode());     // in Run()
 //   common.WriteDepfileIfAsked({output}, {inputs...});  // after the outputs landed

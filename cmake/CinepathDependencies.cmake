@@ -1,5 +1,5 @@
 # Every third-party package cinepath uses, found once. Target names and packaging quirks:
-# ../shared/specs/stack.md (copied into docs/dependencies.md).
+# docs/dependencies.md.
 find_package(PkgConfig REQUIRED)
 
 # Find the config packages before CGAL: CGAL prepends Find modules that shadow them.

@@ -1,6 +1,6 @@
 // Typed errors shared by every cinepath library, and the exit codes the CLI maps them to.
 //
-// Library code throws; only cli/ turns an error into an exit code (design.md, "Errors"):
+// Library code throws; only cli/ turns an error into an exit code (docs/design.md, "Conventions"):
 //   InputError       -> 2  usage or bad input (a file, a field, an option); message names where
 //   InfeasibleError  -> 3  the result fails validation (infeasible plan, mission over a limit)
 //   RuntimeError     -> 1  anything else that went wrong at run time (I/O failure, a tool crashed)

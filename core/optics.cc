@@ -30,7 +30,7 @@ void ValidateSubjectDistanceM(double d_m, double focal_length_mm) {
 double Filmback::DiagonalMm() const { return std::hypot(width_mm, height_mm); }
 
 const std::vector<Filmback>& FilmbackPresets() {
-  // Sizes in mm. Super 35 and 16:9 Digital Film as Unreal's CineCamera defines them (optics.md).
+  // Sizes in mm. Super 35 and 16:9 Digital Film as Unreal's CineCamera defines them (UCineCameraComponent presets).
   static const std::vector<Filmback> presets = {
       {"super35", "Super 35", 24.89, 18.67},
       {"digital-film-16x9", "16:9 Digital Film", 23.76, 13.365},

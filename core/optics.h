@@ -1,6 +1,6 @@
 // Thin-lens optics: the one module that computes blur, depth of field and field of view for every
 // stage (the planner, the optimizer, the renderer and the exporters). Formulas and conventions:
-// docs/optics.md (from ../shared/specs/optics.md).
+// docs/optics.md.
 //
 // Symbols: f focal length, N f-number, s focus distance (object side, from the lens), d subject
 // distance along the optical axis, c blur-circle diameter on the sensor, c0 acceptable blur.

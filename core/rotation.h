@@ -1,7 +1,7 @@
 // Rotations: unit quaternions (Eigen, Hamilton, w x y z), SLERP / SQUAD, look-at, and the drone
 // heading + gimbal angles <-> world_from_camera conversion.
 //
-// Frames (design.md): world = local ENU (x east, y north, z up); camera x right, y down, z forward.
+// Frames (docs/design.md): world = local ENU (x east, y north, z up); camera x right, y down, z forward.
 // world_from_camera maps camera-frame vectors into ENU, so the viewing direction is R * (0, 0, 1)
 // and the top of the image points along R * (0, -1, 0).
 //

@@ -1,6 +1,6 @@
 // The sampled camera flight every stage after `plan` exchanges (plan.json in memory).
 //
-// Frames and units (design.md): positions in the scene's local ENU frame (metres) about `origin`;
+// Frames and units (docs/design.md): positions in the scene's local ENU frame (metres) about `origin`;
 // world_from_camera maps camera-frame vectors (x right, y down, z forward) into ENU; quaternions are
 // Hamilton (w, x, y, z), unit norm. Drone yaw is a compass heading (clockwise from true north,
 // degrees, [0, 360)); gimbal angles are relative to the horizon and the drone's heading:
@@ -33,7 +33,7 @@ struct CameraSpec {
   double max_f_number = 16;
   double min_focus_distance_m = 0.5;
   double coc_mm = 0.0;  // acceptable blur for DoF reports; 0 = derive from the filmback diagonal
-  // Lens servo limits for feasibility checks (planning priors, ../shared/specs/optics.md).
+  // Lens servo limits for feasibility checks (planning priors, docs/optics.md).
   double max_focal_rate_mm_s = 20;       // zoom speed
   double max_focus_rate_m_s = 15;        // follow-focus speed
   double max_aperture_rate_stops_s = 3;  // iris speed

@@ -1,4 +1,4 @@
-// DJI Mobile SDK v4 WaypointMission as JSON (missions.md 4.2; no official file format exists, so the
+// DJI Mobile SDK v4 WaypointMission as JSON (docs/mission-formats.md §4.2; no official file format exists, so the
 // SDK's own field names are serialized). Altitudes relative to take-off (= home); heading in
 // [−180, 180] with USING_WAYPOINT_HEADING; gimbalPitch per waypoint (gimbalPitchRotationEnabled);
 // START_RECORD at the first waypoint, STOP_RECORD at the last. Zoom, focus, aperture and gimbal yaw

@@ -4,7 +4,7 @@
 // Why this turn mode: toPointAndPassWithContinuityCurvature flies a curve whose shape DJI does not
 // document, so its deviation cannot be bounded. With coordinateTurn the aircraft leaves the incoming
 // leg a damping distance d before the waypoint and joins the outgoing leg d after it, cutting the
-// corner without passing through the waypoint (missions.md 4.1: d in (0, segment length], and the two
+// corner without passing through the waypoint (docs/mission-formats.md §4.1: d in (0, segment length], and the two
 // damping distances on a segment sum to less than its length). Where no d keeps the path within the
 // tolerance (or the aircraft must stop: first/last waypoint, hover, cut), the waypoint uses
 // toPointAndStopWithDiscontinuityCurvature: straight in, stop, straight out.

@@ -1,4 +1,4 @@
-// DJI WPML KMZ for DJI Pilot 2 / FlightHub 2 / MSDK v5 (missions.md 4.1): a ZIP with
+// DJI WPML KMZ for DJI Pilot 2 / FlightHub 2 / MSDK v5 (docs/mission-formats.md §4.1): a ZIP with
 // wpmz/template.kml (editable template, heights in the editor's reference) and wpmz/waylines.wpml
 // (what the aircraft executes), namespace http://www.dji.com/wpmz/1.0.2, coordinates "lon,lat".
 //

@@ -1,6 +1,6 @@
 // A MAVLink 2 byte stream for tools that upload directly: one MISSION_COUNT (msg 44) followed by one
 // MISSION_ITEM_INT (msg 73) per item, as a ground station sends them during the mission upload
-// protocol (missions.md 3.2). Sender sysid 255 / compid 190, target 1/1, packet sequence from 0,
+// protocol (docs/mission-formats.md §3.2). Sender sysid 255 / compid 190, target 1/1, packet sequence from 0,
 // unsigned frames, trailing zero bytes of each payload truncated (MAVLink 2 rule). For ArduPilot,
 // seq 0 is the home item; for PX4 the first mission item is seq 0.
 #pragma once

@@ -1,4 +1,4 @@
-// A Mission as a list of MAVLink mission items for PX4 or ArduPilot (missions.md 3.1–3.5), shared by
+// A Mission as a list of MAVLink mission items for PX4 or ArduPilot (docs/mission-formats.md §3.1–3.5), shared by
 // the .plan, WPL and binary writers.
 //
 // Per waypoint: NAV_WAYPOINT (frame 3 relative or 0 AMSL; yaw in param4 for PX4, CONDITION_YAW after

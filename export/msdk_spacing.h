@@ -1,4 +1,4 @@
-// DJI MSDK v4 refuses adjacent waypoints closer than 0.5 m (missions.md 4.2). Slow or hovering parts
+// DJI MSDK v4 refuses adjacent waypoints closer than 0.5 m (docs/mission-formats.md §4.2). Slow or hovering parts
 // of a plan (a pan on the spot, a locked-off shot) give such pairs; this merges every waypoint that is
 // closer than the minimum to the last kept one into it: the kept waypoint takes over the merged one's
 // recording stop and transit flag, and hovers (`hold_s`, written as STAY actions) until the merged

@@ -1,4 +1,4 @@
-// QGroundControl .plan (JSON, file version 1, mission version 2; missions.md section 2): the three
+// QGroundControl .plan (JSON, file version 1, mission version 2; docs/mission-formats.md §2): the three
 // top-level objects, SimpleItems with exactly 7 params, boolean autoContinue, AltitudeMode / Altitude /
 // AMSLAltAboveTerrain together on items that carry an altitude.
 #pragma once

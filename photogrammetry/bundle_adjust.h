@@ -10,7 +10,7 @@
 // Unknowns: each image's rotation (cam_from_enu, unit quaternion) and centre C (ENU m), each point, each
 // camera's focal length(s) and distortion terms (the principal point stays fixed).
 //
-// Why (../shared/data/README.md): a flat scene seen straight down cannot tell focal length from flying
+// Why (data/brighton_beach/README.md): a flat scene seen straight down cannot tell focal length from flying
 // height. The reprojection error is (nearly) the same for f and a depth scaled with it, so the
 // reconstruction drifts along that valley (COLMAP's default run of Brighton Beach grew f by 31 %, and
 // a similarity fit to GPS then puts the ground 10.9 m low). The GPS priors fix the cameras' heights and

@@ -1,7 +1,7 @@
 // COLMAP 3.8 camera models: ids, names, parameter counts and the projection from normalized camera
 // coordinates (u, v) = (X/Z, Y/Z) to pixels, templated so Ceres can differentiate it.
 //
-// Models and parameter order (colmap@3.8:src/base/camera_models.h; ../shared/specs/photogrammetry.md §1.6):
+// Models and parameter order (colmap@3.8:src/base/camera_models.h):
 //   id name                   #  params
 //   0  SIMPLE_PINHOLE         3  f, cx, cy
 //   1  PINHOLE                4  fx, fy, cx, cy

@@ -1,6 +1,6 @@
 // INTERNAL to the CGAL translation units of cinepath_photogrammetry (mesh_clean.cc,
 // mesh_distance.cc, mesh_decimate_cgal.cc, surface_*.cc). Never include it from a public header:
-// CGAL headers cost ~10 s of compile time each (stack.md, "Build cost").
+// CGAL headers cost ~10 s of compile time each (docs/dependencies.md).
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,5 @@
-// Readers for COLMAP 3.8 sparse models, text and binary (../shared/specs/photogrammetry.md §1).
+// Readers for COLMAP 3.8 sparse models, text and binary (file formats: colmap.github.io/format.html,
+// and colmap@3.8:src/base/reconstruction.cc).
 //
 // ReadColmapModel(dir) picks the format as COLMAP does: cameras.bin + images.bin + points3D.bin when
 // all three exist, else the three .txt files (binary is preferred when both exist). Newer COLMAP's

@@ -1,6 +1,6 @@
 // Runs the `colmap` binary (Debian's COLMAP 3.8, CPU only) on a folder of photos, for `cinepath mesh
 // --images DIR` without --colmap: feature extraction (one shared camera, OPENCV model, GPU off),
-// exhaustive matching (GPU off), mapping. Flags from ../shared/specs/stack.md §COLMAP: with the GPU
+// exhaustive matching (GPU off), mapping. Flags as docs/dependencies.md gives them: with the GPU
 // default and no display COLMAP aborts, so --SiftExtraction.use_gpu 0 / --SiftMatching.use_gpu 0.
 //
 // The workspace folder keeps database.db, sparse/<n>/ and one log per step (colmap_<step>.log); a

@@ -1,6 +1,6 @@
 // scene.glb: a TriangleMesh in local ENU metres → binary glTF 2.0 bytes.
 //
-// Frames (design.md): ENU (e, n, u) is stored as glTF (e, u, −n), so glTF +Y is up and every
+// Frames (docs/design.md): ENU (e, n, u) is stored as glTF (e, u, −n), so glTF +Y is up and every
 // viewer shows the scene upright. Positions float32 (ENU keeps them near the origin), indices
 // uint32, vertex colours as COLOR_0 (float VEC3, linear: the sRGB point colours are converted with the
 // sRGB transfer function, as glTF defines COLOR_0 to be linear).
@@ -20,7 +20,7 @@ namespace cinepath::photogrammetry {
 
 struct GlbWriteOptions {
   bool draco = false;
-  int draco_position_bits = 16;  // 500 m / 2^16 ≈ 7.6 mm (photogrammetry.md §7)
+  int draco_position_bits = 16;  // 500 m / 2^16 ≈ 7.6 mm (a 500 m scene quantized to 16 bits)
   int draco_color_bits = 10;
   int draco_compression_level = 7;  // Draco speed = 10 − level
   Json extras;                      // copied into asset.extras and scene.extras (object or null)

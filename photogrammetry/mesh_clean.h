@@ -1,9 +1,9 @@
-// Mesh cleaning for photogrammetry surfaces (photogrammetry.md §4.5), with CGAL
+// Mesh cleaning for photogrammetry surfaces with CGAL
 // Polygon_mesh_processing: invalid and degenerate faces, duplicate vertices and faces, non-manifold
 // vertices and edges, small connected components / floating blobs, holes up to a size (never the
 // outer boundary of an open terrain mesh), isolated vertices. Every count goes into CleanReport.
 //
-// Speed (issue 3): duplicates are found with hash tables, and the soup's topology (oriented
+// Speed: duplicates are found with hash tables, and the soup's topology (oriented
 // 2-manifold or not, components, border cycles) is read from a per-point corner table. When the
 // soup is an oriented 2-manifold — the common case, once bowtie points are split — no Surface_mesh of the whole mesh is
 // built: small components are dropped from the soup and CGAL fills each hole on a local Surface_mesh made of the faces

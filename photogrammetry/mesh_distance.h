@@ -1,5 +1,5 @@
 // Distances between meshes: an approximate symmetric Hausdorff distance with an explicit sample
-// count and seed (photogrammetry.md §4.1: CGAL's default sampling density explodes on slivers), so
+// count and seed (CGAL's default sampling density explodes on slivers), so
 // every run reports the same number for the same meshes, at any thread count.
 //
 // Samples on a mesh: optionally its vertices, plus `samples_per_mesh` points on its faces, spread

@@ -1,6 +1,6 @@
 // A point cloud handed from the readers / georeferencing to surface reconstruction.
 // Positions are double precision in whatever frame the producer states (ENU metres after
-// georeferencing): float32 only at final export (photogrammetry.md, "striped meshes").
+// georeferencing): float32 only at final export (float32 ENU far from the origin quantizes vertices into stripes).
 #pragma once
 
 #include <array>

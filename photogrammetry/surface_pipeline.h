@@ -5,7 +5,7 @@
 //   mesh   ───────────────────────────────────────────►  clean ──► decimate ──► colours ──► GLB
 //
 // Everything stays double precision in ENU until the GLB, which stores ENU (e, n, u) as glTF
-// (e, u, −n) in float32 (design.md, "Frames"). The result is deterministic: the same input and
+// (e, u, −n) in float32 (docs/design.md, "Conventions"). The result is deterministic: the same input and
 // options give the same mesh, report (with report_times = false) and GLB bytes at any thread count.
 #pragma once
 

@@ -19,7 +19,7 @@ done
 PACKAGES=(
   # build
   cmake g++ ninja-build ccache pkg-config clang-format
-  # libraries (design.md)
+  # libraries (docs/dependencies.md)
   libcgal-dev libopenmesh-dev libgeographiclib-dev libceres-dev libtinygltf-dev libdraco-dev
   libopenimageio-dev openimageio-tools libembree-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
   libfmt-dev libtbb-dev libgtest-dev libbenchmark-dev libstb-dev libmeshoptimizer-dev zlib1g-dev

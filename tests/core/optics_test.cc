@@ -21,7 +21,7 @@ double BlurExactMm(double f_mm, double n, double s_m, double d_m) {
 TEST(Optics, HyperfocalKnownAnswer) {
   // 50 mm f/2.8, c = 0.03 mm: H = 2500/(2.8*0.03) + 50 mm = 29811.9 mm.
   EXPECT_NEAR(HyperfocalDistanceM(50, 2.8, 0.03), 29.81190476, 1e-8);
-  // optics.md: 12 mm f/2.8 ~ 1.7 m; 1200 mm f/8 ~ 6 km.
+  // Known answers (H = f^2/(N c0) + f): 12 mm f/2.8 ~ 1.7 m; 1200 mm f/8 ~ 6 km.
   EXPECT_NEAR(HyperfocalDistanceM(12, 2.8, 0.03), 1.726, 1e-3);
   EXPECT_NEAR(HyperfocalDistanceM(1200, 8, 0.03), 6001.2, 1e-6);
 }
@@ -54,7 +54,7 @@ TEST(Optics, StableFormMatchesExactForm) {
 
 TEST(Optics, BlurIsZeroInFocusAndSpecKnownAnswer) {
   EXPECT_EQ(BlurCircleMm(50, 2.8, 10, 10), 0.0);
-  // optics.md: 1200 mm f/8 focused at 2 km blurs an object at 1 km to ~0.09 mm.
+  // Known answer: 1200 mm f/8 focused at 2 km blurs an object at 1 km to ~0.09 mm.
   EXPECT_NEAR(BlurCircleMm(1200, 8, 2000, 1000), 0.09, 0.001);
 }
 

@@ -61,7 +61,7 @@ TEST(DjiTurns, FitChoosesTheLargestDampingWithinTolerance) {
 
 TEST(DjiTurns, DampingOnASegmentSumsToLessThanItsLength) {
   // A zig-zag of 4 m legs with gentle turns: every corner may turn, the two damping distances on a
-  // leg must still sum to less than the leg (missions.md 4.1).
+  // leg must still sum to less than the leg (docs/mission-formats.md §4.1).
   std::vector<TrajectorySample> samples;
   std::vector<int> waypoints;
   Eigen::Vector3d p(0, 0, 10);

@@ -23,7 +23,7 @@ TEST(MavlinkBin, X25CheckValue) {
 }
 
 TEST(MavlinkBin, MatchesNodeMavlinkTestVector) {
-  // missions.md 3.2: node-mavlink 2.3.0 serialization of one MISSION_ITEM_INT.
+  // docs/mission-formats.md §3.2: node-mavlink 2.3.0 serialization of one MISSION_ITEM_INT.
   MavItem item;
   item.command = 16;
   item.frame = 3;

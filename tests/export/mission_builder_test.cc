@@ -16,7 +16,7 @@ TEST(MissionBuilder, AltitudesInEveryReference) {
   ASSERT_GE(m.waypoints.size(), 2u);
   const double n_home = Egm96Geoid::Default().UndulationM(m.home.lat_deg, m.home.lon_deg);
   EXPECT_NEAR(m.home.ellipsoidal_height_m - m.home.amsl_m, n_home, 1e-9);
-  EXPECT_NEAR(n_home, 47.34, 0.05);  // missions.md 5: N(47.3977, 8.5456) ≈ 47.335 m
+  EXPECT_NEAR(n_home, 47.34, 0.05);  // docs/mission-formats.md §5: N(47.3977, 8.5456) ≈ 47.335 m
   for (const auto& wp : m.waypoints) {
     const double n = Egm96Geoid::Default().UndulationM(wp.lat_deg, wp.lon_deg);
     EXPECT_NEAR(wp.ellipsoidal_height_m - wp.amsl_m, n, 1e-9);

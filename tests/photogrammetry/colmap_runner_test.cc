@@ -4,8 +4,8 @@
 // Fixture: tests/data/photogrammetry/brighton9_photos (9 Brighton Beach photos over three flight lines,
 // downscaled to 800 x 450, EXIF kept; PROVENANCE.md). Where the ground is: the data's README gives
 // cameras ~198.5 m and ground ~158 m (198.5 m minus DJI's 40 m relative altitude: the take-off point);
-// its independent OpenDroneMap reference cloud (../shared/data/README.md) puts the ground under these
-// nine photos at 162.8 m (median of the reference's 1 m-cell medians under the mesh;
+// its independent OpenDroneMap reference cloud (its provenance: tests/data/colmap/PROVENANCE.md) puts the ground under
+// these nine photos at 162.8 m (median of the reference's 1 m-cell medians under the mesh;
 // tests/data/photogrammetry/odm_ground_under_mesh.py). Heights are WGS84 ellipsoidal.
 //
 // Built as its own executable (colmap_runner_test, CTest label "colmap"): COLMAP takes ~15 s of CPU

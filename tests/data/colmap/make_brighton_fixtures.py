@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Builds the small Brighton Beach fixtures in this folder from ../shared/data/brighton_beach.
+"""Builds the small Brighton Beach fixtures in this folder from the prepared dataset (PROVENANCE.md).
 
-Run with Debian's python3 (needs numpy):  /usr/bin/python3 make_brighton_fixtures.py <shared brighton_beach dir>
+Run with Debian's python3 (needs numpy):  /usr/bin/python3 make_brighton_fixtures.py <brighton_beach source dir>
 
 1. brighton_sparse_default/ and brighton_sparse_exif_focal/: the COLMAP binary models with every keypoint
    that has no 3D point dropped (keypoint indices renumbered in images and tracks). Same cameras, poses,

@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
 """Compares a `cinepath mesh` output with the independent OpenDroneMap reference cloud of Brighton Beach
-(../shared/data/brighton_beach/odm_reference.ply: EPSG:32615, z WGS84 ellipsoidal): for each mesh vertex,
+(odm_reference.ply, tests/data/colmap/PROVENANCE.md: EPSG:32615, z WGS84 ellipsoidal; its path in
+$ODM_REFERENCE): for each mesh vertex,
 the median z of the reference points in its 1 m UTM cell; prints the median vertical difference and the
 reference's median ground height under the mesh. Needs GeographicLib's CartConvert and GeoConvert.
 Usage: odm_ground_under_mesh.py OUTDIR [OUTDIR...]   (each holding scene.json and an uncompressed scene.glb)"""
 import json,struct,sys,subprocess,collections,statistics
 import os
-ply=os.environ.get('ODM_REFERENCE', os.path.join(os.path.dirname(__file__), '../../../../shared/data/brighton_beach/odm_reference.ply'))
+ply=os.environ.get('ODM_REFERENCE')
+if not ply:
+    sys.exit('set ODM_REFERENCE to the OpenDroneMap reference cloud (odm_reference.ply)')
 data=open(ply,'rb').read()
 hdr_end=data.index(b'end_header\n')+len('end_header\n')
 hdr=data[:hdr_end].decode()

