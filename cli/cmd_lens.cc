@@ -1,6 +1,5 @@
 // cinepath lens: a depth-of-field calculator for camera operators (docs/lens.md).
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -12,6 +11,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
+#include "core/number_format.h"
 #include "core/optics.h"
 #include "core/version.h"
 
@@ -20,13 +20,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::string Fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-std::string Metres(double m) { return std::isinf(m) ? "infinity" : Fmt("%.2f m", m); }
+std::string Metres(double m) { return std::isinf(m) ? "infinity" : FormatFixed(m, 2) + " m"; }
 
 class LensCommand : public Command {
  public:
@@ -78,7 +72,8 @@ class LensCommand : public Command {
     for (const auto& t : at_text_) {
       const double d = ParseMetresOrInfinity(t, "--at-m");
       if (!(d * 1000.0 > focal_length_mm_)) {
-        throw InputError("--at-m: " + t + " m is not beyond the focal length " + Fmt("%g", focal_length_mm_) + " mm");
+        throw InputError("--at-m: " + t + " m is not beyond the focal length " + FormatSignificant(focal_length_mm_) +
+                         " mm");
       }
       at_m.push_back(d);
     }
@@ -125,25 +120,27 @@ class LensCommand : public Command {
       }
       report = DumpJson(j);
     } else {
-      report += "lens        " + Fmt("%g mm", focal_length_mm_) + " at f/" + Fmt("%g", f_number_) + ", focused at " +
-                (std::isinf(focus_m) ? std::string("infinity") : Fmt("%g m", focus_m)) + "\n";
-      report += "sensor      " + filmback.label + " " + Fmt("%g", filmback.width_mm) + " x " +
-                Fmt("%g mm", filmback.height_mm) + ", image " + std::to_string(width_px_) + " x " +
-                std::to_string(height_px_) + " px on " + Fmt("%g", image.width_mm) + " x " +
-                Fmt("%.2f mm", image.height_mm) + "\n";
-      report += "blur limit  " + Fmt("%.4f mm", coc_mm) + " (" +
-                Fmt("%.2f px", MmToPixels(coc_mm, filmback.width_mm, width_px_)) + ")" +
+      report += "lens        " + FormatSignificant(focal_length_mm_) + " mm at f/" + FormatSignificant(f_number_) +
+                ", focused at " + (std::isinf(focus_m) ? std::string("infinity") : FormatSignificant(focus_m) + " m") +
+                "\n";
+      report += "sensor      " + filmback.label + " " + FormatSignificant(filmback.width_mm) + " x " +
+                FormatSignificant(filmback.height_mm) + " mm, image " + std::to_string(width_px_) + " x " +
+                std::to_string(height_px_) + " px on " + FormatSignificant(image.width_mm) + " x " +
+                FormatFixed(image.height_mm, 2) + " mm\n";
+      report += "blur limit  " + FormatFixed(coc_mm, 4) + " mm (" +
+                FormatFixed(MmToPixels(coc_mm, filmback.width_mm, width_px_), 2) + " px)" +
                 (coc_given ? "" : ", from the sensor diagonal") + "\n";
       report += "hyperfocal  " + Metres(dof.hyperfocal_m) + "\n";
       report += "near limit  " + Metres(dof.near_m) + "\n";
       report += "far limit   " + Metres(dof.far_m) + "\n";
       report +=
           "depth       " + (std::isinf(dof.far_m) ? std::string("infinity") : Metres(dof.far_m - dof.near_m)) + "\n";
-      report +=
-          "field       " + Fmt("%.2f", hfov_deg) + " deg horizontal, " + Fmt("%.2f", vfov_deg) + " deg vertical\n";
+      report += "field       " + FormatFixed(hfov_deg, 2) + " deg horizontal, " + FormatFixed(vfov_deg, 2) +
+                " deg vertical\n";
       for (const auto& b : blur) {
-        report += "blur at " + (std::isinf(b.distance_m) ? std::string("infinity") : Fmt("%g m", b.distance_m)) + ": " +
-                  Fmt("%.4f mm", b.coc_mm) + ", " + Fmt("%.1f px", b.coc_px) + "\n";
+        report += "blur at " +
+                  (std::isinf(b.distance_m) ? std::string("infinity") : FormatSignificant(b.distance_m) + " m") + ": " +
+                  FormatFixed(b.coc_mm, 4) + " mm, " + FormatFixed(b.coc_px, 1) + " px\n";
       }
     }
     WriteFileAtomic(output_, report);

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
+#include "core/number_format.h"
 #include "core/optics.h"
 
 namespace cinepath::shots {
@@ -13,11 +13,7 @@ namespace {
 const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                 "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
 
-std::string F(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", std::fabs(v) < 0.005 ? 0.0 : v);
-  return buf;
-}
+std::string F(double v) { return FormatFixed(std::fabs(v) < 0.005 ? 0.0 : v, 2); }
 
 std::string Escape(const std::string& s) {
   std::string out;
