@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# render's presets: time per 640x360 frame and error against the converged frame (final, 4096 rays per
+# render's presets: time per 640x360 frame and error against the converged frame (4096 rays for every
 # pixel), on the bundled scene, for a frame with shallow depth of field (f/2.8 orbit, frame 90) and a
 # sharp one (f/5.6 crane, frame 1170). PSNR and the RMS error on 8-bit sRGB PNGs (idiff, OpenImageIO).
 # Also the draft throughput (frames per second over 43 frames, 2 cores).
@@ -27,7 +27,7 @@ render() {  # render FRAME NAME ARGS...
 echo "| frame | preset | seconds | PSNR (dB) vs converged | RMS error (8-bit sRGB, 0-1) |"
 echo "|---|---|---|---|---|"
 for frame in 90 1170; do
-  ref_time=$(render $frame ref_$frame --quality final --spp 4096)
+  ref_time=$(render $frame ref_$frame --quality final --min-spp 4096)
   ref=$OUT/ref_$frame/$(printf 'frame_%06d.png' $frame)
   for preset in draft standard final; do
     t=$(render $frame ${preset}_$frame --quality $preset)
@@ -37,7 +37,7 @@ for frame in 90 1170; do
     rms=$(echo "$stats" | awk '/RMS error/ {print $4}')
     printf '| %d | %s | %.2f | %s | %s |\n' $frame $preset "$t" "${psnr:-inf}" "${rms:-0}"
   done
-  printf '| %d | converged (final, --spp 4096) | %.2f | – | – |\n' $frame "$ref_time"
+  printf '| %d | converged (final, --min-spp 4096) | %.2f | – | – |\n' $frame "$ref_time"
 done
 t0=$(now)
 "$CINEPATH" render "$OUT/plan.json" --scene "$OUT/scene/scene.json" --every 30 --width-px 640 --quality draft \

@@ -33,6 +33,8 @@ class RenderCommand : public Command {
     app.add_option("--quality", quality_, "draft (pinhole + gather blur) | standard | final")
         ->check(CLI::IsMember({"draft", "standard", "final"}));
     app.add_option("--spp", spp_, "Cap on rays per pixel (overrides the preset's)")->check(CLI::PositiveNumber);
+    app.add_option("--min-spp", min_spp_, "Rays for every pixel at least, sharp ones too (a converged reference)")
+        ->check(CLI::PositiveNumber);
     app.add_option("--format", format_, "png | exr (linear float) | jpg")->check(CLI::IsMember({"png", "exr", "jpg"}));
     app.add_option("--width-px", width_px_, "Output width; the plan camera's aspect is kept")
         ->check(CLI::PositiveNumber);
@@ -56,6 +58,7 @@ class RenderCommand : public Command {
     if (!shard_.empty()) options_.frames.shard = ParseShard(shard_);
     options_.quality = ParseRenderQuality(quality_);
     if (spp_) options_.max_samples = *spp_;
+    if (min_spp_) options_.min_samples = *min_spp_;
     options_.format = ParseImageFormat(format_);
     options_.width_px = width_px_;
     options_.shading = ParseShading(shading_);
@@ -88,7 +91,7 @@ class RenderCommand : public Command {
   std::string frames_, shard_, quality_ = "standard", format_ = "png", shading_ = "flat", sun_, exposure_ = "fixed";
   std::string aov_, contact_sheet_, video_;
   int every_ = 1;
-  std::optional<int> spp_, width_px_;
+  std::optional<int> spp_, min_spp_, width_px_;
   bool verbose_ = false;
   RenderOptions options_;
   CommonOptions common_;

@@ -133,10 +133,12 @@ std::vector<double> DilatedTileNeed(const PrePass& pass, int w, int h) {
 }
 
 int SamplesFor(double need_px, bool edge, const SamplingPreset& preset, int max_samples) {
-  if (need_px < kSharpPx) return std::min(edge ? preset.edge_samples : 1, max_samples);
+  const int floor = std::min(preset.min_samples, max_samples);
+  if (need_px < kSharpPx) return std::max(floor, std::min(edge ? preset.edge_samples : 1, max_samples));
   const double area_px2 = M_PI / 4 * need_px * need_px;
   const double wanted = std::ceil(preset.samples_per_blur_px2 * std::min(area_px2, 1e7));
-  return int(std::clamp<double>(wanted, std::min(preset.min_blurred_samples, max_samples), max_samples));
+  return std::max(floor,
+                  int(std::clamp<double>(wanted, std::min(preset.min_blurred_samples, max_samples), max_samples)));
 }
 
 // Draft: scatter-as-gather of the pre-pass. A neighbour q adds its colour to p when p lies in q's

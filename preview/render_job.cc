@@ -201,6 +201,10 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   settings.height_px = height;
   settings.preset = PresetFor(options.quality);
   if (options.max_samples) settings.preset.max_samples = *options.max_samples;
+  if (options.min_samples) {
+    settings.preset.min_samples = *options.min_samples;
+    settings.preset.max_samples = std::max(settings.preset.max_samples, *options.min_samples);
+  }
   settings.exposure = options.exposure;
   settings.iso = options.iso;
 

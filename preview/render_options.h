@@ -26,6 +26,7 @@ struct SamplingPreset {
   double samples_per_blur_px2 = 1.0;
   int min_blurred_samples = 8;
   int max_samples = 64;
+  int min_samples = 1;  // every pixel gets at least this many (a converged reference: --min-spp)
   bool motion_blur = true;
 };
 
@@ -41,6 +42,7 @@ struct RenderOptions {
   FrameSelection frames;
   RenderQuality quality = RenderQuality::kStandard;
   std::optional<int> max_samples;  // --spp: the cap on rays per pixel (overrides the preset's)
+  std::optional<int> min_samples;  // --min-spp: rays for every pixel at least (raises the cap to it)
   ImageFormat format = ImageFormat::kPng;
   std::optional<int> width_px;  // the aspect of the plan's camera is kept
   Shading shading = Shading::kFlat;

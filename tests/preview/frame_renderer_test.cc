@@ -262,3 +262,17 @@ TEST(FrameRenderer, OutputSizeKeepsTheCamerasAspect) {
 
 }  // namespace
 }  // namespace cinepath::preview
+
+namespace cinepath::preview {
+namespace {
+
+TEST(FrameRenderer, MinSamplesReachesEveryPixelSharpOnesToo) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  FrameSettings settings = Settings(RenderQuality::kStandard, 64);
+  settings.preset.min_samples = 8;
+  const FrameImage image = Render(Wall(camera, 20), StillCamera(camera, 100, 1.4, 20), settings);
+  for (uint16_t n : image.samples) ASSERT_GE(n, 8);
+}
+
+}  // namespace
+}  // namespace cinepath::preview
