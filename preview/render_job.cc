@@ -99,7 +99,11 @@ Srgb8Image ContactSheet(const std::vector<Srgb8Image>& thumbs, const std::vector
   const int columns = std::min<int>(kSheetColumns, int(thumbs.size()));
   const int rows = (int(thumbs.size()) + columns - 1) / columns;
   const int pad = 6, label_h = 2 * (kLabelPx + 4) + 2;
-  const int cell_w = tw + pad, cell_h = th + label_h + pad;
+  size_t longest = 0;  // DejaVu Sans Mono advances 0.6 em per character
+  for (const auto& lines : labels) {
+    for (const auto& line : lines) longest = std::max(longest, line.size());
+  }
+  const int cell_w = std::max(tw, int(std::ceil(0.6 * kLabelPx * longest)) + 4) + pad, cell_h = th + label_h + pad;
   Srgb8Image sheet{pad + columns * cell_w, pad + rows * cell_h, {}};
   sheet.rgb.assign(size_t(sheet.width) * sheet.height * 3, 24);
   for (size_t i = 0; i < thumbs.size(); ++i) {
