@@ -32,7 +32,7 @@ plan["samples"][1170].update(f_number=16)
 json.dump(plan, open(sys.argv[2], "w"))
 PY
 # PSNR on 8-bit sRGB (what a viewer sees; linear values would flatter dark noise).
-srgb() { oiiotool "$1" --colorconvert linear sRGB -d uint8 -o "${1%.exr}.png"; }
+srgb() { oiiotool "$1" --ch R,G,B --colorconvert linear sRGB -d uint8 -o "${1%.exr}.png"; }
 psnr() {
   srgb "$1" && srgb "$2"
   idiff -v -fail 1 -warn 1 "${1%.exr}.png" "${2%.exr}.png" 2>&1 | awk '/Peak SNR/ {print $4}'

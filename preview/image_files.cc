@@ -82,6 +82,9 @@ void WriteExrAtomic(const fs::path& path, int width, int height, const std::vect
   spec.channelnames = channels;
   spec.attribute("compression", "zip");
   spec.attribute("Software", "cinepath render");
+  // OpenImageIO stamps the wall-clock time into files that carry no DateTime: a fixed one keeps the
+  // bytes the same from run to run (the ZIP writer's 1980 epoch, as in the KMZ).
+  spec.attribute("DateTime", "1980:01:01 00:00:00");
   OIIO::ImageBuf buffer(spec, const_cast<float*>(values.data()));
   WriteBufferAtomic(path, buffer, OIIO::TypeDesc::FLOAT);
 }

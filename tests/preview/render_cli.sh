@@ -4,7 +4,7 @@
 #   - the GNU parallel example of docs/scale-out.md gives the same files again;
 #   - a missing mesh, a GLB without geometry, a frame range outside the plan and an unwritable output
 #     folder exit 2 and write nothing; --video without ffmpeg says so;
-#   - --overlay, --contact-sheet, --aov and --format exr write what they promise.
+#   - --overlay, --contact-sheet, --aov and --format exr write what they promise, the same bytes every run.
 #   render_cli.sh CINEPATH SOURCE_DIR
 set -euo pipefail
 CINEPATH=$1
@@ -79,4 +79,10 @@ for f in frame_000000.exr frame_000040.exr frame_000080.exr frame_000040.depth.e
   [[ -s $work/extras/$f ]] || fail "missing $f"
 done
 [[ $(head -c 8 "$work/sheet.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] || fail "sheet.png is not a PNG"
-echo "extras: EXR frames, depth and blur AOVs, contact sheet"
+# The same bytes on a second run a second later (no wall-clock time in any file).
+sleep 1.1
+"${render[@]}" --frames 0-80 --aov depth,blur --format exr -o "$work/extras_again"
+for f in frame_000040.exr frame_000040.depth.exr frame_000040.blur.exr; do
+  cmp -s "$work/extras/$f" "$work/extras_again/$f" || fail "$f differs between two runs"
+done
+echo "extras: EXR frames, depth and blur AOVs, contact sheet; EXR bytes the same on a second run"
