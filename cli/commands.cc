@@ -14,6 +14,10 @@ std::unique_ptr<Command> MakeMeshCommand() { return LoadCommandPlugin("libcinepa
 #ifdef CINEPATH_WITH_SHOTS
 std::unique_ptr<Command> MakePlanCommand();
 #endif
+#ifdef CINEPATH_WITH_OPTIMIZER
+// A plugin module: Ceres, CGAL and Embree load only for this command.
+std::unique_ptr<Command> MakeOptimizeCommand() { return LoadCommandPlugin("libcinepath_cmd_optimize.so"); }
+#endif
 #ifdef CINEPATH_WITH_PREVIEW
 // A plugin module: Embree and OpenImageIO load only for this command.
 std::unique_ptr<Command> MakeRenderCommand() { return LoadCommandPlugin("libcinepath_cmd_render.so"); }
@@ -30,6 +34,10 @@ const std::vector<CommandInfo>& Commands() {
 #endif
 #ifdef CINEPATH_WITH_SHOTS
       {"plan", "shot list -> keyframed, per-frame camera flight with lens tracks (plan.json)", &MakePlanCommand},
+#endif
+#ifdef CINEPATH_WITH_OPTIMIZER
+      {"optimize", "plan (+ scene) -> plan with the drone path and the lens optimized together (Ceres)",
+       &MakeOptimizeCommand},
 #endif
 #ifdef CINEPATH_WITH_PREVIEW
       {"render", "plan + scene -> ray-traced thin-lens previews of every frame (depth of field, motion blur)",

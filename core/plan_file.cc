@@ -1,5 +1,6 @@
 #include "core/plan_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -127,6 +128,51 @@ std::string CsvNumber(double v) {
   return os.str();
 }
 
+// Only the keys a shot sets (ShotIntent::empty() shots carry no "intent").
+Json IntentJson(const ShotIntent& intent) {
+  Json j = Json::object();
+  if (intent.frame_height_fraction) j["frame_height_fraction"] = *intent.frame_height_fraction;
+  if (intent.frame_height_fraction_end) j["frame_height_fraction_end"] = *intent.frame_height_fraction_end;
+  if (intent.screen_position != Eigen::Vector2d(0.5, 0.5)) {
+    j["screen_position"] = Json::array({intent.screen_position.x(), intent.screen_position.y()});
+  }
+  if (!intent.sharp.empty()) j["sharp"] = intent.sharp;
+  if (intent.background_blur_px) j["background_blur_px"] = *intent.background_blur_px;
+  if (intent.background_distance_m) j["background_distance_m"] = *intent.background_distance_m;
+  if (!intent.hold.empty()) j["hold"] = intent.hold;
+  if (intent.max_deviation_m) j["max_deviation_m"] = *intent.max_deviation_m;
+  return j;
+}
+
+ShotIntent ReadIntent(const JsonField& f) {
+  f.RejectUnknownKeys({"frame_height_fraction", "frame_height_fraction_end", "screen_position", "sharp",
+                       "background_blur_px", "background_distance_m", "hold", "max_deviation_m"});
+  ShotIntent intent;
+  if (f.Has("frame_height_fraction")) intent.frame_height_fraction = f["frame_height_fraction"].AsPositive();
+  if (f.Has("frame_height_fraction_end"))
+    intent.frame_height_fraction_end = f["frame_height_fraction_end"].AsPositive();
+  if (auto sp = f.Find("screen_position")) {
+    if (sp->size() != 2) sp->Fail("expected [x, y]");
+    intent.screen_position = {sp->At(0).AsDoubleIn(0, 1), sp->At(1).AsDoubleIn(0, 1)};
+  }
+  if (auto sharp = f.Find("sharp")) {
+    for (const auto& e : sharp->Elements()) intent.sharp.push_back(e.AsString());
+  }
+  if (f.Has("background_blur_px")) intent.background_blur_px = f["background_blur_px"].AsPositive();
+  if (f.Has("background_distance_m")) intent.background_distance_m = f["background_distance_m"].AsPositive();
+  if (auto hold = f.Find("hold")) {
+    for (const auto& e : hold->Elements()) {
+      const std::string channel = e.AsString();
+      if (std::find(kOptimizeChannels.begin(), kOptimizeChannels.end(), channel) == kOptimizeChannels.end()) {
+        e.Fail("unknown channel \"" + channel + "\" (position, orientation, focal_length, focus, aperture)");
+      }
+      intent.hold.push_back(channel);
+    }
+  }
+  if (f.Has("max_deviation_m")) intent.max_deviation_m = f["max_deviation_m"].AsNonNegative();
+  return intent;
+}
+
 }  // namespace
 
 Json PlanToJson(const Trajectory& plan) {
@@ -147,6 +193,7 @@ Json PlanToJson(const Trajectory& plan) {
     j["transition"] = s.transition;
     j["start_time_s"] = R(s.start_time_s, kTime);
     j["end_time_s"] = R(s.end_time_s, kTime);
+    if (!s.intent.empty()) j["intent"] = IntentJson(s.intent);
     shots.push_back(std::move(j));
   }
   doc["shots"] = std::move(shots);
@@ -219,6 +266,7 @@ Json PlanToJson(const Trajectory& plan) {
   report["violations"] = std::move(violations);
   report["skipped"] = plan.feasibility.skipped;
   doc["feasibility"] = std::move(report);
+  if (!plan.optimized.is_null()) doc["optimized"] = plan.optimized;
   return doc;
 }
 
@@ -246,6 +294,7 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
     s.start_time_s = f["start_time_s"].AsDouble();
     s.end_time_s = f["end_time_s"].AsDouble();
     if (s.end_time_s < s.start_time_s) f["end_time_s"].Fail("must be >= start_time_s");
+    if (auto intent = f.Find("intent")) s.intent = ReadIntent(*intent);
     plan.shots.push_back(std::move(s));
   }
 
@@ -320,6 +369,10 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
     if (auto skipped = report->Find("skipped")) {
       for (const auto& e : skipped->Elements()) plan.feasibility.skipped.push_back(e.AsString());
     }
+  }
+  if (auto optimized = root.Find("optimized")) {
+    if (!optimized->IsObject() && !optimized->IsNull()) optimized->Fail("expected an object");
+    plan.optimized = optimized->node();
   }
   return plan;
 }

@@ -17,6 +17,7 @@
 
 #include "core/drone_profile.h"
 #include "core/geodesy.h"
+#include "core/json.h"
 #include "core/optics.h"
 
 namespace cinepath {
@@ -60,6 +61,27 @@ struct TrajectorySample {
   std::vector<std::string> subjects_in_frame;
 };
 
+// What a shot asks of the picture beyond its samples: the targets `optimize` keeps to (docs/plan.md,
+// "lens" and "optimize"). Absent keys keep their defaults and are not written.
+struct ShotIntent {
+  std::optional<double> frame_height_fraction;      // subject height / frame height, at the start
+  std::optional<double> frame_height_fraction_end;  // at the end (log-interpolated), when it changes
+  Eigen::Vector2d screen_position{0.5, 0.5};        // where the subject's aim point sits: x right, y down
+  std::vector<std::string> sharp;                   // actors that must lie inside the depth of field
+  std::optional<double> background_blur_px;         // least blur-circle diameter behind the subject
+  std::optional<double> background_distance_m;      // the background behind the subject, without a mesh
+  std::vector<std::string> hold;                    // what optimize may not move (kOptimizeChannels)
+  std::optional<double> max_deviation_m;            // from the planned path (optimize's default: 5 m)
+
+  bool empty() const {
+    return !frame_height_fraction && !frame_height_fraction_end && screen_position == Eigen::Vector2d(0.5, 0.5) &&
+           sharp.empty() && !background_blur_px && !background_distance_m && hold.empty() && !max_deviation_m;
+  }
+};
+// The names `hold` accepts.
+inline const std::vector<std::string> kOptimizeChannels = {"position", "orientation", "focal_length", "focus",
+                                                           "aperture"};
+
 struct ShotSpan {
   std::string name;
   std::string type;  // "ORBIT", "CHASE", ...
@@ -67,6 +89,7 @@ struct ShotSpan {
   double end_time_s = 0;
   std::string subject;                    // the actor the shot frames ("" for none)
   std::string transition = "continuous";  // how this shot joins the previous one: "continuous" | "cut"
+  ShotIntent intent;
 };
 
 // A key pose a shot was built from: what an editor shows as keyframes (the samples are the truth).
@@ -118,6 +141,9 @@ struct Trajectory {
   std::vector<Keyframe> keyframes;
   std::vector<SubjectTrack> subjects;
   FeasibilityReport feasibility;
+  // Written by `cinepath optimize`: how the plan was optimized ({quality, scene, terms, ...}); null for a
+  // plan straight from `plan`.
+  Json optimized;
 };
 
 }  // namespace cinepath

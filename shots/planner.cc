@@ -60,6 +60,7 @@ class Planner {
   double RequestedFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
                          const Eigen::Quaterniond& q, double t, double tau, double lens_time) const;
   std::vector<std::string> SubjectsInFrame(const TrajectorySample& s, double t) const;
+  ShotIntent IntentOf(const ShotSpec& shot) const;
 
   const ShotList& list_;
   std::vector<ShotState> states_;
@@ -357,6 +358,22 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
   return out;
 }
 
+// What the shot asks of the picture, as plan.json carries it for `optimize`.
+ShotIntent Planner::IntentOf(const ShotSpec& shot) const {
+  ShotIntent intent;
+  if (shot.type != ShotType::kDollyZoom || shot.lens.frame_height_fraction) {
+    intent.frame_height_fraction = shot.lens.frame_height_fraction;
+    intent.frame_height_fraction_end = shot.lens.frame_height_fraction_end;
+  }
+  if (shot.subject >= 0) intent.screen_position = shot.lens.screen_position;
+  for (int a : shot.lens.sharp) intent.sharp.push_back(list_.actors[a].name());
+  intent.background_blur_px = shot.lens.background_blur_px;
+  intent.background_distance_m = shot.lens.background_distance_m;
+  intent.hold = shot.optimize.hold;
+  intent.max_deviation_m = shot.optimize.max_deviation_m;
+  return intent;
+}
+
 Trajectory Planner::Run(const PlanOptions& options) {
   Prepare();
   Trajectory plan;
@@ -384,6 +401,7 @@ Trajectory Planner::Run(const PlanOptions& options) {
     span.transition = shot.cut ? "cut" : "continuous";
     span.start_time_s = states_[i].start_s;
     span.end_time_s = states_[i].start_s + shot.duration_s;
+    span.intent = IntentOf(shot);
     plan.shots.push_back(span);
   }
 

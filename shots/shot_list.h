@@ -43,6 +43,16 @@ struct LensSpec {
   std::vector<RackFocus> rack;
   std::vector<ScalarKey> f_number;  // shot-local keys (one key = constant)
   std::vector<ScalarKey> shutter_s;
+  // Depth-of-field goals for `optimize` (the planner carries them into plan.json's shot intent).
+  std::vector<int> sharp;                       // actors that must lie inside the depth of field
+  std::optional<double> background_blur_px;     // least blur-circle diameter behind the subject
+  std::optional<double> background_distance_m;  // where the background is, without a mesh
+};
+
+// The shot-level "optimize" block: what `optimize` may not move, and how far it may move the rest.
+struct OptimizeSpec {
+  std::vector<std::string> hold;  // out of kOptimizeChannels (core/trajectory.h)
+  std::optional<double> max_deviation_m;
 };
 
 // One free keyframe of a KEYFRAMES shot (shot-local time).
@@ -73,6 +83,7 @@ struct ShotSpec {
   double blend_s = 2.0;  // continuous transition: the offset decays over this time (<= duration)
   HeightReference height_reference = HeightReference::kSubject;
   LensSpec lens;
+  OptimizeSpec optimize;
 
   // Geometry (metres, degrees; which apply depends on the type, see docs/plan.md).
   double distance_m = 0, distance_end_m = 0;

@@ -1,5 +1,6 @@
 #include "shots/shot_syntax.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -82,7 +83,8 @@ std::vector<ScalarKey> ParseScalarKeys(const JsonField& f, const char* value_key
 
 LensSpec ParseLens(const JsonField& f, const ShotList& list, const ShotSpec& shot) {
   f.RejectUnknownKeys({"focal_length_mm", "focal_length_end_mm", "frame_height_fraction", "frame_height_fraction_end",
-                       "screen_position", "focus", "rack", "f_number", "shutter_s"});
+                       "screen_position", "focus", "rack", "f_number", "shutter_s", "sharp", "background_blur_px",
+                       "background_distance_m"});
   LensSpec l;
   if (f.Has("focal_length_mm")) l.focal_length_mm = f["focal_length_mm"].AsPositive();
   if (f.Has("focal_length_end_mm")) l.focal_length_end_mm = f["focal_length_end_mm"].AsPositive();
@@ -129,6 +131,14 @@ LensSpec ParseLens(const JsonField& f, const ShotList& list, const ShotSpec& sho
       l.rack.push_back(rf);
     }
     if (!l.rack.empty() && l.focus != LensSpec::Focus::kFollow) rack->Fail("rack focus needs \"focus\": \"follow\"");
+  }
+  if (auto sharp = f.Find("sharp")) {
+    for (const auto& e : sharp->Elements()) l.sharp.push_back(ActorIndex(list, e));
+  }
+  if (f.Has("background_blur_px")) l.background_blur_px = f["background_blur_px"].AsPositive();
+  if (f.Has("background_distance_m")) l.background_distance_m = f["background_distance_m"].AsPositive();
+  if ((l.background_blur_px || !l.sharp.empty()) && shot.subject < 0 && l.sharp.empty()) {
+    f.Fail("a background_blur_px goal needs the shot's \"subject\" or a \"sharp\" list");
   }
   if (auto fn = f.Find("f_number"))
     l.f_number =
@@ -456,6 +466,23 @@ void ParseCommonKeys(const JsonField& f, const ShotSyntax& syntax, const ShotLis
 }
 
 // The lens block, and what a shot type demands of it.
+// The shot-level "optimize" block: {"hold": [...], "max_deviation_m": m}.
+OptimizeSpec ParseOptimize(const JsonField& f) {
+  f.RejectUnknownKeys({"hold", "max_deviation_m"});
+  OptimizeSpec spec;
+  if (auto hold = f.Find("hold")) {
+    for (const auto& e : hold->Elements()) {
+      const std::string channel = e.AsString();
+      if (std::find(kOptimizeChannels.begin(), kOptimizeChannels.end(), channel) == kOptimizeChannels.end()) {
+        e.Fail("unknown channel \"" + channel + "\" (position, orientation, focal_length, focus, aperture)");
+      }
+      spec.hold.push_back(channel);
+    }
+  }
+  if (f.Has("max_deviation_m")) spec.max_deviation_m = f["max_deviation_m"].AsNonNegative();
+  return spec;
+}
+
 void ParseShotLens(const JsonField& f, const ShotList& list, ShotSpec& s) {
   if (auto lens = f.Find("lens")) {
     s.lens = ParseLens(*lens, list, s);
@@ -477,8 +504,8 @@ void ParseShotLens(const JsonField& f, const ShotList& list, ShotSpec& s) {
 }  // namespace
 
 const std::vector<std::string_view>& CommonShotKeys() {
-  static const std::vector<std::string_view> keys = {"name",   "type",       "subject", "duration_s",
-                                                     "easing", "transition", "blend_s", "lens"};
+  static const std::vector<std::string_view> keys = {"name",       "type",    "subject", "duration_s", "easing",
+                                                     "transition", "blend_s", "lens",    "optimize"};
   return keys;
 }
 
@@ -498,6 +525,7 @@ ShotSpec ParseShotSpec(const JsonField& f, size_t index, const ShotList& list, d
   ParseCommonKeys(f, syntax, list, s);
   syntax.parse(f, ShotContext{list, shot_start_s, positions}, s);
   ParseShotLens(f, list, s);
+  if (auto optimize = f.Find("optimize")) s.optimize = ParseOptimize(*optimize);
   return s;
 }
 

@@ -1,0 +1,28 @@
+// clearance: the camera at least `margin_m` from the nearest surface of the scene's mesh. The residual is
+// weight * max(0, margin - d) / margin with d the distance to the closest surface point q
+// (scene/surface_distance.h), negative behind the closest face (inside a solid, under terrain); its gradient in the
+// camera position is exact, -(c - q) / (d margin), and the knots get it through the sample's spline weights. Analytic,
+// since the distance comes from a tree query that automatic differentiation cannot see through.
+#pragma once
+
+#include <ceres/sized_cost_function.h>
+
+#include "optimizer/sample_model.h"
+#include "scene/surface_distance.h"
+
+namespace cinepath::optimizer {
+
+class ClearanceCost : public ceres::SizedCostFunction<1, kNumChannels, kNumChannels, kNumChannels, kNumChannels> {
+ public:
+  ClearanceCost(const SampleBase& base, const scene::SurfaceDistance* surface, double margin_m, double weight)
+      : base_(base), surface_(surface), margin_m_(margin_m), weight_(weight) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  SampleBase base_;
+  const scene::SurfaceDistance* surface_;
+  double margin_m_;
+  double weight_;
+};
+
+}  // namespace cinepath::optimizer

@@ -1,0 +1,296 @@
+// The cost terms of `cinepath optimize`, one functor per term (docs/optimize.md, "Costs"). Each takes
+// the four knot blocks a sample (or a spline segment) depends on and writes dimensionless, weighted
+// residuals; Ceres differentiates them automatically. Hinges (max(0, x)) are zero inside a limit, so a
+// plan that keeps every limit and meets every goal has zero cost and comes back unchanged.
+// The clearance term, which asks the mesh, has its own file (optimizer/clearance_cost.h).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/drone_profile.h"
+#include "core/trajectory.h"
+#include "optimizer/sample_model.h"
+
+namespace cinepath::optimizer {
+
+template <typename T>
+T Hinge(const T& x) {
+  return x > T(0) ? x : T(0);
+}
+
+template <typename T>
+T SafeNorm(const Vec3T<T>& v) {
+  using std::sqrt;
+  return sqrt(v.squaredNorm() + T(1e-12));
+}
+
+template <typename T>
+T SafeNorm2(const T& x, const T& y) {
+  using std::sqrt;
+  return sqrt(x * x + y * y + T(1e-12));
+}
+
+// Where the subject's aim point falls on screen ([0, 1] x right, y down) and the fraction of the frame
+// height the subject fills (its height over the frame's height at its distance, as `plan` frames it).
+template <typename T>
+struct Framing {
+  T screen_x, screen_y, height_fraction;
+};
+
+template <typename T>
+Framing<T> MeasureFraming(const SampleBase& b, const SampleState<T>& s, const Eigen::Vector3d& aim_enu_m,
+                          double subject_height_m, double image_width_mm, double image_height_mm) {
+  const Vec3T<T> p = CameraPoint(b, s, aim_enu_m);
+  const T depth = p[2] > T(1e-3) ? p[2] : T(1e-3);
+  const T f_mm = FocalLengthMm(b, s);
+  Framing<T> out;
+  out.screen_x = T(0.5) + f_mm * p[0] / depth / image_width_mm;
+  out.screen_y = T(0.5) + f_mm * p[1] / depth / image_height_mm;
+  out.height_fraction =
+      subject_height_m * f_mm / (SafeNorm(Vec3T<T>(aim_enu_m.cast<T>() - s.position)) * image_height_mm);
+  return out;
+}
+
+// framing: the subject stays where the plan put it on screen, at the height fraction the shot asks for.
+struct FramingCost {
+  SampleBase base;
+  Eigen::Vector3d aim_enu_m;
+  double subject_height_m = 1.8;
+  double image_width_mm = 36, image_height_mm = 24;
+  double target_x = 0.5, target_y = 0.5;
+  double target_fraction = 0;  // 0: no size goal (the residual is then 0)
+  double weight = 1;
+
+  template <typename T>
+  bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
+    using std::log;
+    const T* k[4] = {k0, k1, k2, k3};
+    const SampleState<T> s = EvaluateSample(base, k);
+    const Framing<T> m = MeasureFraming(base, s, aim_enu_m, subject_height_m, image_width_mm, image_height_mm);
+    r[0] = weight * (m.screen_x - target_x);
+    r[1] = weight * (m.screen_y - target_y);
+    r[2] = target_fraction > 0 ? weight * log(m.height_fraction / target_fraction) : T(0);
+    return true;
+  }
+};
+
+// Thin lens in dioptres (docs/optimize.md): with K = N c / f^2, the near and far limits of the depth of
+// field are 1/near = D + K (1 - f D) and 1/far = D - K (1 - f D): the field is symmetric in dioptres.
+template <typename T>
+T DofHalfWidthDioptres(const T& focal_m, const T& f_number, const T& dioptre, double coc_m) {
+  return f_number * coc_m / (focal_m * focal_m) * (T(1) - focal_m * dioptre);
+}
+
+// Blur-circle diameter on the sensor (metres) of a point at 1/point_dioptre when focused at 1/dioptre.
+template <typename T>
+T BlurCircleM(const T& focal_m, const T& f_number, const T& dioptre, const T& point_dioptre) {
+  using std::abs;
+  return focal_m * focal_m / f_number * abs(dioptre - point_dioptre) / (T(1) - focal_m * dioptre);
+}
+
+// depth of field: an actor that must be sharp lies inside [near, far]; residual = the dioptres outside,
+// relative to the actor's own (so 0.01 is 1 % of its distance). With follow = true the focus itself
+// tracks the actor (a shot that asks nothing of the depth of field, whose camera moves).
+struct SharpCost {
+  SampleBase base;
+  Eigen::Vector3d aim_enu_m;
+  double coc_m = 0.03e-3;
+  bool follow = false;
+  double weight = 1;
+
+  template <typename T>
+  bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
+    using std::abs;
+    const T* k[4] = {k0, k1, k2, k3};
+    const SampleState<T> s = EvaluateSample(base, k);
+    const Vec3T<T> p = CameraPoint(base, s, aim_enu_m);
+    const T depth = p[2] > T(0.05) ? p[2] : T(0.05);
+    if (follow) {
+      r[0] = weight * (depth * s.dioptre - T(1));
+      return true;
+    }
+    const T focal_m = FocalLengthMm(base, s) * 1e-3;
+    const T half = DofHalfWidthDioptres(focal_m, FNumber(base, s), s.dioptre, coc_m);
+    r[0] = weight * depth * Hinge(abs(T(1) / depth - s.dioptre) - half);
+    return true;
+  }
+};
+
+// background blur: the blur circle of the background behind the subject (at background_behind_m beyond
+// the subject's depth; infinity = 0 dioptres) at least goal_px pixels; residual = the missing fraction.
+struct BackgroundBlurCost {
+  SampleBase base;
+  Eigen::Vector3d aim_enu_m;
+  double background_behind_m = std::numeric_limits<double>::infinity();
+  double goal_px = 10;
+  double pixels_per_m = 1e5;  // on the sensor: width_px / sensor width
+  double weight = 1;
+
+  template <typename T>
+  T BlurPx(const T* const* k) const {
+    const SampleState<T> s = EvaluateSample(base, k);
+    const Vec3T<T> p = CameraPoint(base, s, aim_enu_m);
+    const T depth = p[2] > T(0.05) ? p[2] : T(0.05);
+    const T background_dioptre = std::isinf(background_behind_m) ? T(0) : T(1) / (depth + T(background_behind_m));
+    const T focal_m = FocalLengthMm(base, s) * 1e-3;
+    return BlurCircleM(focal_m, FNumber(base, s), s.dioptre, background_dioptre) * pixels_per_m;
+  }
+  template <typename T>
+  bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
+    const T* k[4] = {k0, k1, k2, k3};
+    r[0] = weight * Hinge((T(goal_px) - BlurPx<T>(k)) / goal_px);
+    return true;
+  }
+};
+
+// The limits a sample must keep (the drone's and the lens's), each as a hinge on the fraction by
+// which it is exceeded. Rates add the planned path's finite-difference rate and the change's own.
+struct LimitsCost {
+  static constexpr int kNumResiduals = 19;
+  SampleBase base;
+  DroneProfile drone;
+  CameraSpec camera;
+  double takeoff_up_m = 0;
+  double margin = 0.02;  // aim at (1 - margin) of each limit
+  double weight = 1;
+
+  template <typename T>
+  bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
+    constexpr double kDeg = 180.0 / M_PI;
+    const T* k[4] = {k0, k1, k2, k3};
+    const SampleState<T> s = EvaluateSample(base, k);
+    const double m = 1.0 - margin;
+    const auto over = [&](const T& value, double limit) { return Hinge((value - T(limit * m)) / limit); };
+    const auto under = [&](const T& value, double limit, double scale) {
+      return Hinge((T(limit) - value) / scale + T(margin));
+    };
+    for (int i = 0; i < kNumResiduals; ++i) r[i] = T(0);
+    if (base.has_rates) {
+      const Vec3T<T> v = base.velocity_m_s.cast<T>() + s.velocity;
+      const Vec3T<T> a = base.acceleration_m_s2.cast<T>() + s.acceleration;
+      r[0] = over(SafeNorm2(v[0], v[1]), drone.max_horizontal_speed_m_s);
+      r[1] = over(v[2], drone.max_climb_rate_m_s);
+      r[2] = over(-v[2], drone.max_descent_rate_m_s);
+      r[3] = over(SafeNorm2(a[0], a[1]), drone.max_acceleration_m_s2);
+      if (base.has_jerk) r[4] = over(SafeNorm(Vec3T<T>(base.jerk_m_s3.cast<T>() + s.jerk)), drone.max_jerk_m_s3);
+      const T heading_rate = T(base.heading_rate_deg_s) - s.yaw_rate * kDeg;
+      r[5] = over(SafeNorm2(heading_rate, T(0)), drone.max_yaw_rate_deg_s);
+      const T pitch_rate = T(base.pitch_rate_deg_s) + s.tilt_rate * kDeg;
+      r[6] = over(SafeNorm2(pitch_rate, T(0)), drone.max_gimbal_pitch_rate_deg_s);
+      const T focal_rate = T(base.focal_rate_mm_s) + FocalLengthMm(base, s) * s.log_focal_rate;
+      r[7] = over(SafeNorm2(focal_rate, T(0)), camera.max_focal_rate_mm_s);
+      const T aperture_rate = T(base.aperture_rate_stops_s) + s.stops_rate;
+      r[8] = over(SafeNorm2(aperture_rate, T(0)), camera.max_aperture_rate_stops_s);
+    }
+    const T pitch = T(base.pitch_deg) + s.tilt * kDeg;
+    r[9] = under(pitch, drone.min_gimbal_pitch_deg, 90.0);
+    r[10] = Hinge((pitch - T(drone.max_gimbal_pitch_deg)) / 90.0 + T(margin));
+    const T altitude = s.position[2] - T(takeoff_up_m);
+    r[11] = under(altitude, drone.min_altitude_m, std::max(drone.min_altitude_m, 10.0));
+    r[12] = over(altitude, drone.max_altitude_m);
+    const T focal = FocalLengthMm(base, s);
+    r[13] = under(focal, camera.min_focal_length_mm, camera.min_focal_length_mm);
+    r[14] = over(focal, camera.max_focal_length_mm);
+    const T f_number = FNumber(base, s);
+    r[15] = under(f_number, camera.min_f_number, camera.min_f_number);
+    r[16] = over(f_number, camera.max_f_number);
+    const double max_dioptre = 1.0 / camera.min_focus_distance_m;
+    r[17] = over(s.dioptre, max_dioptre);
+    r[18] = Hinge(-s.dioptre / max_dioptre);  // focus beyond infinity
+    for (int i = 0; i < kNumResiduals; ++i) r[i] *= weight;
+    return true;
+  }
+};
+
+// keep-out: the camera at least min_subject_distance_m from an actor (a vertical segment from its base
+// to its height), as the feasibility check measures it.
+struct KeepOutCost {
+  SampleBase base;
+  Eigen::Vector3d subject_base_enu_m;
+  double subject_height_m = 1.8;
+  double min_distance_m = 2;
+  double margin = 0.02;
+  double weight = 1;
+
+  template <typename T>
+  bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
+    const T* k[4] = {k0, k1, k2, k3};
+    const SampleState<T> s = EvaluateSample(base, k);
+    Vec3T<T> d = s.position - subject_base_enu_m.cast<T>();
+    const T top = T(subject_height_m);
+    d[2] = d[2] < T(0) ? d[2] : (d[2] > top ? d[2] - top : T(0));
+    r[0] = weight * Hinge(T(min_distance_m * (1.0 + margin)) - SafeNorm(d)) / min_distance_m;
+    return true;
+  }
+};
+
+// smoothness: over one spline segment, the jerk of the path change and the rates and accelerations of
+// the angle and lens changes (at the segment's middle), each over a reference scale, times sqrt(h) so
+// that the sum over segments approximates an integral over time whatever the knot spacing.
+struct SmoothnessCost {
+  static constexpr int kNumResiduals = 13;
+  double segment_s = 0.5;
+  double weight = 1;
+
+  template <typename T>
+  bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
+    const double h = segment_s;
+    const double w = weight * std::sqrt(h);
+    const auto jerk = [&](int c) { return (-k0[c] + 3.0 * k1[c] - 3.0 * k2[c] + k3[c]) / (h * h * h); };
+    const auto accel = [&](int c) { return (k0[c] - k1[c] - k2[c] + k3[c]) / (2.0 * h * h); };
+    const auto rate = [&](int c) { return (-k0[c] - 5.0 * k1[c] + 5.0 * k2[c] + k3[c]) / (8.0 * h); };
+    for (int c = 0; c < 3; ++c) r[c] = w * jerk(c) / 1.0;  // m/s^3
+    r[3] = w * accel(kYaw) / 0.1;                          // rad/s^2
+    r[4] = w * accel(kTilt) / 0.1;
+    r[5] = w * accel(kLogFocal) / 0.1;  // e-folds/s^2
+    r[6] = w * accel(kDioptre) / 0.01;  // dioptres/s^2
+    r[7] = w * accel(kStops) / 0.5;     // stops/s^2
+    r[8] = w * rate(kYaw) / 0.5;        // rad/s
+    r[9] = w * rate(kTilt) / 0.5;
+    r[10] = w * rate(kLogFocal) / 0.5;
+    r[11] = w * rate(kDioptre) / 0.05;
+    r[12] = w * rate(kStops) / 1.0;
+    return true;
+  }
+};
+
+// adherence, per knot: a gentle pull of the path change back to zero, a stiff hinge beyond the shot's
+// max_deviation_m (the spline is a convex blend of its knots, so bounding the knots bounds the path),
+// and a small ridge on every other channel.
+struct AdherenceCost {
+  static constexpr int kNumResiduals = 9;
+  double max_deviation_m = 5;
+  double adherence_weight = 0.05;
+  double deviation_weight = 200;
+  double ridge_weight = 1e-3;
+
+  template <typename T>
+  bool operator()(const T* k, T* r) const {
+    const Vec3T<T> d(k[kEast], k[kNorth], k[kUp]);
+    for (int c = 0; c < 3; ++c) r[c] = adherence_weight * d[c];
+    r[3] = deviation_weight * Hinge(SafeNorm(d) - T(max_deviation_m));
+    for (int c = kYaw; c < kNumChannels; ++c) r[c + 1] = ridge_weight * k[c];
+    return true;
+  }
+};
+
+// occlusion: a pull towards the nearest viewpoint from which the subject's aim point is in plain view
+// (optimizer/visibility_targets.h finds it by ray casting; the targets are refreshed between rounds).
+struct ClearViewCost {
+  SampleBase base;
+  Eigen::Vector3d target_enu_m;
+  double weight = 1;
+
+  template <typename T>
+  bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
+    const T* k[4] = {k0, k1, k2, k3};
+    const SampleState<T> s = EvaluateSample(base, k);
+    for (int c = 0; c < 3; ++c) r[c] = weight * (s.position[c] - target_enu_m[c]);
+    return true;
+  }
+};
+
+}  // namespace cinepath::optimizer

@@ -1,0 +1,42 @@
+// What `cinepath optimize` is asked to do: the preset, the weights of the cost terms and the margins.
+// docs/optimize.md gives every value and why; bench/RESULTS.md gives each preset's time and result.
+#pragma once
+
+#include <string>
+
+namespace cinepath::optimizer {
+
+enum class OptimizeQuality { kDraft, kStandard, kFinal };
+OptimizeQuality ParseOptimizeQuality(const std::string& name);  // InputError for anything else
+const char* OptimizeQualityName(OptimizeQuality quality);
+
+// The weight of each cost term: residuals are made dimensionless first (docs/optimize.md, "Costs"),
+// so a weight says how much one unit of that term matters against one unit of another.
+struct CostWeights {
+  double smoothness = 1.0;   // jerk of the path change (per m/s^3), rates of the angle and lens changes
+  double framing = 80.0;     // per frame width of screen offset, per e-fold of image height
+  double sharpness = 200.0;  // per dioptre-relative excess outside the depth of field (stiff)
+  double background = 50.0;  // per fraction of the blur goal missing
+  double adherence = 0.05;   // per metre from the planned path (a gentle pull back)
+  double deviation = 200.0;  // per metre beyond max_deviation_m (stiff)
+  double ridge = 1e-3;       // per unit of every other change (keeps free channels where they were)
+  double limits = 100.0;     // per fraction of a limit exceeded (stiff)
+  double clearance = 100.0;  // per metre inside the clearance margin (stiff)
+  double occlusion = 30.0;   // per metre from the nearest viewpoint with a clear line of sight
+};
+
+struct OptimizeOptions {
+  OptimizeQuality quality = OptimizeQuality::kStandard;
+  double knot_spacing_s = 0.5;       // one set of variables per knot (docs/optimize.md, "Knots")
+  int max_iterations = 100;          // per round
+  double function_tolerance = 1e-8;  // Ceres: relative cost change that ends a round
+  int visibility_rounds = 2;         // solve, re-check lines of sight, re-target, solve again
+  double clearance_margin_m = 3.0;   // distance to the mesh the drone keeps
+  double max_deviation_m = 5.0;      // default when a shot gives none
+  double limit_margin = 0.02;        // limits are aimed at (1 - margin) of their value, so they hold after
+  CostWeights weights;
+
+  static OptimizeOptions ForQuality(OptimizeQuality quality);
+};
+
+}  // namespace cinepath::optimizer

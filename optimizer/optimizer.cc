@@ -1,0 +1,735 @@
+#include "optimizer/optimizer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <set>
+
+#include <ceres/ceres.h>
+
+#include "core/error.h"
+#include "core/geodesy.h"
+#include "core/ground.h"
+#include "core/number_format.h"
+#include "core/optics.h"
+#include "core/rotation.h"
+#include "optimizer/clearance_cost.h"
+#include "optimizer/cost_terms.h"
+#include "optimizer/plan_samples.h"
+#include "optimizer/visibility_targets.h"
+#include "scene/ray_caster.h"
+#include "scene/surface_distance.h"
+#include "shots/feasibility.h"
+
+namespace cinepath::optimizer {
+namespace {
+
+using Knot = std::array<double, kNumChannels>;
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+// The channels a `hold` name covers.
+std::vector<int> ChannelsOf(const std::string& name) {
+  if (name == "position") return {kEast, kNorth, kUp};
+  if (name == "orientation") return {kYaw, kTilt};
+  if (name == "focal_length") return {kLogFocal};
+  if (name == "focus") return {kDioptre};
+  if (name == "aperture") return {kStops};
+  return {};
+}
+
+// What one shot asks of the optimizer.
+struct ShotSettings {
+  const ShotSpan* span = nullptr;
+  std::set<int> held;  // channels
+  double max_deviation_m = 5;
+  const SubjectTrack* subject = nullptr;
+  std::vector<const SubjectTrack*> sharp;  // DoF goals (empty: none)
+  bool background = false;
+};
+
+// The corridor of the scene the flight can reach, and the query structures built on it.
+struct SceneIndex {
+  size_t faces_in_scene = 0;
+  scene::SceneMesh corridor;
+  std::unique_ptr<scene::SurfaceDistance> surface;
+  std::unique_ptr<scene::RayCaster> caster;  // null when the corridor has no faces
+  double build_s = 0;
+};
+
+class CasterGround : public Ground {
+ public:
+  CasterGround(const scene::RayCaster& caster, std::string source) : caster_(caster), source_(std::move(source)) {}
+  std::optional<double> SurfaceUpM(double east_m, double north_m, double from_up_m) const override {
+    const auto hit = caster_.SurfaceBelow(east_m, north_m, from_up_m);
+    if (!hit) return std::nullopt;
+    return hit->position_enu_m.z();
+  }
+  const std::string& source() const override { return source_; }
+
+ private:
+  const scene::RayCaster& caster_;
+  std::string source_;
+};
+
+Eigen::Vector3d AimPoint(const SubjectTrack& track, size_t k) {
+  return track.positions_enu_m[k] + Eigen::Vector3d(0, 0, track.height_m / 2.0);
+}
+
+const SubjectTrack* FindTrack(const Trajectory& plan, const std::string& name, const std::string& where) {
+  for (const auto& t : plan.subjects) {
+    if (t.name == name) return &t;
+  }
+  throw InputError(where + ": no subject named \"" + name + "\" in the plan's subjects");
+}
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+class PlanOptimizer {
+ public:
+  PlanOptimizer(const OptimizeInput& input, const OptimizeOptions& options)
+      : input_(input), plan_(input.plan), options_(options) {}
+  OptimizeResult Run();
+
+ private:
+  void ReadShots();
+  void IndexScene();
+  void MarkFreeChannels();
+  void AddTerms();
+  void AddVisibilityTargets(int round);
+  void Solve();
+  SampleState<double> StateAt(const SampleBase& base) const;
+  Trajectory Apply() const;
+  Json Report(const Trajectory& optimized, const Json& before_terms, const Json& after_terms, double total_before,
+              double total_after) const;
+  Json TermCosts(double* total);
+  std::vector<Eigen::Vector3d> Positions(bool changed) const;
+  double BlockedFraction(const Trajectory& plan, size_t* first_blocked) const;
+
+  template <typename Functor>
+  void AddSampleTerm(const std::string& term, Functor* functor, const SampleBase& base, int residuals) {
+    auto* cost = new ceres::AutoDiffCostFunction<Functor, ceres::DYNAMIC, kNumChannels, kNumChannels, kNumChannels,
+                                                 kNumChannels>(functor, residuals);
+    AddBlock(term, cost, base.knots.first_knot);
+  }
+  void AddBlock(const std::string& term, ceres::CostFunction* cost, int first_knot) {
+    std::vector<double*> blocks;
+    for (int j = 0; j < 4; ++j) blocks.push_back(knots_[first_knot + j].data());
+    terms_[term].push_back(problem_.AddResidualBlock(cost, nullptr, blocks));
+  }
+
+  const OptimizeInput& input_;
+  const Trajectory& plan_;
+  OptimizeOptions options_;
+  PlanSamples split_;
+  std::vector<ShotSettings> shots_;
+  std::vector<Knot> knots_;
+  std::vector<std::array<bool, kNumChannels>> touched_, held_;
+  SceneIndex scene_;
+  std::unique_ptr<scene::RayCaster> full_caster_;  // background distances, only when a shot asks
+  double takeoff_up_m_ = 0;
+  ceres::Problem problem_;
+  std::map<std::string, std::vector<ceres::ResidualBlockId>> terms_;
+  std::vector<std::optional<Eigen::Vector3d>> clear_targets_;  // per sample
+  size_t unresolved_views_ = 0;
+  int iterations_ = 0;
+  double solve_s_ = 0;
+  std::string termination_ = "no variables";
+  std::vector<std::string> skipped_;
+};
+
+void PlanOptimizer::ReadShots() {
+  const std::string& source = input_.plan_source;
+  for (size_t i = 0; i < plan_.shots.size(); ++i) {
+    const ShotSpan& span = plan_.shots[i];
+    const std::string where = source + ": shots[" + std::to_string(i) + "].intent";
+    ShotSettings s;
+    s.span = &span;
+    for (const auto& h : span.intent.hold) {
+      for (int c : ChannelsOf(h)) s.held.insert(c);
+    }
+    s.max_deviation_m = span.intent.max_deviation_m.value_or(options_.max_deviation_m);
+    if (!span.subject.empty())
+      s.subject = FindTrack(plan_, span.subject, source + ": shots[" + std::to_string(i) + "].subject");
+    for (const auto& name : span.intent.sharp) s.sharp.push_back(FindTrack(plan_, name, where + ".sharp"));
+    s.background = span.intent.background_blur_px.has_value();
+    if (s.background && s.sharp.empty()) {
+      if (!s.subject) throw InputError(where + ".background_blur_px: the shot has no subject to keep sharp");
+      s.sharp.push_back(s.subject);
+    }
+    shots_.push_back(s);
+  }
+}
+
+void PlanOptimizer::IndexScene() {
+  if (!input_.mesh) {
+    skipped_.push_back("clearance: no scene mesh");
+    skipped_.push_back("occlusion: no scene mesh");
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  scene_.faces_in_scene = input_.mesh->num_faces();
+  double reach = options_.clearance_margin_m + 1.0;
+  for (const auto& s : shots_) reach = std::max(reach, s.max_deviation_m + options_.clearance_margin_m + 1.0);
+  Eigen::AlignedBox3d box;
+  for (size_t k = 0; k < plan_.samples.size(); ++k) {
+    box.extend(plan_.samples[k].position_enu_m);
+    for (const auto& t : plan_.subjects) box.extend(AimPoint(t, k));
+  }
+  box.min() -= Eigen::Vector3d::Constant(reach);
+  box.max() += Eigen::Vector3d::Constant(reach);
+  const Eigen::AlignedBox3d bounds = input_.mesh->Bounds();
+  if (!bounds.isEmpty()) box.min().z() = std::min(box.min().z(), bounds.min().z() - 1.0);  // the ground under it
+  scene_.corridor = scene::CropToBox(*input_.mesh, box);
+  scene_.surface = std::make_unique<scene::SurfaceDistance>(scene_.corridor);
+  if (scene_.corridor.num_faces() > 0) {
+    scene_.caster = std::make_unique<scene::RayCaster>(scene_.corridor);
+    const auto& first = plan_.samples.front().position_enu_m;
+    if (const auto hit = scene_.caster->SurfaceBelow(first.x(), first.y())) takeoff_up_m_ = hit->position_enu_m.z();
+  }
+  scene_.build_s = Seconds(start);
+  bool background_goal = false;
+  for (const auto& s : shots_) background_goal = background_goal || s.background;
+  if (background_goal && input_.mesh->num_faces() > 0) full_caster_ = std::make_unique<scene::RayCaster>(*input_.mesh);
+}
+
+// Which channels each knot may change: some sample using it has a term on the channel, and no sample
+// using it belongs to a shot that holds it.
+void PlanOptimizer::MarkFreeChannels() {
+  knots_.assign(split_.num_knots, Knot{});
+  touched_.assign(split_.num_knots, {});
+  held_.assign(split_.num_knots, {});
+  for (size_t k = 0; k < plan_.samples.size(); ++k) {
+    const int first = split_.bases[k].knots.first_knot;
+    const int shot = split_.shot_of_sample[k];
+    std::array<bool, kNumChannels> touched{};
+    for (int c : {kEast, kNorth, kUp, kYaw, kTilt}) touched[c] = true;  // limits, framing, clearance
+    if (shot >= 0) {
+      const ShotSettings& s = shots_[shot];
+      const bool size_goal = s.span->intent.frame_height_fraction.has_value();
+      touched[kLogFocal] = size_goal || !s.sharp.empty();
+      touched[kStops] = !s.sharp.empty();
+      touched[kDioptre] = !s.sharp.empty() || s.subject != nullptr;  // DoF goals, or focus following
+    }
+    for (int j = 0; j < 4; ++j) {
+      for (int c = 0; c < kNumChannels; ++c) {
+        touched_[first + j][c] = touched_[first + j][c] || touched[c];
+        if (shot >= 0 && shots_[shot].held.count(c)) held_[first + j][c] = true;
+      }
+    }
+  }
+}
+
+void PlanOptimizer::AddTerms() {
+  const CostWeights& w = options_.weights;
+  const CameraSpec& camera = plan_.camera;
+  const ImageExtentMm image = camera.image_extent_mm();
+  const double coc_mm =
+      camera.coc_mm > 0 ? camera.coc_mm : DefaultCocMm(camera.sensor_width_mm, camera.sensor_height_mm);
+  static const Knot kZero{};
+  const double* zero[4] = {kZero.data(), kZero.data(), kZero.data(), kZero.data()};
+
+  for (size_t k = 0; k < plan_.samples.size(); ++k) {
+    const SampleBase& base = split_.bases[k];
+    const TrajectorySample& sample = plan_.samples[k];
+    const int shot = split_.shot_of_sample[k];
+    const ShotSettings* s = shot >= 0 ? &shots_[shot] : nullptr;
+    const bool moves = !(s && s->held.count(kEast) && s->held.count(kYaw));
+
+    // Framing: keep the subject where the plan put it, at the size the shot asks for.
+    if (s && s->subject && moves) {
+      const Eigen::Vector3d aim = AimPoint(*s->subject, k);
+      const SampleState<double> s0 = EvaluateSample(base, zero);
+      const Framing<double> planned =
+          MeasureFraming(base, s0, aim, s->subject->height_m, image.width_mm, image.height_mm);
+      const Eigen::Vector3d in_camera = CameraPoint(base, s0, aim);
+      if (in_camera.z() > 0.1 && std::fabs(planned.screen_x - 0.5) < 0.6 && std::fabs(planned.screen_y - 0.5) < 0.6) {
+        auto* f = new FramingCost{
+            base, aim,      s->subject->height_m, image.width_mm, image.height_mm, planned.screen_x, planned.screen_y,
+            0.0,  w.framing};
+        const ShotIntent& intent = s->span->intent;
+        if (intent.frame_height_fraction) {
+          const bool clamped = sample.focal_length_mm <= camera.min_focal_length_mm + 1e-9 ||
+                               sample.focal_length_mm >= camera.max_focal_length_mm - 1e-9;
+          if (!clamped) {
+            f->target_fraction = planned.height_fraction;
+          } else {
+            const double span = s->span->end_time_s - s->span->start_time_s;
+            const double u = span > 0 ? std::clamp((sample.time_s - s->span->start_time_s) / span, 0.0, 1.0) : 0.0;
+            const double k0 = *intent.frame_height_fraction;
+            const double k1 = intent.frame_height_fraction_end.value_or(k0);
+            f->target_fraction = std::exp((1 - u) * std::log(k0) + u * std::log(k1));
+          }
+        }
+        AddSampleTerm("framing", f, base, 3);
+      }
+    }
+
+    // Depth of field: the sharp actors inside it, the background blurred enough; or the focus following
+    // the subject when the camera may move and the shot asks nothing else of the lens.
+    if (s && !s->sharp.empty()) {
+      for (const SubjectTrack* t : s->sharp) {
+        AddSampleTerm("depth_of_field", new SharpCost{base, AimPoint(*t, k), coc_mm * 1e-3, false, w.sharpness}, base,
+                      1);
+      }
+      if (s->background) {
+        const Eigen::Vector3d aim = AimPoint(*s->subject, k);
+        double behind = s->span->intent.background_distance_m.value_or(std::numeric_limits<double>::infinity());
+        if (full_caster_) {
+          const Eigen::Vector3d dir = (aim - sample.position_enu_m).normalized();
+          const auto hit = full_caster_->Intersect(aim, dir, 0.5);
+          behind = hit ? hit->distance_m : std::numeric_limits<double>::infinity();
+        }
+        auto* b = new BackgroundBlurCost{base,
+                                         aim,
+                                         behind,
+                                         *s->span->intent.background_blur_px,
+                                         camera.width_px / (camera.sensor_width_mm * 1e-3),
+                                         w.background};
+        AddSampleTerm("background_blur", b, base, 1);
+      }
+    } else if (s && s->subject && moves && !s->held.count(kDioptre)) {
+      const Eigen::Vector3d aim = AimPoint(*s->subject, k);
+      const double depth = CameraPoint(base, EvaluateSample(base, zero), aim).z();
+      if (std::fabs(depth * base.dioptre - 1.0) < 1e-6) {
+        AddSampleTerm("depth_of_field", new SharpCost{base, aim, coc_mm * 1e-3, true, w.sharpness}, base, 1);
+      }
+    }
+
+    // Limits, keep-out, clearance.
+    AddSampleTerm("limits", new LimitsCost{base, plan_.drone, camera, takeoff_up_m_, options_.limit_margin, w.limits},
+                  base, LimitsCost::kNumResiduals);
+    const double max_dev = s ? s->max_deviation_m : options_.max_deviation_m;
+    for (const auto& t : plan_.subjects) {
+      const Eigen::Vector3d& foot = t.positions_enu_m[k];
+      if ((sample.position_enu_m - foot).norm() > plan_.drone.min_subject_distance_m + max_dev + t.height_m + 1.0)
+        continue;
+      AddSampleTerm(
+          "keep_out",
+          new KeepOutCost{base, foot, t.height_m, plan_.drone.min_subject_distance_m, options_.limit_margin, w.limits},
+          base, 1);
+    }
+    if (scene_.surface && scene_.surface->num_faces() > 0) {
+      const auto closest = scene_.surface->Closest(sample.position_enu_m);
+      if (closest && closest->distance_m < options_.clearance_margin_m + max_dev + 0.5) {
+        AddBlock("clearance",
+                 new ClearanceCost(base, scene_.surface.get(),
+                                   options_.clearance_margin_m * (1 + options_.limit_margin), w.clearance),
+                 base.knots.first_knot);
+      }
+    }
+  }
+
+  // Smoothness per spline segment, adherence per knot.
+  for (const SampleGroup& g : split_.groups) {
+    for (int seg = 0; seg < g.spline.num_segments(); ++seg) {
+      auto* f = new SmoothnessCost{g.spline.segment_s(), w.smoothness};
+      AddBlock("smoothness",
+               new ceres::AutoDiffCostFunction<SmoothnessCost, SmoothnessCost::kNumResiduals, kNumChannels,
+                                               kNumChannels, kNumChannels, kNumChannels>(f),
+               g.first_knot + seg);
+    }
+  }
+  std::vector<double> knot_deviation(knots_.size(), options_.max_deviation_m);
+  std::vector<bool> seen(knots_.size(), false);
+  for (size_t k = 0; k < plan_.samples.size(); ++k) {
+    const int shot = split_.shot_of_sample[k];
+    const double dev = shot >= 0 ? shots_[shot].max_deviation_m : options_.max_deviation_m;
+    for (int j = 0; j < 4; ++j) {
+      const int i = split_.bases[k].knots.first_knot + j;
+      knot_deviation[i] = seen[i] ? std::min(knot_deviation[i], dev) : dev;
+      seen[i] = true;
+    }
+  }
+  for (size_t i = 0; i < knots_.size(); ++i) {
+    auto* f = new AdherenceCost{knot_deviation[i], w.adherence, w.deviation, w.ridge};
+    terms_["adherence"].push_back(problem_.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<AdherenceCost, AdherenceCost::kNumResiduals, kNumChannels>(f), nullptr,
+        knots_[i].data()));
+  }
+
+  // Fixed channels: held by a shot, or touched by no term.
+  for (size_t i = 0; i < knots_.size(); ++i) {
+    std::vector<int> fixed;
+    for (int c = 0; c < kNumChannels; ++c) {
+      if (held_[i][c] || !touched_[i][c]) fixed.push_back(c);
+    }
+    if (static_cast<int>(fixed.size()) == kNumChannels) {
+      problem_.SetParameterBlockConstant(knots_[i].data());
+    } else if (!fixed.empty()) {
+      problem_.SetManifold(knots_[i].data(), new ceres::SubsetManifold(kNumChannels, fixed));
+    }
+  }
+}
+
+SampleState<double> PlanOptimizer::StateAt(const SampleBase& base) const {
+  const double* k[4];
+  for (int j = 0; j < 4; ++j) k[j] = knots_[base.knots.first_knot + j].data();
+  return EvaluateSample(base, k);
+}
+
+// Occlusion: for every sample whose subject is hidden now and that has no target yet, the nearest
+// viewpoint that sees it becomes a target.
+void PlanOptimizer::AddVisibilityTargets(int round) {
+  (void)round;
+  if (!scene_.caster) return;
+  clear_targets_.resize(plan_.samples.size());
+  for (size_t k = 0; k < plan_.samples.size(); ++k) {
+    const int shot = split_.shot_of_sample[k];
+    if (shot < 0 || !shots_[shot].subject || clear_targets_[k]) continue;
+    if (shots_[shot].held.count(kEast)) continue;
+    const SampleBase& base = split_.bases[k];
+    const Eigen::Vector3d camera = StateAt(base).position;
+    const Eigen::Vector3d aim = AimPoint(*shots_[shot].subject, k);
+    if (!LineOfSightBlocked(*scene_.caster, camera, aim)) continue;
+    const double reach = std::max(0.0, shots_[shot].max_deviation_m - (camera - base.position_enu_m).norm());
+    const auto target =
+        NearestClearViewpoint(*scene_.caster, scene_.surface.get(), camera, aim, reach, options_.clearance_margin_m);
+    if (!target) continue;
+    clear_targets_[k] = target;
+    auto* f = new ClearViewCost{base, *target, options_.weights.occlusion};
+    AddSampleTerm("occlusion", f, base, 3);
+  }
+}
+
+void PlanOptimizer::Solve() {
+  ceres::Solver::Options o;
+  o.max_num_iterations = options_.max_iterations;
+  o.function_tolerance = options_.function_tolerance;
+  o.gradient_tolerance = 1e-12;
+  o.parameter_tolerance = 1e-10;
+  o.num_threads = 1;  // determinism: the same bytes at any thread count
+  o.logging_type = ceres::SILENT;
+  o.minimizer_progress_to_stdout = false;
+  // Eigen's sparse Cholesky: SuiteSparse's supernodal factorization goes through a threaded BLAS, whose
+  // sums depend on the machine's core count (the same plan gave other bytes on 1 and 2 cores).
+  if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
+    o.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    o.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+  } else {
+    o.linear_solver_type = ceres::DENSE_QR;
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(o, &problem_, &summary);
+  iterations_ += static_cast<int>(summary.iterations.size()) - 1;
+  solve_s_ += summary.total_time_in_seconds;
+  termination_ = summary.message;
+  if (summary.termination_type == ceres::FAILURE) throw RuntimeError("optimize: the solver failed: " + summary.message);
+}
+
+Json PlanOptimizer::TermCosts(double* total) {
+  Json out = Json::object();
+  *total = 0;
+  for (const auto& [name, ids] : terms_) {
+    ceres::Problem::EvaluateOptions eo;
+    eo.residual_blocks = ids;
+    eo.num_threads = 1;
+    double cost = 0;
+    problem_.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
+    out[name] = RoundToDecimals(cost, 9);
+    *total += cost;
+  }
+  return out;
+}
+
+Trajectory PlanOptimizer::Apply() const {
+  Trajectory out = plan_;
+  std::optional<EnuFrame> frame;
+  if (out.origin) frame.emplace(*out.origin);
+  const ImageExtentMm image = out.camera.image_extent_mm();
+  const auto apply = [&](const SampleBase& base, const SampleState<double>& s, Eigen::Vector3d* position,
+                         Eigen::Quaterniond* world_from_camera, double* focal_mm, double* focus_m, double* f_number) {
+    *position = s.position;
+    if (s.yaw != 0 || s.tilt != 0) *world_from_camera = ChangedWorldFromCamera(base, s.yaw, s.tilt).normalized();
+    *focal_mm = FocalLengthMm(base, s);
+    if (s.dioptre != base.dioptre)
+      *focus_m = s.dioptre > 1e-12 ? 1.0 / s.dioptre : std::numeric_limits<double>::infinity();
+    *f_number = FNumber(base, s);
+  };
+  for (size_t k = 0; k < out.samples.size(); ++k) {
+    TrajectorySample& sample = out.samples[k];
+    const SampleBase& base = split_.bases[k];
+    const SampleState<double> s = StateAt(base);
+    const bool moved = s.yaw != 0 || s.tilt != 0 || s.log_focal != 0 || s.position != base.position_enu_m;
+    apply(base, s, &sample.position_enu_m, &sample.world_from_camera, &sample.focal_length_mm, &sample.focus_distance_m,
+          &sample.f_number);
+    if (s.yaw != 0 || s.tilt != 0) {
+      const GimbalAngles g = GimbalFromWorldFromCamera(sample.world_from_camera);
+      sample.drone_heading_deg = g.drone_heading_deg;
+      sample.gimbal_pitch_deg = g.gimbal_pitch_deg;
+      sample.gimbal_roll_deg = g.gimbal_roll_deg;
+      sample.gimbal_yaw_deg = g.gimbal_yaw_deg;
+    }
+    if (frame && s.position != base.position_enu_m) sample.geodetic = frame->GeodeticFromEnu(sample.position_enu_m);
+    if (moved) {
+      sample.subjects_in_frame.clear();
+      const Eigen::Quaterniond camera_from_world = sample.world_from_camera.conjugate();
+      for (const auto& t : out.subjects) {
+        const Eigen::Vector3d c = camera_from_world * (AimPoint(t, k) - sample.position_enu_m);
+        if (c.z() > 1e-9 && std::fabs(c.x() / c.z()) <= image.width_mm / (2.0 * sample.focal_length_mm) &&
+            std::fabs(c.y() / c.z()) <= image.height_mm / (2.0 * sample.focal_length_mm)) {
+          sample.subjects_in_frame.push_back(t.name);
+        }
+      }
+    }
+  }
+  // Keyframes follow the change at their own times (in their shot's group).
+  for (Keyframe& key : out.keyframes) {
+    size_t k = 0;
+    while (k < out.samples.size() &&
+           !(plan_.samples[k].shot == key.shot && plan_.samples[k].time_s >= key.time_s - 1e-9))
+      ++k;
+    if (k == out.samples.size()) continue;
+    const SampleGroup& g = split_.groups[split_.group_of_sample[k]];
+    SampleBase base;
+    base.knots = g.spline.At(key.time_s);
+    base.knots.first_knot += g.first_knot;
+    base.position_enu_m = key.position_enu_m;
+    base.world_from_camera = key.world_from_camera.normalized();
+    base.focal_length_mm = key.focal_length_mm;
+    base.dioptre = std::isinf(key.focus_distance_m) ? 0.0 : 1.0 / key.focus_distance_m;
+    base.f_number = key.f_number;
+    apply(base, StateAt(base), &key.position_enu_m, &key.world_from_camera, &key.focal_length_mm, &key.focus_distance_m,
+          &key.f_number);
+  }
+  std::unique_ptr<CasterGround> ground;
+  if (scene_.caster) ground = std::make_unique<CasterGround>(*scene_.caster, input_.scene_source);
+  out.feasibility = shots::CheckFeasibility(out, split_.cut_before, {}, ground.get());
+  return out;
+}
+
+double PlanOptimizer::BlockedFraction(const Trajectory& plan, size_t* first_blocked) const {
+  size_t blocked = 0, checked = 0;
+  *first_blocked = plan.samples.size();
+  if (!scene_.caster) return 0;
+  for (size_t k = 0; k < plan.samples.size(); ++k) {
+    const int shot = split_.shot_of_sample[k];
+    if (shot < 0 || !shots_[shot].subject) continue;
+    ++checked;
+    if (LineOfSightBlocked(*scene_.caster, plan.samples[k].position_enu_m, AimPoint(*shots_[shot].subject, k))) {
+      ++blocked;
+      *first_blocked = std::min(*first_blocked, k);
+    }
+  }
+  return checked ? static_cast<double>(blocked) / checked : 0.0;
+}
+
+Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms, const Json& after_terms,
+                           double total_before, double total_after) const {
+  Json report = Json::object();
+  report["format"] = "cinepath.optimize-report";
+  report["version"] = 1;
+  report["plan"] = std::filesystem::path(input_.plan_source).filename().string();
+  report["scene"] = input_.mesh ? Json(input_.scene_source) : Json(nullptr);
+  report["quality"] = OptimizeQualityName(options_.quality);
+  report["knot_spacing_s"] = options_.knot_spacing_s;
+  Json terms = Json::object();
+  for (const auto& [name, value] : before_terms.items()) {
+    Json t = Json::object();
+    t["before"] = value;
+    t["after"] = after_terms[name];
+    terms[name] = t;
+  }
+  report["terms"] = terms;
+  Json total = Json::object();
+  total["before"] = RoundToDecimals(total_before, 9);
+  total["after"] = RoundToDecimals(total_after, 9);
+  report["total"] = total;
+
+  // The worst violation of every limit, before and after.
+  const auto worst = [](const FeasibilityReport& r) {
+    std::map<std::string, const FeasibilityViolation*> w;
+    for (const auto& v : r.violations) {
+      auto& slot = w[v.limit];
+      if (!slot || std::fabs(v.worst_value - v.limit_value) > std::fabs(slot->worst_value - slot->limit_value))
+        slot = &v;
+    }
+    return w;
+  };
+  std::unique_ptr<CasterGround> ground;
+  if (scene_.caster) ground = std::make_unique<CasterGround>(*scene_.caster, input_.scene_source);
+  const FeasibilityReport before = shots::CheckFeasibility(plan_, split_.cut_before, {}, ground.get());
+  const auto wb = worst(before), wa = worst(optimized.feasibility);
+  std::set<std::string> names;
+  for (const auto& [n, v] : wb) names.insert(n);
+  for (const auto& [n, v] : wa) names.insert(n);
+  Json limits = Json::object();
+  for (const auto& n : names) {
+    Json l = Json::object();
+    const FeasibilityViolation* any = wb.count(n) ? wb.at(n) : wa.at(n);
+    l["limit"] = RoundToDecimals(any->limit_value, 6);
+    l["unit"] = any->unit;
+    l["before"] = wb.count(n) ? Json(RoundToDecimals(wb.at(n)->worst_value, 6)) : Json(nullptr);
+    l["after"] = wa.count(n) ? Json(RoundToDecimals(wa.at(n)->worst_value, 6)) : Json(nullptr);
+    limits[n] = l;
+  }
+  report["limits"] = limits;
+  report["feasible_before"] = before.feasible();
+  report["feasible_after"] = optimized.feasibility.feasible();
+
+  // Deviation from the planned path.
+  double max_dev = 0;
+  for (size_t k = 0; k < plan_.samples.size(); ++k) {
+    max_dev = std::max(max_dev, (optimized.samples[k].position_enu_m - plan_.samples[k].position_enu_m).norm());
+  }
+  report["max_deviation_m"] = RoundToDecimals(max_dev, 6);
+
+  // The scene: clearance and lines of sight, before and after.
+  if (scene_.surface) {
+    const auto min_clearance = [&](const Trajectory& p) {
+      double m = std::numeric_limits<double>::infinity();
+      for (const auto& s : p.samples) {
+        if (const auto c = scene_.surface->Closest(s.position_enu_m)) m = std::min(m, c->distance_m);
+      }
+      return std::isinf(m) ? Json(nullptr) : Json(RoundToDecimals(m, 6));
+    };
+    Json c = Json::object();
+    c["margin_m"] = options_.clearance_margin_m;
+    c["min_before_m"] = min_clearance(plan_);
+    c["min_after_m"] = min_clearance(optimized);
+    c["faces_in_scene"] = scene_.faces_in_scene;
+    c["faces_indexed"] = scene_.corridor.num_faces();
+    c["index_s"] = RoundToDecimals(scene_.build_s, 4);
+    report["clearance"] = c;
+    size_t first_b = 0, first_a = 0;
+    Json o = Json::object();
+    o["blocked_fraction_before"] = RoundToDecimals(BlockedFraction(plan_, &first_b), 6);
+    o["blocked_fraction_after"] = RoundToDecimals(BlockedFraction(optimized, &first_a), 6);
+    o["first_blocked_time_s"] =
+        first_a < optimized.samples.size() ? Json(optimized.samples[first_a].time_s) : Json(nullptr);
+    o["frames_without_clear_view"] = unresolved_views_;
+    report["occlusion"] = o;
+  }
+
+  // Per shot: the subject's blur and the background's, after.
+  const CameraSpec& camera = plan_.camera;
+  Json shots = Json::array();
+  for (size_t i = 0; i < shots_.size(); ++i) {
+    const ShotSettings& s = shots_[i];
+    Json j = Json::object();
+    j["name"] = s.span->name;
+    double subject_blur = 0, background_blur = std::numeric_limits<double>::infinity();
+    bool any = false;
+    for (size_t k = 0; k < optimized.samples.size(); ++k) {
+      if (split_.shot_of_sample[k] != static_cast<int>(i) || !s.subject) continue;
+      const TrajectorySample& t = optimized.samples[k];
+      const Eigen::Vector3d aim = AimPoint(*s.subject, k);
+      const double depth = (t.world_from_camera.conjugate() * (aim - t.position_enu_m)).z();
+      if (depth <= t.focal_length_mm * 1e-3) continue;
+      any = true;
+      const double px = camera.width_px / camera.sensor_width_mm;
+      subject_blur =
+          std::max(subject_blur, BlurCircleMm(t.focal_length_mm, t.f_number, t.focus_distance_m, depth) * px);
+      if (s.background) {
+        double behind = s.span->intent.background_distance_m.value_or(std::numeric_limits<double>::infinity());
+        if (full_caster_) {
+          const auto hit = full_caster_->Intersect(aim, (aim - t.position_enu_m).normalized(), 0.5);
+          behind = hit ? hit->distance_m : std::numeric_limits<double>::infinity();
+        }
+        const double d = depth + behind;
+        const double blur = std::isinf(d) ? BlurCircleMm(t.focal_length_mm, t.f_number, t.focus_distance_m, 1e12)
+                                          : BlurCircleMm(t.focal_length_mm, t.f_number, t.focus_distance_m, d);
+        background_blur = std::min(background_blur, blur * px);
+      }
+    }
+    j["subject_blur_px_max"] = any ? Json(RoundToDecimals(subject_blur, 4)) : Json(nullptr);
+    if (s.background) {
+      j["background_blur_px_goal"] = *s.span->intent.background_blur_px;
+      j["background_blur_px_min"] = any ? Json(RoundToDecimals(background_blur, 4)) : Json(nullptr);
+    }
+    shots.push_back(j);
+  }
+  report["shots"] = shots;
+
+  Json solver = Json::object();
+  solver["iterations"] = iterations_;
+  solver["time_s"] = RoundToDecimals(solve_s_, 4);
+  solver["stopped"] = termination_;
+  solver["variables"] = problem_.NumParameters();
+  solver["residuals"] = problem_.NumResiduals();
+  report["solver"] = solver;
+  report["skipped"] = skipped_;
+  return report;
+}
+
+OptimizeResult PlanOptimizer::Run() {
+  split_ = SplitPlan(plan_, options_.knot_spacing_s, input_.plan_source);
+  ReadShots();
+  IndexScene();
+  MarkFreeChannels();
+  AddTerms();
+  AddVisibilityTargets(0);
+
+  for (int round = 0; round < std::max(1, options_.visibility_rounds); ++round) {
+    if (round > 0) {
+      const size_t before = terms_["occlusion"].size();
+      AddVisibilityTargets(round);
+      if (terms_["occlusion"].size() == before) break;
+    }
+    Solve();
+  }
+  if (terms_.count("occlusion") && terms_["occlusion"].empty()) terms_.erase("occlusion");
+
+  // Costs before (every knot at zero: the plan as given) and after.
+  const std::vector<Knot> solution = knots_;
+  for (auto& k : knots_) k.fill(0.0);
+  double total_before = 0, total_after = 0;
+  const Json before = TermCosts(&total_before);
+  knots_ = solution;
+  const Json after = TermCosts(&total_after);
+
+  OptimizeResult result;
+  result.plan = Apply();
+  // Frames still hidden after the last round.
+  size_t first_blocked = 0;
+  if (scene_.caster && BlockedFraction(result.plan, &first_blocked) > 0) {
+    for (size_t k = 0; k < result.plan.samples.size(); ++k) {
+      const int shot = split_.shot_of_sample[k];
+      if (shot >= 0 && shots_[shot].subject &&
+          LineOfSightBlocked(*scene_.caster, result.plan.samples[k].position_enu_m,
+                             AimPoint(*shots_[shot].subject, k))) {
+        ++unresolved_views_;
+      }
+    }
+  }
+  result.report = Report(result.plan, before, after, total_before, total_after);
+
+  Json record = Json::object();
+  record["by"] = "cinepath optimize";
+  record["quality"] = OptimizeQualityName(options_.quality);
+  record["knot_spacing_s"] = options_.knot_spacing_s;
+  record["scene"] = input_.mesh ? Json(input_.scene_source) : Json(nullptr);
+  Json names = Json::array();
+  for (const auto& [name, ids] : terms_) names.push_back(name);
+  record["terms"] = names;
+  record["cost_before"] = RoundToDecimals(total_before, 9);
+  record["cost_after"] = RoundToDecimals(total_after, 9);
+  record["iterations"] = iterations_;
+  result.plan.optimized = record;
+
+  if (!result.plan.feasibility.feasible()) {
+    const FeasibilityViolation& v = result.plan.feasibility.violations.front();
+    result.failure = v.limit + " in shot \"" + v.shot + "\" from " + FormatShortest(v.start_time_s) + " s to " +
+                     FormatShortest(v.end_time_s) + " s (worst " + FormatSignificant(v.worst_value) + " " + v.unit +
+                     ", limit " + FormatSignificant(v.limit_value) + " " + v.unit + ")";
+  } else if (unresolved_views_ > 0) {
+    result.failure = "the subject is hidden by the scene in " + std::to_string(unresolved_views_) +
+                     " frames (first at " + FormatShortest(result.plan.samples[first_blocked].time_s) +
+                     " s); is it inside the mesh?";
+  }
+  return result;
+}
+
+}  // namespace
+
+OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options) {
+  PlanOptimizer optimizer(input, options);
+  return optimizer.Run();
+}
+
+}  // namespace cinepath::optimizer

@@ -1,0 +1,39 @@
+// `cinepath optimize`: a plan's drone path, camera orientation, focal length, focus and aperture solved
+// together, as one least-squares problem over the whole plan (Ceres), against the scene's mesh when
+// there is one. docs/optimize.md describes the problem, every cost and weight, and the report.
+//
+// The variables are a change to the plan (optimizer/sample_model.h), a C2 spline through knots
+// (optimizer/knot_spline.h); a plan with nothing to improve has zero cost and comes back unchanged.
+// Only what the plan asks for is modelled: no clearance or occlusion terms without a mesh, no depth of
+// field terms for a shot without goals, and a lens channel no term touches stays exactly as planned.
+// The output is a plan of the same schema, its feasibility recomputed with `plan`'s own check.
+// Deterministic: one solver thread, terms added in sample order.
+#pragma once
+
+#include <string>
+
+#include "core/json.h"
+#include "core/trajectory.h"
+#include "optimizer/optimize_options.h"
+#include "scene/scene_mesh.h"
+
+namespace cinepath::optimizer {
+
+struct OptimizeInput {
+  Trajectory plan;
+  std::string plan_source = "plan.json";   // for messages
+  const scene::SceneMesh* mesh = nullptr;  // the scene (ENU, the plan's frame), or null
+  std::string scene_source;                // scene.json's name, for the record
+};
+
+struct OptimizeResult {
+  Trajectory plan;  // optimized, with `optimized` filled in and feasibility recomputed
+  Json report;      // report.json (docs/optimize.md, "Report")
+  // Empty when every hard limit holds and every frame sees its subject; else what breaks, with its
+  // time range (what --strict refuses).
+  std::string failure;
+};
+
+OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options);
+
+}  // namespace cinepath::optimizer

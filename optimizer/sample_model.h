@@ -1,0 +1,119 @@
+// One plan sample as the optimizer sees it: the planned values, fixed, plus the change carried by four
+// knots of the spline (optimizer/knot_spline.h). Templated so that Ceres' automatic differentiation
+// runs through it (T = double or ceres::Jet).
+//
+// The change has eight channels per knot (Channel): the position offset (ENU metres); `yaw`, a rotation
+// of the camera about the world's up axis (radians, counter-clockwise seen from above, so the compass
+// heading drops by it); `tilt`, a rotation about the camera's x axis (radians, positive looks up); the
+// focal length as a log ratio (f = f0 exp(log_focal)); the focus in dioptres (D = D0 + dioptre, D0 = 1/s0,
+// 0 at infinity); and the aperture in stops (N = N0 2^(stops/2)). The camera rotation is
+//   world_from_camera = Rz(yaw) * world_from_camera0 * Rx(tilt),
+// which keeps a level horizon level: neither rotation rolls the image.
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "optimizer/knot_spline.h"
+
+namespace cinepath::optimizer {
+
+enum Channel { kEast = 0, kNorth, kUp, kYaw, kTilt, kLogFocal, kDioptre, kStops, kNumChannels };
+
+// What one sample was before the change, and the planned path's derivatives there (finite differences
+// over the samples, as the feasibility check takes them).
+struct SampleBase {
+  KnotWeights knots;  // first_knot indexes the problem's knot list
+  Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond world_from_camera = Eigen::Quaterniond::Identity();
+  Eigen::Matrix3d camera_from_world = Eigen::Matrix3d::Identity();
+  double focal_length_mm = 24;
+  double dioptre = 0.1;  // 1 / focus distance (0 at infinity)
+  double f_number = 4;
+  double pitch_deg = 0;
+  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d acceleration_m_s2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d jerk_m_s3 = Eigen::Vector3d::Zero();
+  double heading_rate_deg_s = 0;  // compass heading, clockwise
+  double pitch_rate_deg_s = 0;
+  double focal_rate_mm_s = 0;
+  double aperture_rate_stops_s = 0;
+  bool has_rates = false;  // false for a sample alone between cuts
+  bool has_jerk = false;   // needs four samples in its group
+};
+
+template <typename T>
+using Vec3T = Eigen::Matrix<T, 3, 1>;
+
+// The sample with the change applied, and the change's time derivatives.
+template <typename T>
+struct SampleState {
+  Vec3T<T> position, velocity, acceleration, jerk;  // velocity... are the change's derivatives only
+  T yaw, yaw_rate, tilt, tilt_rate;
+  T log_focal, log_focal_rate, dioptre, dioptre_rate, stops, stops_rate;
+};
+
+template <typename T>
+T Blend(const std::array<double, 4>& w, const T* const* k, int channel) {
+  return w[0] * k[0][channel] + w[1] * k[1][channel] + w[2] * k[2][channel] + w[3] * k[3][channel];
+}
+
+template <typename T>
+SampleState<T> EvaluateSample(const SampleBase& b, const T* const* k) {
+  const KnotWeights& w = b.knots;
+  SampleState<T> s;
+  for (int c = 0; c < 3; ++c) {
+    s.position[c] = T(b.position_enu_m[c]) + Blend(w.value, k, c);
+    s.velocity[c] = Blend(w.d1, k, c);
+    s.acceleration[c] = Blend(w.d2, k, c);
+    s.jerk[c] = Blend(w.d3, k, c);
+  }
+  s.yaw = Blend(w.value, k, kYaw);
+  s.yaw_rate = Blend(w.d1, k, kYaw);
+  s.tilt = Blend(w.value, k, kTilt);
+  s.tilt_rate = Blend(w.d1, k, kTilt);
+  s.log_focal = Blend(w.value, k, kLogFocal);
+  s.log_focal_rate = Blend(w.d1, k, kLogFocal);
+  s.dioptre = T(b.dioptre) + Blend(w.value, k, kDioptre);
+  s.dioptre_rate = Blend(w.d1, k, kDioptre);
+  s.stops = Blend(w.value, k, kStops);
+  s.stops_rate = Blend(w.d1, k, kStops);
+  return s;
+}
+
+// A world point in the changed camera's frame (x right, y down, z forward):
+// camera_from_world = Rx(-tilt) * camera_from_world0 * Rz(-yaw).
+template <typename T>
+Vec3T<T> CameraPoint(const SampleBase& b, const SampleState<T>& s, const Eigen::Vector3d& point_enu_m) {
+  using std::cos;
+  using std::sin;
+  const Vec3T<T> v = point_enu_m.cast<T>() - s.position;
+  const T cy = cos(s.yaw), sy = sin(s.yaw);
+  const Vec3T<T> u(cy * v[0] + sy * v[1], -sy * v[0] + cy * v[1], v[2]);
+  const Vec3T<T> c = b.camera_from_world.cast<T>() * u;
+  const T ct = cos(s.tilt), st = sin(s.tilt);
+  return Vec3T<T>(c[0], ct * c[1] + st * c[2], -st * c[1] + ct * c[2]);
+}
+
+template <typename T>
+T FocalLengthMm(const SampleBase& b, const SampleState<T>& s) {
+  using std::exp;
+  return b.focal_length_mm * exp(s.log_focal);
+}
+
+template <typename T>
+T FNumber(const SampleBase& b, const SampleState<T>& s) {
+  using std::exp;
+  return b.f_number * exp(s.stops * (0.5 * std::log(2.0)));
+}
+
+// The changed camera orientation, for the output (doubles).
+inline Eigen::Quaterniond ChangedWorldFromCamera(const SampleBase& b, double yaw, double tilt) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())) * b.world_from_camera *
+         Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()));
+}
+
+}  // namespace cinepath::optimizer

@@ -1,0 +1,49 @@
+#include "optimizer/visibility_targets.h"
+
+#include <cmath>
+#include <vector>
+
+namespace cinepath::optimizer {
+
+bool LineOfSightBlocked(const scene::RayCaster& caster, const Eigen::Vector3d& camera_enu_m,
+                        const Eigen::Vector3d& aim_enu_m) {
+  const Eigen::Vector3d d = aim_enu_m - camera_enu_m;
+  const double length = d.norm();
+  if (length < 0.4) return false;
+  return caster.Occluded(camera_enu_m, d / length, 0.05, length - 0.3);
+}
+
+std::optional<Eigen::Vector3d> NearestClearViewpoint(const scene::RayCaster& caster,
+                                                     const scene::SurfaceDistance* surface,
+                                                     const Eigen::Vector3d& camera_enu_m,
+                                                     const Eigen::Vector3d& aim_enu_m, double max_radius_m,
+                                                     double clearance_margin_m) {
+  // Directions: up, then 8 compass directions (from "away from the subject", clockwise) at 60, 30, 0 deg.
+  Eigen::Vector3d away = camera_enu_m - aim_enu_m;
+  away.z() = 0;
+  const double away_heading = away.norm() > 1e-9 ? std::atan2(away.x(), away.y()) : 0.0;
+  std::vector<Eigen::Vector3d> directions = {Eigen::Vector3d::UnitZ()};
+  for (double elevation_deg : {60.0, 30.0, 0.0}) {
+    const double el = elevation_deg * M_PI / 180.0;
+    for (int i = 0; i < 8; ++i) {
+      const double heading = away_heading + i * M_PI / 4.0;
+      directions.emplace_back(std::cos(el) * std::sin(heading), std::cos(el) * std::cos(heading), std::sin(el));
+    }
+  }
+  for (double radius = 0.5; radius <= max_radius_m + 1e-9; radius += 0.5) {
+    for (const Eigen::Vector3d& u : directions) {
+      const Eigen::Vector3d candidate = camera_enu_m + radius * u;
+      if (LineOfSightBlocked(caster, candidate, aim_enu_m)) continue;
+      // The move itself must not pass through the mesh, and the viewpoint must keep the margin.
+      if (caster.Occluded(camera_enu_m, u, 0.0, radius)) continue;
+      if (surface) {
+        const auto closest = surface->Closest(candidate);
+        if (closest && closest->distance_m < clearance_margin_m) continue;
+      }
+      return candidate;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace cinepath::optimizer
