@@ -27,16 +27,24 @@ PLAN_ARGS=()
 if has plan; then
   step "cinepath plan: the sample's shots on its ground -> plan.json (+ CSV and SVG plot)"
   "$CINEPATH" plan "$SHOTS" "${PLAN_ARGS[@]}" --csv "$OUT/plan.csv" --plot "$OUT/plan.svg" -o "$OUT/plan.json"
+  FLIGHT=$OUT/plan.json
+  if has optimize; then
+    step "cinepath optimize: path and lens together against the scene -> optimized.json (+ report)"
+    "$CINEPATH" optimize "$OUT/plan.json" "${PLAN_ARGS[@]}" --quality draft --report "$OUT/optimize_report.json" \
+      -o "$OUT/optimized.json"
+    python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); print("cost %.4g -> %.4g; worst limits before/after:" % (r["total"]["before"], r["total"]["after"]), {k: (v["before"], v["after"]) for k, v in r["limits"].items()})' "$OUT/optimize_report.json"
+    FLIGHT=$OUT/optimized.json
+  fi
   if has render && [[ -f "$OUT/scene/scene.json" ]]; then
     step "cinepath render: every 3 s of the plan, 640 px, sun shading, with a contact sheet"
-    "$CINEPATH" render "$OUT/plan.json" --scene "$OUT/scene/scene.json" --every 90 --width-px 640 --shading sun \
+    "$CINEPATH" render "$FLIGHT" --scene "$OUT/scene/scene.json" --every 90 --width-px 640 --shading sun \
       --overlay --contact-sheet "$OUT/contact_sheet.png" -o "$OUT/frames"
     ls "$OUT/frames" | head -3
   fi
   if has export; then
-    step "cinepath export: plan.json -> missions for QGroundControl, MAVLink, DJI and Litchi"
+    step "cinepath export: the flight -> missions for QGroundControl, MAVLink, DJI and Litchi"
     mkdir -p "$OUT/missions"
-    "$CINEPATH" export "$OUT/plan.json" "${PLAN_ARGS[@]}" --format qgc-plan --format qgc-wpl --format mavlink-bin \
+    "$CINEPATH" export "$FLIGHT" "${PLAN_ARGS[@]}" --format qgc-plan --format qgc-wpl --format mavlink-bin \
       --format dji-wpml --format dji-msdk-json --format litchi-csv -o "$OUT/missions"
     ls -l "$OUT/missions"
   fi
