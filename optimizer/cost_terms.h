@@ -227,11 +227,11 @@ struct KeepOutCost {
   }
 };
 
-// smoothness: over one spline segment, the jerk of the path change and the rates and accelerations of
-// the angle and lens changes (at the segment's middle), each over a reference scale, times sqrt(h) so
-// that the sum over segments approximates an integral over time whatever the knot spacing.
+// smoothness: over one spline segment, the jerk and the acceleration of the path change and the rates
+// and accelerations of the angle and lens changes (at the segment's middle), each over a reference scale, times sqrt(h)
+// so that the sum over segments approximates an integral over time whatever the knot spacing.
 struct SmoothnessCost {
-  static constexpr int kNumResiduals = 13;
+  static constexpr int kNumResiduals = 16;
   double segment_s = 0.5;
   double weight = 1;
 
@@ -253,6 +253,7 @@ struct SmoothnessCost {
     r[10] = w * rate(kLogFocal) / 0.5;
     r[11] = w * rate(kDioptre) / 0.05;
     r[12] = w * rate(kStops) / 1.0;
+    for (int c = 0; c < 3; ++c) r[13 + c] = w * accel(c) / 1.0;  // m/s^2: jerk alone rings around a pull
     return true;
   }
 };

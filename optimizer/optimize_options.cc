@@ -34,13 +34,13 @@ OptimizeOptions OptimizeOptions::ForQuality(OptimizeQuality quality) {
       o.knot_spacing_s = 0.5;
       o.max_iterations = 100;
       o.function_tolerance = 1e-8;
-      o.visibility_rounds = 2;
+      o.visibility_rounds = 4;
       break;
     case OptimizeQuality::kFinal:
       o.knot_spacing_s = 0.25;
       o.max_iterations = 300;
       o.function_tolerance = 1e-10;
-      o.visibility_rounds = 3;
+      o.visibility_rounds = 6;
       break;
   }
   return o;

@@ -17,7 +17,7 @@ struct CostWeights {
   double framing = 80.0;     // per frame width of screen offset, per e-fold of image height
   double sharpness = 200.0;  // per dioptre-relative excess outside the depth of field (stiff)
   double background = 50.0;  // per fraction of the blur goal missing
-  double adherence = 0.05;   // per metre from the planned path (a gentle pull back)
+  double adherence = 0.5;    // per metre from the planned path (a gentle pull back)
   double deviation = 200.0;  // per metre beyond max_deviation_m (stiff)
   double ridge = 1e-3;       // per unit of every other change (keeps free channels where they were)
   double limits = 100.0;     // per fraction of a limit exceeded (stiff)
@@ -30,7 +30,7 @@ struct OptimizeOptions {
   double knot_spacing_s = 0.5;       // one set of variables per knot (docs/optimize.md, "Knots")
   int max_iterations = 100;          // per round
   double function_tolerance = 1e-8;  // Ceres: relative cost change that ends a round
-  int visibility_rounds = 2;         // solve, re-check lines of sight, re-target, solve again
+  int visibility_rounds = 4;         // solve, re-check lines of sight, re-target the hidden frames, solve again
   double clearance_margin_m = 3.0;   // distance to the mesh the drone keeps
   double max_deviation_m = 5.0;      // default when a shot gives none
   double limit_margin = 0.02;        // limits are aimed at (1 - margin) of their value, so they hold after

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -101,8 +102,10 @@ class PlanOptimizer {
   void IndexScene();
   void MarkFreeChannels();
   void AddTerms();
-  void AddVisibilityTargets(int round);
-  void Solve();
+  size_t AddVisibilityTargets();
+  // How far past the first clear viewpoint a target is set: the pull stops just short of its target.
+  static constexpr double kTargetOvershootM = 0.75;
+  void Solve(bool ramp);
   SampleState<double> StateAt(const SampleBase& base) const;
   Trajectory Apply() const;
   Json Report(const Trajectory& optimized, const Json& before_terms, const Json& after_terms, double total_before,
@@ -120,8 +123,12 @@ class PlanOptimizer {
   void AddBlock(const std::string& term, ceres::CostFunction* cost, int first_knot) {
     std::vector<double*> blocks;
     for (int j = 0; j < 4; ++j) blocks.push_back(knots_[first_knot + j].data());
-    terms_[term].push_back(problem_.AddResidualBlock(cost, nullptr, blocks));
+    ceres::LossFunction* loss = IsStiff(term) ? stiffness_.get() : nullptr;
+    terms_[term].push_back(problem_.AddResidualBlock(cost, loss, blocks));
   }
+  // The drone's and the lens's limits: penalties whose weight is ramped up over the solve (Solve). The
+  // clearance is at full weight from the start: a soft stage must not let the path ring into the ground.
+  static bool IsStiff(const std::string& term) { return term == "limits" || term == "keep_out"; }
 
   const OptimizeInput& input_;
   const Trajectory& plan_;
@@ -133,10 +140,19 @@ class PlanOptimizer {
   SceneIndex scene_;
   std::unique_ptr<scene::RayCaster> full_caster_;  // background distances, only when a shot asks
   double takeoff_up_m_ = 0;
-  ceres::Problem problem_;
+  // Shared by every stiff block (the problem does not own it): a scale on their cost, ramped by Solve.
+  std::unique_ptr<ceres::LossFunctionWrapper> stiffness_ =
+      std::make_unique<ceres::LossFunctionWrapper>(nullptr, ceres::TAKE_OWNERSHIP);
+  ceres::Problem problem_{ProblemOptions()};
+  static ceres::Problem::Options ProblemOptions() {
+    ceres::Problem::Options o;
+    o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    return o;
+  }
   std::map<std::string, std::vector<ceres::ResidualBlockId>> terms_;
-  std::vector<std::optional<Eigen::Vector3d>> clear_targets_;  // per sample
+  std::vector<ceres::ResidualBlockId> occlusion_blocks_;  // per sample, null when it has no target
   size_t unresolved_views_ = 0;
+  size_t frames_without_target_ = 0;  // blocked, and no clear viewpoint within reach (summed over rounds)
   int iterations_ = 0;
   double solve_s_ = 0;
   std::string termination_ = "no variables";
@@ -375,37 +391,49 @@ SampleState<double> PlanOptimizer::StateAt(const SampleBase& base) const {
 
 // Occlusion: for every sample whose subject is hidden now and that has no target yet, the nearest
 // viewpoint that sees it becomes a target.
-void PlanOptimizer::AddVisibilityTargets(int round) {
-  (void)round;
-  if (!scene_.caster) return;
-  clear_targets_.resize(plan_.samples.size());
+// Occlusion: every sample whose subject is hidden now gets as target the nearest viewpoint that sees it
+// (a sample still hidden after a round is re-targeted from where it got to). Returns how many targets
+// were set.
+size_t PlanOptimizer::AddVisibilityTargets() {
+  if (!scene_.caster) return 0;
+  occlusion_blocks_.resize(plan_.samples.size(), nullptr);
+  size_t set = 0;
   for (size_t k = 0; k < plan_.samples.size(); ++k) {
     const int shot = split_.shot_of_sample[k];
-    if (shot < 0 || !shots_[shot].subject || clear_targets_[k]) continue;
-    if (shots_[shot].held.count(kEast)) continue;
+    if (shot < 0 || !shots_[shot].subject || shots_[shot].held.count(kEast)) continue;
     const SampleBase& base = split_.bases[k];
     const Eigen::Vector3d camera = StateAt(base).position;
     const Eigen::Vector3d aim = AimPoint(*shots_[shot].subject, k);
     if (!LineOfSightBlocked(*scene_.caster, camera, aim)) continue;
-    const double reach = std::max(0.0, shots_[shot].max_deviation_m - (camera - base.position_enu_m).norm());
-    const auto target =
-        NearestClearViewpoint(*scene_.caster, scene_.surface.get(), camera, aim, reach, options_.clearance_margin_m);
-    if (!target) continue;
-    clear_targets_[k] = target;
-    auto* f = new ClearViewCost{base, *target, options_.weights.occlusion};
-    AddSampleTerm("occlusion", f, base, 3);
+    // Stay a quarter metre inside the deviation bound, whose hinge would otherwise hold the camera short.
+    const double reach = std::max(0.0, shots_[shot].max_deviation_m - 0.25 - (camera - base.position_enu_m).norm());
+    const auto target = NearestClearViewpoint(*scene_.caster, scene_.surface.get(), camera, aim, reach,
+                                              options_.clearance_margin_m, kTargetOvershootM);
+    if (!target) {
+      ++frames_without_target_;
+      continue;
+    }
+    if (occlusion_blocks_[k]) {
+      problem_.RemoveResidualBlock(occlusion_blocks_[k]);
+      auto& ids = terms_["occlusion"];
+      ids.erase(std::find(ids.begin(), ids.end(), occlusion_blocks_[k]));
+    }
+    AddSampleTerm("occlusion", new ClearViewCost{base, *target, options_.weights.occlusion}, base, 3);
+    occlusion_blocks_[k] = terms_["occlusion"].back();
+    ++set;
   }
+  return set;
 }
 
-void PlanOptimizer::Solve() {
+void PlanOptimizer::Solve(bool ramp) {
   ceres::Solver::Options o;
   o.max_num_iterations = options_.max_iterations;
   o.function_tolerance = options_.function_tolerance;
   o.gradient_tolerance = 1e-12;
   o.parameter_tolerance = 1e-10;
   o.num_threads = 1;  // determinism: the same bytes at any thread count
-  o.logging_type = ceres::SILENT;
-  o.minimizer_progress_to_stdout = false;
+  o.logging_type = std::getenv("CINEPATH_CERES_TRACE") ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
+  o.minimizer_progress_to_stdout = std::getenv("CINEPATH_CERES_TRACE") != nullptr;
   // Eigen's sparse Cholesky: SuiteSparse's supernodal factorization goes through a threaded BLAS, whose
   // sums depend on the machine's core count (the same plan gave other bytes on 1 and 2 cores).
   if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
@@ -414,12 +442,23 @@ void PlanOptimizer::Solve() {
   } else {
     o.linear_solver_type = ceres::DENSE_QR;
   }
-  ceres::Solver::Summary summary;
-  ceres::Solve(o, &problem_, &summary);
-  iterations_ += static_cast<int>(summary.iterations.size()) - 1;
-  solve_s_ += summary.total_time_in_seconds;
-  termination_ = summary.message;
-  if (summary.termination_type == ceres::FAILURE) throw RuntimeError("optimize: the solver failed: " + summary.message);
+  // Continuation: the hard limits' penalties start soft (1e-4 and 1e-2 of their cost) and end at full
+  // weight, each stage starting where the last ended. A hinge that switches on mid-step makes the
+  // Gauss-Newton model wrong and the step rejected; soft first, the path reaches the right region in a
+  // few long steps, and the stiff stage only tightens it.
+  const std::vector<double> stages = ramp ? std::vector<double>{1e-4, 1e-2, 1.0} : std::vector<double>{1.0};
+  for (double scale : stages) {
+    stiffness_->Reset(scale == 1.0 ? nullptr : new ceres::ScaledLoss(nullptr, scale, ceres::TAKE_OWNERSHIP),
+                      ceres::TAKE_OWNERSHIP);
+    ceres::Solver::Summary summary;
+    ceres::Solve(o, &problem_, &summary);
+    iterations_ += static_cast<int>(summary.iterations.size()) - 1;
+    solve_s_ += summary.total_time_in_seconds;
+    termination_ = summary.message;
+    if (summary.termination_type == ceres::FAILURE) {
+      throw RuntimeError("optimize: the solver failed: " + summary.message);
+    }
+  }
 }
 
 Json PlanOptimizer::TermCosts(double* total) {
@@ -603,6 +642,8 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
     o["first_blocked_time_s"] =
         first_a < optimized.samples.size() ? Json(optimized.samples[first_a].time_s) : Json(nullptr);
     o["frames_without_clear_view"] = unresolved_views_;
+    o["frames_given_a_target"] = terms_.count("occlusion") ? terms_.at("occlusion").size() : 0;
+    o["searches_without_target"] = frames_without_target_;
     report["occlusion"] = o;
   }
 
@@ -663,15 +704,12 @@ OptimizeResult PlanOptimizer::Run() {
   IndexScene();
   MarkFreeChannels();
   AddTerms();
-  AddVisibilityTargets(0);
-
+  AddVisibilityTargets();
+  // Later rounds re-target the frames still hidden and re-solve from where the last round ended, at full
+  // weight.
   for (int round = 0; round < std::max(1, options_.visibility_rounds); ++round) {
-    if (round > 0) {
-      const size_t before = terms_["occlusion"].size();
-      AddVisibilityTargets(round);
-      if (terms_["occlusion"].size() == before) break;
-    }
-    Solve();
+    if (round > 0 && AddVisibilityTargets() == 0) break;
+    Solve(round == 0);
   }
   if (terms_.count("occlusion") && terms_["occlusion"].empty()) terms_.erase("occlusion");
 

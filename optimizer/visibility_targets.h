@@ -5,8 +5,9 @@
 // The search is deterministic: radii 0.5 m, 1 m, ... up to the shot's max_deviation_m, and at each
 // radius the directions straight up, then 8 compass directions at elevations of 60, 30 and 0 degrees
 // (starting from the direction away from the subject); the first that sees the aim point and keeps the
-// clearance margin from the mesh wins. Why targets and not a penetration integral: docs/optimize.md,
-// "Occlusion".
+// clearance margin from the mesh wins; it is then moved `overshoot_m` further along the same direction when
+// that point is within the radius and clear too (a pull stops a little short of its target). Why targets and not a
+// penetration integral: docs/optimize.md, "Occlusion".
 #pragma once
 
 #include <optional>
@@ -27,6 +28,6 @@ std::optional<Eigen::Vector3d> NearestClearViewpoint(const scene::RayCaster& cas
                                                      const scene::SurfaceDistance* surface,
                                                      const Eigen::Vector3d& camera_enu_m,
                                                      const Eigen::Vector3d& aim_enu_m, double max_radius_m,
-                                                     double clearance_margin_m);
+                                                     double clearance_margin_m, double overshoot_m = 0);
 
 }  // namespace cinepath::optimizer
