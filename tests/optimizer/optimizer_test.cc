@@ -241,7 +241,8 @@ TEST(Optimizer, PillarOnAChasePathIsPassedWithTheMargin) {
     "drone": {"profile": "px4-multirotor", "max_jerk_m_s3": 40, "max_acceleration_m_s2": 10,
               "max_climb_rate_m_s": 6, "max_descent_rate_m_s": 6},
     "actors": [{"name": "runner", "height_m": 1.8,
-                "keyframes": [{"time_s": 0, "position_enu_m": [0, 0, 0]}, {"time_s": 10, "position_enu_m": [0, 40, 0]}]}],
+                "keyframes": [{"time_s": 0, "position_enu_m": [0, 0, 0]},
+                              {"time_s": 10, "position_enu_m": [0, 40, 0]}]}],
     "shots": [{"name": "chase", "type": "CHASE", "subject": "runner", "duration_s": 10, "distance_m": 10,
                "height_m": 3}]})");
   // A pillar 1 m wide where the camera passes 5 s in.
