@@ -11,7 +11,7 @@ for script in "$ROOT"/bench/*.sh; do
 done
 # Google Benchmark and figure-printing programs; the decimation bench on a 1 M-face terrain (its
 # --faces 2500000 run in RESULTS.md takes minutes: CGAL's Garland-Heckbert is the slow peer).
-for exe in "$BUILD"/bench/bench_plan "$BUILD"/bench/export_bench; do
+for exe in "$BUILD"/bench/bench_plan "$BUILD"/bench/export_bench "$BUILD"/bench/optimize_bench; do
   [[ -x "$exe" ]] || continue
   echo "== $(basename "$exe")"
   "$exe"
