@@ -73,8 +73,9 @@ int main(int argc, char** argv) {
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
   std::printf("plan: %zu samples; terrain: %zu faces (generated in %.2f s, not counted)\n\n", plan.samples.size(),
               terrain.num_faces(), build_s);
-  std::printf("| quality | mesh | wall (s) | faces indexed | cost before | cost after | feasible after | "
-              "min clearance after (m) | iterations |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| quality | mesh | wall (s) | faces indexed | cost before | cost after | feasible after | "
+      "min clearance after (m) | iterations |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const auto quality : {optimizer::OptimizeQuality::kDraft, optimizer::OptimizeQuality::kStandard,
                              optimizer::OptimizeQuality::kFinal}) {
     for (const bool with_mesh : {false, true}) {
