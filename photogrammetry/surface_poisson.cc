@@ -1,11 +1,16 @@
 #include "photogrammetry/surface_poisson.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <numeric>
 #include <utility>
 #include <vector>
 
+#include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/compute_average_spacing.h>
+#include <CGAL/exceptions.h>
 #include <CGAL/jet_estimate_normals.h>
 #include <CGAL/poisson_surface_reconstruction.h>
 #include <CGAL/property_map.h>
@@ -23,6 +28,33 @@ using PointWithNormal = std::pair<Point, Vector>;
 using PointMap = CGAL::First_of_pair_property_map<PointWithNormal>;
 using NormalMap = CGAL::Second_of_pair_property_map<PointWithNormal>;
 using Mesh = CGAL::Surface_mesh<Point>;
+constexpr unsigned int kPoissonSeed = 20240611;  // any fixed value: the surface mesher's initial points
+
+// Vertices in lexicographic order of their coordinates, each face starting at its smallest index (its
+// winding kept), faces sorted. The surface mesher walks sets ordered by cell addresses, so the same
+// triangles come out in an order that depends on the allocator (another thread, another run); sorted,
+// the same surface gives the same bytes.
+void SortCanonically(TriangleMesh* mesh) {
+  const size_t n = mesh->vertices_m.size();
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  const auto& v = mesh->vertices_m;
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return std::lexicographical_compare(v[a].data(), v[a].data() + 3, v[b].data(), v[b].data() + 3);
+  });
+  std::vector<uint32_t> new_index(n);
+  std::vector<Eigen::Vector3d> sorted(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    new_index[order[i]] = i;
+    sorted[i] = v[order[i]];
+  }
+  mesh->vertices_m = std::move(sorted);
+  for (auto& f : mesh->faces) {
+    for (auto& i : f) i = new_index[i];
+    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+  }
+  std::sort(mesh->faces.begin(), mesh->faces.end());
+}
 
 }  // namespace
 
@@ -93,13 +125,26 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
   if (!(report.average_spacing_m > 0)) {
     throw InputError("poisson: the points have no spacing (all coincide)");
   }
+  // CGAL's surface mesher seeds its first points from CGAL::get_default_random(), a thread-local generator
+  // that CGAL seeds with the wall clock (std::time) on first use: the same input gave another mesh every
+  // second. Reset it to a fixed seed first, so the surface depends on the input alone.
+  CGAL::get_default_random() = CGAL::Random(kPoissonSeed);
   Mesh sm;
-  if (!CGAL::poisson_surface_reconstruction_delaunay(points.begin(), points.end(), PointMap(), NormalMap(), sm,
-                                                     report.average_spacing_m * std::max(options.spacing_factor, 1e-3),
-                                                     options.angle_deg, options.radius_factor,
-                                                     options.distance_factor)) {
-    throw RuntimeError("poisson: CGAL's Poisson solver failed");
+  bool solved = false;
+  try {
+    solved = CGAL::poisson_surface_reconstruction_delaunay(
+        points.begin(), points.end(), PointMap(), NormalMap(), sm,
+        report.average_spacing_m * std::max(options.spacing_factor, 1e-3), options.angle_deg, options.radius_factor,
+        options.distance_factor);
+  } catch (const CGAL::Failure_exception& e) {
+    std::string what = e.message();
+    while (!what.empty() && std::isspace(static_cast<unsigned char>(what.back()))) what.pop_back();
+    // A nearly flat cloud seen from above gives an implicit function the surface mesher cannot sample
+    // (it meets the same point twice); the height field is the surface for such a scene.
+    throw RuntimeError("poisson: CGAL's surface mesher failed (" + what +
+                       "); a nearly flat, nadir scene needs --surface height-field");
   }
+  if (!solved) throw RuntimeError("poisson: CGAL's Poisson solver failed");
   report.faces_reconstructed = static_cast<int64_t>(sm.number_of_faces());
 
   // Trim: drop triangles whose centroid is far from every input point.
@@ -137,6 +182,7 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     }
     mesh.faces.push_back(tri);
   }
+  SortCanonically(&mesh);
   if (cloud.has_colors() && mesh.num_vertices() > 0) {
     mesh.colors_rgb.reserve(mesh.num_vertices());
     for (const auto& v : mesh.vertices_m) {

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include <thread>
+
+#include <CGAL/Random.h>
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
@@ -59,6 +62,25 @@ TEST(PoissonSurface, ReconstructsASphereOrientedOutwardFromEstimatedNormals) {
   for (auto& v : mesh.vertices_m) v -= center;
   EXPECT_NEAR(SignedVolume(mesh), 4.0 / 3.0 * M_PI * 64.0, 0.1 * 4.0 / 3.0 * M_PI * 64.0);
   ASSERT_EQ(mesh.colors_rgb.size(), mesh.num_vertices());
+}
+
+// The same bytes whatever state CGAL's default random generator is in (it is seeded from the wall clock)
+// and on another thread (where it is a fresh, clock-seeded generator).
+TEST(PoissonSurface, SameMeshWhateverTheRandomStateAndThread) {
+  const PointCloud cloud = SphereCloud(2000, 3.0, Eigen::Vector3d(1, 2, 3));
+  CGAL::get_default_random() = CGAL::Random(1);
+  const TriangleMesh a = PoissonSurface(cloud, PoissonOptions{}, nullptr);
+  CGAL::get_default_random() = CGAL::Random(987654321);
+  const TriangleMesh b = PoissonSurface(cloud, PoissonOptions{}, nullptr);
+  TriangleMesh c;
+  std::thread([&] { c = PoissonSurface(cloud, PoissonOptions{}, nullptr); }).join();
+  ASSERT_GT(a.num_faces(), 100u);
+  for (const TriangleMesh* other : std::vector<const TriangleMesh*>{&b, &c}) {
+    ASSERT_EQ(other->num_faces(), a.num_faces());
+    ASSERT_EQ(other->num_vertices(), a.num_vertices());
+    EXPECT_TRUE(other->faces == a.faces);
+    for (size_t i = 0; i < a.num_vertices(); ++i) ASSERT_EQ(other->vertices_m[i], a.vertices_m[i]) << i;
+  }
 }
 
 TEST(PoissonSurface, NormalsFlippedInTheInputAreTurnedTowardTheCameras) {
