@@ -170,8 +170,16 @@ void PlanOptimizer::ReadShots() {
       for (int c : ChannelsOf(h)) s.held.insert(c);
     }
     s.max_deviation_m = span.intent.max_deviation_m.value_or(options_.max_deviation_m);
-    if (!span.subject.empty())
-      s.subject = FindTrack(plan_, span.subject, source + ": shots[" + std::to_string(i) + "].subject");
+    if (!span.subject.empty()) {
+      // A hand-written plan may name a subject without giving its track: no framing for that shot.
+      for (const auto& t : plan_.subjects) {
+        if (t.name == span.subject) s.subject = &t;
+      }
+      if (!s.subject) {
+        skipped_.push_back("framing and focus of shot \"" + span.name + "\": the plan has no track for subject \"" +
+                           span.subject + "\"");
+      }
+    }
     for (const auto& name : span.intent.sharp) s.sharp.push_back(FindTrack(plan_, name, where + ".sharp"));
     s.background = span.intent.background_blur_px.has_value();
     if (s.background && s.sharp.empty()) {

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# examples/Makefile as a crew runs it, in a temporary copy: `make -j2` builds every stage, a second
+# `make` does nothing, and touching the shot list reruns plan and what follows but not the mesh.
+#   examples_makefile.sh CINEPATH SOURCE_DIR
+set -euo pipefail
+CINEPATH=$1
+SRC=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+cp "$SRC/examples/Makefile" "$work/Makefile"
+cp "$SRC/data/brighton_beach/shots.json" "$work/shots.json"
+run() { make -C "$work" --no-print-directory ROOT="$SRC" CINEPATH="$CINEPATH" SHOTS="$work/shots.json" OUT=out "$@"; }
+
+run -j2 > "$work/first.log" 2>&1 || { cat "$work/first.log"; fail "make -j2"; }
+for f in scene/scene.json scene/scene.glb plan.json optimized.json contact_sheet.png missions/mission.plan \
+  scene.d plan.d optimize.d render.d export.d; do
+  [[ -s $work/out/$f ]] || fail "no out/$f"
+done
+grep -q "data/brighton_beach/images/DJI_0018.JPG" "$work/out/scene.d" || fail "scene.d lacks the photos"
+
+# Nothing to do the second time.
+run -q || fail "a second make would run something: $(run -n)"
+
+# Touching the shot list reruns plan, optimize, render and export, and not mesh.
+sleep 1.1
+touch "$work/shots.json"
+commands=$(run -n)
+for stage in plan optimize render export; do
+  grep -q "cinepath $stage " <<< "$commands" || fail "touching shots.json does not rerun $stage"
+done
+grep -q "cinepath mesh " <<< "$commands" && fail "touching shots.json reruns mesh"
+before=$(stat -c %Y "$work/out/scene/scene.json")
+run > "$work/second.log" 2>&1 || { cat "$work/second.log"; fail "make after touch"; }
+[[ $(stat -c %Y "$work/out/scene/scene.json") == "$before" ]] || fail "the mesh was rebuilt"
+[[ "$work/out/plan.json" -nt "$work/shots.json" ]] || fail "plan.json not rebuilt"
+run -q || fail "not up to date after the rerun"
+echo "examples_makefile: ok"
