@@ -497,11 +497,34 @@ std::string WithoutDracoIndices(std::string_view glb, const std::string& source)
   return out;
 }
 
+// The GLB container: the header's total length is the file's, and every chunk lies inside it. tinygltf
+// (2.8, Debian 12) trusts the BIN chunk's length and copies past the end of a truncated file.
+void CheckGlbContainer(std::string_view glb, const std::string& source) {
+  if (glb.size() < 20) throw InputError(source + ": truncated GLB header");
+  const uint32_t total = ReadU32(glb, 8);
+  if (total != glb.size()) {
+    throw InputError(source + ": the GLB header gives " + std::to_string(total) + " bytes, the file has " +
+                     std::to_string(glb.size()) + " (truncated or padded)");
+  }
+  size_t offset = 12;
+  for (int chunk = 0; offset < glb.size(); ++chunk) {
+    if (glb.size() - offset < 8)
+      throw InputError(source + ": GLB chunk " + std::to_string(chunk) + ": truncated header");
+    const uint32_t length = ReadU32(glb, offset);
+    if (length > glb.size() - offset - 8) {
+      throw InputError(source + ": GLB chunk " + std::to_string(chunk) + " claims " + std::to_string(length) +
+                       " bytes, " + std::to_string(glb.size() - offset - 8) + " remain");
+    }
+    offset += 8 + length;
+  }
+}
+
 }  // namespace
 
 SceneMesh ReadGlbBytes(std::string_view bytes, const std::string& source) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw InputError(source + ": larger than 4 GiB");
   if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF") throw InputError(source + ": not a binary glTF (GLB) file");
+  CheckGlbContainer(bytes, source);
   const std::string glb = WithoutDracoIndices(bytes, source);
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;

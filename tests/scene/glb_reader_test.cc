@@ -131,5 +131,23 @@ TEST(GlbReader, ReadsTheBundledGoldenScene) {
   EXPECT_GT(box.sizes().x(), 20);
 }
 
+// Found by fuzz_glb: a Draco GLB cut short, whose BIN chunk claims 4 bytes more than the file holds;
+// tinygltf copied past the end. The container is now checked first, and every cut is an InputError.
+TEST(GlbReader, TruncatedOrInconsistentContainerIsAnInputError) {
+  const fs::path dir = fs::path(CINEPATH_SOURCE_DIR) / "tests/fuzz/corpus/fuzz_glb";
+  const std::string crash = ReadFileToString(dir / "crash_2026-11-24_bin_chunk_past_the_end.glb");
+  EXPECT_THROW(ReadGlbBytes(crash, "crash.glb"), InputError);
+  const std::string whole = ReadFileToString(dir / "brighton6_draco.glb");
+  EXPECT_GT(ReadGlbBytes(whole, "whole.glb").num_faces(), 100u);
+  for (size_t cut : {size_t(13), size_t(24), whole.size() / 2, whole.size() - 4, whole.size() - 1}) {
+    try {
+      ReadGlbBytes(whole.substr(0, cut), "cut.glb");
+      ADD_FAILURE() << "a GLB cut to " << cut << " bytes was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("cut.glb"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cinepath::scene
