@@ -22,6 +22,10 @@ std::unique_ptr<Command> MakeOptimizeCommand() { return LoadCommandPlugin("libci
 // A plugin module: Embree and OpenImageIO load only for this command.
 std::unique_ptr<Command> MakeRenderCommand() { return LoadCommandPlugin("libcinepath_cmd_render.so"); }
 #endif
+#ifdef CINEPATH_WITH_VIEWER
+// A plugin module: the GLB reader (Draco) loads only for this command.
+std::unique_ptr<Command> MakeViewCommand() { return LoadCommandPlugin("libcinepath_cmd_view.so"); }
+#endif
 #ifdef CINEPATH_WITH_EXPORT
 std::unique_ptr<Command> MakeExportCommand();
 std::unique_ptr<Command> MakeInfoCommand();
@@ -42,6 +46,10 @@ const std::vector<CommandInfo>& Commands() {
 #ifdef CINEPATH_WITH_PREVIEW
       {"render", "plan + scene -> ray-traced thin-lens previews of every frame (depth of field, motion blur)",
        &MakeRenderCommand},
+#endif
+#ifdef CINEPATH_WITH_VIEWER
+      {"view", "plan (+ scene, frames) -> one offline HTML previs page: 3D flight, timeline, camera view, lens",
+       &MakeViewCommand},
 #endif
 #ifdef CINEPATH_WITH_EXPORT
       {"export", "plan -> drone missions (QGC .plan/WPL, MAVLink, DJI WPML/MSDK, Litchi CSV)", &MakeExportCommand},

@@ -41,6 +41,13 @@ if has plan; then
       --overlay --contact-sheet "$OUT/contact_sheet.png" -o "$OUT/frames"
     ls "$OUT/frames" | head -3
   fi
+  if has view; then
+    step "cinepath view: one offline previs page (open it in a browser): 3D scene and flight, timeline, lens"
+    VIEW_ARGS=("${PLAN_ARGS[@]}")
+    [[ -d "$OUT/frames" ]] && VIEW_ARGS+=(--frames "$OUT/frames")
+    "$CINEPATH" view "$FLIGHT" "${VIEW_ARGS[@]}" -o "$OUT/previs.html"
+    ls -l "$OUT/previs.html"
+  fi
   if has export; then
     step "cinepath export: the flight -> missions for QGroundControl, MAVLink, DJI and Litchi"
     mkdir -p "$OUT/missions"

@@ -27,6 +27,8 @@ PACKAGES=(
   proj-data colmap fonts-dejavu-core ffmpeg
   # independent tools the tests compare against
   geographiclib-tools libxml2-utils parallel
+  # the browser the previs page is tested in (tests/viewer/browser_test.sh)
+  chromium
 )
 for g in "${EXTRA_GROUPS[@]+"${EXTRA_GROUPS[@]}"}"; do
   case "$g" in

@@ -14,7 +14,7 @@ run() { make -C "$work" --no-print-directory ROOT="$SRC" CINEPATH="$CINEPATH" SH
 
 run -j2 > "$work/first.log" 2>&1 || { cat "$work/first.log"; fail "make -j2"; }
 for f in scene/scene.json scene/scene.glb plan.json optimized.json contact_sheet.png missions/mission.plan \
-  scene.d plan.d optimize.d render.d export.d; do
+  previs.html scene.d plan.d optimize.d render.d export.d view.d; do
   [[ -s $work/out/$f ]] || fail "no out/$f"
 done
 grep -q "data/brighton_beach/images/DJI_0018.JPG" "$work/out/scene.d" || fail "scene.d lacks the photos"
@@ -26,7 +26,7 @@ run -q || fail "a second make would run something: $(run -n)"
 sleep 1.1
 touch "$work/shots.json"
 commands=$(run -n)
-for stage in plan optimize render export; do
+for stage in plan optimize render view export; do
   grep -q "cinepath $stage " <<< "$commands" || fail "touching shots.json does not rerun $stage"
 done
 grep -q "cinepath mesh " <<< "$commands" && fail "touching shots.json reruns mesh"

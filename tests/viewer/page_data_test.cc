@@ -1,0 +1,65 @@
+#include "viewer/page_data.h"
+
+#include <limits>
+
+#include <gtest/gtest.h>
+
+namespace cinepath::viewer {
+namespace {
+
+// Two shots of three samples at 1 Hz, moving 2 m east per second; the second starts with a cut, 100 m away.
+Trajectory TwoShots() {
+  Trajectory plan;
+  plan.frame_rate_hz = 1;
+  plan.shots = {{.name = "a", .type = "FLYBY", .start_time_s = 0, .end_time_s = 2},
+                {.name = "b", .type = "ORBIT", .start_time_s = 3, .end_time_s = 5, .transition = "cut"}};
+  for (int k = 0; k < 6; ++k) {
+    TrajectorySample s;
+    s.time_s = k;
+    s.position_enu_m = {2.0 * k + (k >= 3 ? 100 : 0), 0, 10};
+    s.shot = k < 3 ? "a" : "b";
+    s.focus_distance_m = k == 5 ? std::numeric_limits<double>::infinity() : 20;
+    plan.samples.push_back(s);
+  }
+  return plan;
+}
+
+TEST(PageData, CutsBreakThePathAndTheSpeeds) {
+  const Trajectory plan = TwoShots();
+  const std::vector<bool> cuts = CutBeforeSamples(plan);
+  EXPECT_EQ(cuts, (std::vector<bool>{false, false, false, true, false, false}));
+  for (double v : SampleSpeedsMps(plan)) EXPECT_DOUBLE_EQ(v, 2.0);  // not 100 m in a second across the cut
+}
+
+TEST(PageData, ContinuousShotsAreNotCuts) {
+  Trajectory plan = TwoShots();
+  plan.shots[1].transition = "continuous";
+  EXPECT_EQ(CutBeforeSamples(plan), std::vector<bool>(6, false));
+}
+
+TEST(PageData, JsonInThreeJsFrameWithInfinityAsNull) {
+  Trajectory plan = TwoShots();
+  plan.feasibility.violations.push_back({"horizontal_speed", "b", 3, 4, 20, 15, "m/s"});
+  const Json data = PageDataJson(plan, "plan.json", std::nullopt);
+  EXPECT_TRUE(data["origin"].is_null());
+  EXPECT_EQ(data["format"], "cinepath.previs/1");
+  const Json& s = data["samples"];
+  ASSERT_EQ(s["time_s"].size(), 6u);
+  EXPECT_EQ(s["position_m"].size(), 18u);
+  EXPECT_EQ(s["position_m"][1], 10.0);  // up is three.js's y
+  EXPECT_EQ(s["position_m"][2], -0.0);  // north 0 -> z 0
+  EXPECT_EQ(s["quaternion"].size(), 24u);
+  EXPECT_EQ(s["focus_distance_m"][0], 20.0);
+  EXPECT_TRUE(s["focus_distance_m"][5].is_null());
+  EXPECT_EQ(s["shot"][4], 1);
+  EXPECT_EQ(data["cuts_before_sample"], Json::array({3}));
+  EXPECT_EQ(data["violations"][0]["limit"], "horizontal_speed");
+}
+
+TEST(PageData, OriginWhenKnown) {
+  const Json data = PageDataJson(TwoShots(), "plan.json", Geodetic{50.8, -0.14, 50});
+  EXPECT_DOUBLE_EQ(data["origin"]["lat_deg"].get<double>(), 50.8);
+}
+
+}  // namespace
+}  // namespace cinepath::viewer

@@ -1,0 +1,135 @@
+#include "viewer/page_data.h"
+
+#include <cmath>
+
+#include "viewer/three_frame.h"
+
+namespace cinepath::viewer {
+namespace {
+
+void AppendVector(Json* array, const Eigen::Vector3d& v, int decimals) {
+  for (int a = 0; a < 3; ++a) array->push_back(RoundToDecimals(v[a], decimals));
+}
+
+Json FiniteOrNull(double value, int decimals) {
+  return std::isfinite(value) ? Json(RoundToDecimals(value, decimals)) : Json(nullptr);
+}
+
+}  // namespace
+
+std::vector<bool> CutBeforeSamples(const Trajectory& plan) {
+  const auto& s = plan.samples;
+  std::vector<bool> cut(s.size(), false);
+  for (size_t k = 1; k < s.size(); ++k) {
+    if (s[k].shot == s[k - 1].shot) continue;
+    for (const ShotSpan& shot : plan.shots) {
+      if (shot.name == s[k].shot && shot.transition == "cut") cut[k] = true;
+    }
+  }
+  return cut;
+}
+
+std::vector<double> SampleSpeedsMps(const Trajectory& plan) {
+  const auto& s = plan.samples;
+  std::vector<double> speeds(s.size(), 0.0);
+  if (s.size() < 2) return speeds;
+  const std::vector<bool> cut = CutBeforeSamples(plan);
+  for (size_t k = 0; k < s.size(); ++k) {
+    const size_t a = k == 0 || cut[k] ? k : k - 1;
+    const size_t b = k + 1 == s.size() || cut[k + 1] ? k : k + 1;
+    const double dt = s[b].time_s - s[a].time_s;
+    speeds[k] = dt > 0 ? (s[b].position_enu_m - s[a].position_enu_m).norm() / dt : 0.0;
+  }
+  return speeds;
+}
+
+Json PageDataJson(const Trajectory& plan, const std::string& plan_name, const std::optional<Geodetic>& origin) {
+  Json data = Json::object();
+  data["format"] = "cinepath.previs/1";
+  data["plan"] = plan_name;
+  if (origin) {
+    data["origin"] = {{"lat_deg", RoundToDecimals(origin->lat_deg, 9)},
+                      {"lon_deg", RoundToDecimals(origin->lon_deg, 9)},
+                      {"height_m", RoundToDecimals(origin->height_m, 3)}};
+  } else {
+    data["origin"] = nullptr;
+  }
+  data["frame_rate_hz"] = plan.frame_rate_hz;
+  const ImageExtentMm image = plan.camera.image_extent_mm();
+  data["camera"] = {{"filmback", plan.camera.filmback},
+                    {"sensor_width_mm", plan.camera.sensor_width_mm},
+                    {"image_height_mm", RoundToDecimals(image.height_mm, 6)},
+                    {"width_px", plan.camera.width_px},
+                    {"height_px", plan.camera.height_px}};
+  data["drone"] = plan.drone.name;
+
+  Json time = Json::array(), position = Json::array(), quaternion = Json::array(), vfov = Json::array();
+  Json focal = Json::array(), focus = Json::array(), f_number = Json::array(), speed = Json::array();
+  Json shot_index = Json::array();
+  const std::vector<double> speeds = SampleSpeedsMps(plan);
+  for (size_t k = 0; k < plan.samples.size(); ++k) {
+    const TrajectorySample& s = plan.samples[k];
+    time.push_back(RoundToDecimals(s.time_s, 6));
+    AppendVector(&position, ThreeFromEnu(s.position_enu_m), 3);
+    const Eigen::Quaterniond q = ThreeCameraFromWorldFromCamera(s.world_from_camera);
+    for (double c : {q.x(), q.y(), q.z(), q.w()}) quaternion.push_back(RoundToDecimals(c, 6));
+    vfov.push_back(RoundToDecimals(VerticalFieldOfViewDeg(plan.camera, s.focal_length_mm), 4));
+    focal.push_back(RoundToDecimals(s.focal_length_mm, 3));
+    focus.push_back(FiniteOrNull(s.focus_distance_m, 3));
+    f_number.push_back(RoundToDecimals(s.f_number, 3));
+    speed.push_back(RoundToDecimals(speeds[k], 3));
+    int index = -1;
+    for (size_t i = 0; i < plan.shots.size(); ++i) {
+      if (plan.shots[i].name == s.shot) index = int(i);
+    }
+    shot_index.push_back(index);
+  }
+  Json cuts = Json::array();
+  const std::vector<bool> cut_before = CutBeforeSamples(plan);
+  for (size_t k = 0; k < cut_before.size(); ++k) {
+    if (cut_before[k]) cuts.push_back(k);
+  }
+  data["cuts_before_sample"] = cuts;
+  data["samples"] = {{"time_s", time},           {"position_m", position},   {"quaternion", quaternion},
+                     {"vertical_fov_deg", vfov}, {"focal_length_mm", focal}, {"focus_distance_m", focus},
+                     {"f_number", f_number},     {"speed_m_s", speed},       {"shot", shot_index}};
+
+  Json shots = Json::array();
+  for (const ShotSpan& shot : plan.shots) {
+    shots.push_back({{"name", shot.name},
+                     {"type", shot.type},
+                     {"subject", shot.subject},
+                     {"start_time_s", RoundToDecimals(shot.start_time_s, 6)},
+                     {"end_time_s", RoundToDecimals(shot.end_time_s, 6)}});
+  }
+  data["shots"] = shots;
+  Json keyframes = Json::array();
+  for (const Keyframe& key : plan.keyframes) {
+    Json p = Json::array();
+    AppendVector(&p, ThreeFromEnu(key.position_enu_m), 3);
+    keyframes.push_back({{"shot", key.shot}, {"time_s", RoundToDecimals(key.time_s, 6)}, {"position_m", p}});
+  }
+  data["keyframes"] = keyframes;
+  Json subjects = Json::array();
+  for (const SubjectTrack& subject : plan.subjects) {
+    Json p = Json::array();
+    for (const auto& v : subject.positions_enu_m) AppendVector(&p, ThreeFromEnu(v), 3);
+    subjects.push_back({{"name", subject.name}, {"height_m", subject.height_m}, {"position_m", p}});
+  }
+  data["subjects"] = subjects;
+  Json violations = Json::array();
+  for (const FeasibilityViolation& v : plan.feasibility.violations) {
+    violations.push_back({{"limit", v.limit},
+                          {"shot", v.shot},
+                          {"start_time_s", RoundToDecimals(v.start_time_s, 6)},
+                          {"end_time_s", RoundToDecimals(v.end_time_s, 6)},
+                          {"worst_value", RoundToDecimals(v.worst_value, 6)},
+                          {"limit_value", RoundToDecimals(v.limit_value, 6)},
+                          {"unit", v.unit}});
+  }
+  data["violations"] = violations;
+  data["skipped_checks"] = plan.feasibility.skipped;
+  return data;
+}
+
+}  // namespace cinepath::viewer

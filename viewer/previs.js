@@ -1,0 +1,632 @@
+// The previs page's code (docs/view.md): the scene, the flight and the lens of one plan, drawn with three.js.
+// Written into the page by `cinepath view` (viewer/previs_page.h); everything it reads is in the page.
+// Coordinates are three.js's: x east, y up, z south (the plan's ENU (e, n, u) is (e, u, -n) here).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+THREE.ColorManagement.enabled = false;  // vertex colours are sRGB bytes: show them as they are
+
+const moduleStartMs = performance.now();
+const data = JSON.parse(document.getElementById('previs-data').textContent);
+const meshInfo = JSON.parse(document.getElementById('previs-mesh-info').textContent);
+const frames = JSON.parse(document.getElementById('previs-frames').textContent);
+const S = data.samples;
+const N = S.time_s.length;
+const FPS = data.frame_rate_hz;
+const FRUSTUM_INFINITY_M = 60;  // far plane drawn for focus at infinity
+const FRUSTUM_MAX_M = 200;      // and the farthest one drawn
+const LAYER_OVERLAY = 1;        // drawn in the 3D view only, not in the camera view
+const LAYER_CAMERA_ONLY = 2;    // drawn in the camera view only
+const SKY = 0x9cc3e4;
+
+const $ = (id) => document.getElementById(id);
+const fmt = (x, d) => (x === null || x === undefined ? '∞' : Number(x).toFixed(d));
+const pos = (k) => new THREE.Vector3(S.position_m[3 * k], S.position_m[3 * k + 1], S.position_m[3 * k + 2]);
+const quat = (k) => new THREE.Quaternion(S.quaternion[4 * k], S.quaternion[4 * k + 1], S.quaternion[4 * k + 2],
+                                         S.quaternion[4 * k + 3]);
+const dioptres = (focus) => (focus === null ? 0 : 1 / focus);
+
+// ---- renderer, scene, cameras ----
+const canvas = $('gl');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
+renderer.setPixelRatio(window.devicePixelRatio || 1);
+renderer.setScissorTest(true);
+const scene = new THREE.Scene();
+scene.add(new THREE.HemisphereLight(0xffffff, 0x606060, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.2);
+sun.position.set(0.5, 1, 0.3);
+scene.add(sun);
+
+// The extent everything is sized by: the mesh's bounds, else the flight's.
+const bounds = new THREE.Box3();
+for (let k = 0; k < N; ++k) bounds.expandByPoint(pos(k));
+if (meshInfo) {
+  bounds.expandByPoint(new THREE.Vector3(...meshInfo.min_m));
+  bounds.expandByPoint(new THREE.Vector3(...meshInfo.max_m));
+}
+if (bounds.isEmpty()) bounds.set(new THREE.Vector3(-10, 0, -10), new THREE.Vector3(10, 10, 10));
+const centre = bounds.getCenter(new THREE.Vector3());
+const size = Math.max(bounds.getSize(new THREE.Vector3()).length(), 10);
+const unit = size / 200;  // marker size
+const groundY = meshInfo ? meshInfo.min_m[1] : Math.min(0, bounds.min.y);
+
+const view = new THREE.PerspectiveCamera(50, 1, size / 2000, size * 20);
+view.layers.enableAll();
+view.layers.disable(LAYER_CAMERA_ONLY);
+const controls = new OrbitControls(view, canvas);
+controls.enableDamping = false;
+const shotCamera = new THREE.PerspectiveCamera(40, data.camera.width_px / data.camera.height_px, 0.1, size * 20);
+shotCamera.layers.set(0);
+shotCamera.layers.enable(LAYER_CAMERA_ONLY);
+
+function overlay(object) {
+  object.traverse((o) => o.layers.set(LAYER_OVERLAY));
+  scene.add(object);
+  return object;
+}
+
+// ---- mesh ----
+async function loadMesh() {
+  if (!meshInfo) return 0;
+  const text = $('previs-mesh').textContent;
+  const binary = atob(text);
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+  const inflating = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate'));
+  const buffer = await new Response(inflating).arrayBuffer();
+  const V = meshInfo.vertices, T = meshInfo.triangles;
+  const u8 = new Uint8Array(buffer);
+  let offset = 0;
+  // One stream (viewer/mesh_payload.h): `count` values of `width` bytes as byte planes of deltas at `stride`.
+  // Typed arrays wrap on assignment, which is the modulo the deltas were taken in.
+  function stream(count, width, stride, out) {
+    const p0 = offset, p1 = offset + count, p2 = offset + 2 * count, p3 = offset + 3 * count;
+    for (let i = 0; i < count; ++i) {
+      let d = u8[p0 + i];
+      if (width > 1) d |= u8[p1 + i] << 8;
+      if (width > 2) d |= (u8[p2 + i] << 16) | (u8[p3 + i] << 24);
+      out[i] = (i >= stride ? out[i - stride] : 0) + d;
+    }
+    offset += count * width;
+    return out;
+  }
+  const q = stream(3 * V, 2, 3, new Uint16Array(3 * V));
+  const positions = new Float32Array(3 * V);
+  for (let a = 0; a < 3; ++a) {
+    const lo = meshInfo.min_m[a], extent = meshInfo.max_m[a] - meshInfo.min_m[a];
+    for (let v = 0; v < V; ++v) positions[3 * v + a] = lo + (q[3 * v + a] / 65535) * extent;
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  let material;
+  if (meshInfo.has_colors) {
+    geometry.setAttribute('color', new THREE.BufferAttribute(stream(3 * V, 1, 3, new Uint8Array(3 * V)), 3, true));
+    material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide });
+  } else {
+    material = new THREE.MeshLambertMaterial({ color: 0xb8b4aa, side: THREE.DoubleSide });
+  }
+  const width = meshInfo.index_bytes;
+  const indices = stream(3 * T, width, 1, width === 2 ? new Uint16Array(3 * T) : new Uint32Array(3 * T));
+  geometry.setIndex(new THREE.BufferAttribute(indices, 1));
+  if (!meshInfo.has_colors) geometry.computeVertexNormals();
+  const mesh = new THREE.Mesh(geometry, material);
+  scene.add(mesh);
+  return T;
+}
+
+// ---- ground grid with metres, north arrow ----
+function niceStep(span) {
+  const raw = span / 12;
+  const p = Math.pow(10, Math.floor(Math.log10(raw)));
+  for (const m of [1, 2, 5, 10]) if (m * p >= raw) return m * p;
+  return 10 * p;
+}
+function label(text, height = 0.03, color = '#ffffff') {
+  const c = document.createElement('canvas');
+  const ctx = c.getContext('2d');
+  ctx.font = 'bold 40px DejaVu Sans, sans-serif';
+  const w = Math.ceil(ctx.measureText(text).width) + 16;
+  c.width = w;
+  c.height = 56;
+  ctx.font = 'bold 40px DejaVu Sans, sans-serif';
+  ctx.fillStyle = '#00000090';
+  ctx.fillRect(0, 0, w, 56);
+  ctx.fillStyle = color;
+  ctx.textBaseline = 'middle';
+  ctx.fillText(text, 8, 29);
+  const texture = new THREE.CanvasTexture(c);
+  // A constant size on the screen (a fraction of the view's height), however near the camera.
+  const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: texture, depthTest: false, sizeAttenuation: false }));
+  sprite.scale.set((height * w) / 56, height, 1);
+  sprite.renderOrder = 10;
+  return sprite;
+}
+const gridStep = niceStep(Math.max(bounds.max.x - bounds.min.x, bounds.max.z - bounds.min.z, 20));
+{
+  const x0 = Math.floor(bounds.min.x / gridStep) * gridStep, x1 = Math.ceil(bounds.max.x / gridStep) * gridStep;
+  const z0 = Math.floor(bounds.min.z / gridStep) * gridStep, z1 = Math.ceil(bounds.max.z / gridStep) * gridStep;
+  const points = [];
+  for (let x = x0; x <= x1 + 1e-9; x += gridStep) points.push(x, groundY, z0, x, groundY, z1);
+  for (let z = z0; z <= z1 + 1e-9; z += gridStep) points.push(x0, groundY, z, x1, groundY, z);
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(points, 3));
+  const grid = overlay(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0xffffff, transparent: true,
+                                                                                opacity: 0.35 })));
+  if (!meshInfo) {
+    // Without a mesh the camera view shows the grid on a plain ground, so that the horizon reads.
+    grid.layers.enable(0);
+    const ground = new THREE.Mesh(new THREE.PlaneGeometry(size * 40, size * 40),
+                                  new THREE.MeshBasicMaterial({ color: 0x66735f }));
+    ground.rotation.x = -Math.PI / 2;
+    ground.position.set(centre.x, groundY - 0.02, centre.z);
+    ground.layers.set(LAYER_CAMERA_ONLY);
+    scene.add(ground);
+  }
+  const every = Math.max(1, Math.round((x1 - x0) / gridStep / 6));
+  const h = gridStep * 0.35;
+  for (let i = 0, x = x0; x <= x1 + 1e-9; x += gridStep, ++i) {
+    if (i % every) continue;
+    const s = label(`E ${Math.round(x)} m`);
+    s.position.set(x, groundY, z1 + h);
+    overlay(s);
+  }
+  for (let i = 0, z = z0; z <= z1 + 1e-9; z += gridStep, ++i) {
+    if (i % every) continue;
+    const s = label(`N ${Math.round(-z)} m`);
+    s.position.set(x0 - 2 * h, groundY, z);
+    overlay(s);
+  }
+  // North arrow on the ground, east of the grid, pointing along -z.
+  const length = 2 * gridStep, ax = x1 + gridStep;
+  overlay(new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), new THREE.Vector3(ax, groundY, z0 + length), length,
+                                0xff5a4e, length * 0.3, length * 0.18));
+  const n = label('N', 0.045, '#ff8a80');
+  n.position.set(ax, groundY, z0 - gridStep * 0.4);
+  overlay(n);
+  $('hud-grid').textContent = `grid ${gridStep} m · labels: metres east / north of the origin`;
+}
+
+// ---- the flight: path coloured by speed, keyframes, frustums, violations ----
+const speeds = S.speed_m_s;
+const maxSpeed = speeds.reduce((a, b) => Math.max(a, b), 1e-6);  // no spread: plans have 10^5 samples
+function speedColor(v) {
+  const stops = [[0x2b, 0x6c, 0xff], [0x18, 0xc4, 0xa0], [0xe8, 0xd8, 0x2a], [0xff, 0x3b, 0x2f]];
+  const t = Math.min(1, Math.max(0, v / maxSpeed)) * (stops.length - 1);
+  const i = Math.min(stops.length - 2, Math.floor(t)), f = t - i;
+  return stops[i].map((c, j) => (c + (stops[i + 1][j] - c) * f) / 255);
+}
+$('speed-min').textContent = '0';
+$('speed-max').textContent = `${fmt(maxSpeed, 1)} m/s`;
+{
+  // Segments between consecutive samples, none across a cut (the drone does not fly there).
+  const cuts = new Set(data.cuts_before_sample);
+  const p = [], c = [];
+  for (let k = 0; k + 1 < N; ++k) {
+    if (cuts.has(k + 1)) continue;
+    p.push(...pos(k).toArray(), ...pos(k + 1).toArray());
+    c.push(...speedColor(speeds[k]), ...speedColor(speeds[k + 1]));
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
+  g.setAttribute('color', new THREE.Float32BufferAttribute(c, 3));
+  overlay(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true })));
+}
+const badSamples = [];
+for (let k = 0; k < N; ++k) {
+  const t = S.time_s[k];
+  if (data.violations.some((v) => t >= v.start_time_s - 1e-9 && t <= v.end_time_s + 1e-9)) badSamples.push(k);
+}
+if (badSamples.length) {
+  const p = [];
+  for (const k of badSamples) p.push(...pos(k).toArray());
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
+  overlay(new THREE.Points(g, new THREE.PointsMaterial({ color: 0xff2a1a, size: 5, sizeAttenuation: false })));
+}
+{
+  const geometry = new THREE.OctahedronGeometry(unit * 1.2);
+  const material = new THREE.MeshBasicMaterial({ color: 0xffd34d });
+  for (const key of data.keyframes) {
+    const m = new THREE.Mesh(geometry, material);
+    m.position.set(...key.position_m);
+    overlay(m);
+  }
+}
+function farPlane(k) {
+  const focus = S.focus_distance_m[k];
+  return focus === null ? FRUSTUM_INFINITY_M : Math.min(focus, FRUSTUM_MAX_M);
+}
+// Frustum lines (camera at the origin of its frame, looking along -z) to the far plane at the focus.
+function frustumPoints(k, out) {
+  const far = farPlane(k);
+  const tanV = Math.tan(THREE.MathUtils.degToRad(S.vertical_fov_deg[k] / 2));
+  const tanH = tanV * (data.camera.width_px / data.camera.height_px);
+  const o = pos(k), q = quat(k);
+  const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(([sx, sy]) =>
+    new THREE.Vector3(sx * tanH * far, sy * tanV * far, -far).applyQuaternion(q).add(o));
+  for (let i = 0; i < 4; ++i) {
+    out.push(...o.toArray(), ...corners[i].toArray());
+    out.push(...corners[i].toArray(), ...corners[(i + 1) % 4].toArray());
+  }
+  // A tick on the top edge shows which way is up in the picture.
+  const up = new THREE.Vector3(0, tanV * far * 1.25, -far).applyQuaternion(q).add(o);
+  out.push(...corners[2].toArray(), ...up.toArray(), ...up.toArray(), ...corners[3].toArray());
+  return out;
+}
+{
+  const stride = Math.max(1, Math.round(2 * FPS));
+  const p = [];
+  for (let k = 0; k < N; k += stride) frustumPoints(k, p);
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
+  overlay(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0xffffff, transparent: true,
+                                                                   opacity: 0.3 })));
+}
+const current = new THREE.Group();
+const currentFrustum = new THREE.LineSegments(new THREE.BufferGeometry(),
+                                              new THREE.LineBasicMaterial({ color: 0xff9d2e }));
+current.add(currentFrustum);
+const drone = new THREE.Mesh(new THREE.SphereGeometry(unit * 1.5, 16, 12),
+                             new THREE.MeshBasicMaterial({ color: 0xff9d2e }));
+current.add(drone);
+overlay(current);
+
+// ---- subjects: paths and where they are now (seen by the camera view too) ----
+// The colours `cinepath render` gives subject i (its palette, sRGB-encoded), so that the live camera view
+// and the rendered frames agree.
+const SUBJECT_COLORS = [0xf39527, 0xe73fcb, 0x27d3e7, 0xf3e727, 0xaa6cf3, 0x95ed3f];
+const subjectMarkers = data.subjects.map((subject, i) => {
+  const color = SUBJECT_COLORS[i % SUBJECT_COLORS.length];
+  const p = new Float32Array(subject.position_m);
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(p, 3));
+  overlay(new THREE.Line(g, new THREE.LineBasicMaterial({ color })));
+  const h = subject.height_m;
+  const body = new THREE.Mesh(new THREE.CylinderGeometry(h * 0.18, h * 0.18, h, 16),
+                              new THREE.MeshBasicMaterial({ color }));
+  body.geometry.translate(0, h / 2, 0);
+  scene.add(body);
+  const tag = label(subject.name, 0.028, '#' + color.toString(16).padStart(6, '0'));
+  tag.layers.set(LAYER_OVERLAY);
+  tag.center.set(0.5, -0.4);
+  body.add(tag);
+  return { subject, body };
+});
+
+// ---- panels ----
+const cameraBox = $('camera-box');
+cameraBox.style.aspectRatio = `${data.camera.width_px} / ${data.camera.height_px}`;
+const origin = data.origin;
+$('hud-plan').textContent = `${data.plan} · ${N} samples at ${FPS} fps · ${data.shots.length} shots` +
+  (meshInfo ? ` · ${meshInfo.source}: ${meshInfo.triangles} triangles` : ' · no scene mesh');
+$('hud-origin').textContent = origin
+  ? `WGS84 origin ${fmt(Math.abs(origin.lat_deg), 7)}°${origin.lat_deg >= 0 ? 'N' : 'S'} ` +
+    `${fmt(Math.abs(origin.lon_deg), 7)}°${origin.lon_deg >= 0 ? 'E' : 'W'} ${fmt(origin.height_m, 2)} m ellipsoidal`
+  : 'no WGS84 origin: local metres';
+{
+  // One line per broken limit: how many ranges, the worst value; every range in the tooltip.
+  const byLimit = new Map();
+  for (const v of data.violations) {
+    if (!byLimit.has(v.limit)) byLimit.set(v.limit, []);
+    byLimit.get(v.limit).push(v);
+  }
+  const lines = [...byLimit].map(([limit, list]) => {
+    const worst = list.reduce((a, b) => (b.worst_value > a.worst_value ? b : a));
+    return `✖ ${limit}: ${list.length} range${list.length > 1 ? 's' : ''}, worst ${fmt(worst.worst_value, 2)} > ` +
+           `${fmt(worst.limit_value, 2)} ${worst.unit} at ${fmt(worst.start_time_s, 2)} s`;
+  });
+  const box = $('violations');
+  box.textContent = lines.length ? lines.join('\n') : '✔ feasibility: no violations';
+  box.title = data.violations.map((v) => `${v.limit} ${fmt(v.start_time_s, 2)}–${fmt(v.end_time_s, 2)} s (${v.shot})`)
+                  .join('\n');
+  box.style.color = lines.length ? '' : '#9be59b';
+}
+const t0 = S.time_s[0] ?? 0, t1 = S.time_s[N - 1] ?? 0;
+const span = Math.max(t1 - t0, 1e-9);
+const slider = $('slider');
+slider.max = String(Math.max(0, N - 1));
+{
+  const track = $('track');
+  for (const shot of data.shots) {
+    const d = document.createElement('div');
+    d.className = 'shot';
+    d.style.left = `${((shot.start_time_s - t0) / span) * 100}%`;
+    d.style.width = `${((shot.end_time_s - shot.start_time_s) / span) * 100}%`;
+    d.textContent = shot.name;
+    d.title = `${shot.name} (${shot.type})`;
+    track.appendChild(d);
+  }
+  // Keyframes as yellow ticks under the slider, rendered frames (--frames) as grey ones above them.
+  const tick = (t, cls, title) => {
+    const d = document.createElement('div');
+    d.className = cls;
+    d.style.left = `${((t - t0) / span) * 100}%`;
+    d.title = title;
+    track.appendChild(d);
+  };
+  for (const key of data.keyframes) tick(key.time_s, 'key', `keyframe ${key.shot} ${fmt(key.time_s, 2)} s`);
+  for (const k of Object.keys(frames)) tick(S.time_s[Number(k)], 'frame', `rendered frame ${k}`);
+  for (const v of data.violations) {
+    const d = document.createElement('div');
+    d.className = 'bad';
+    d.style.left = `${((v.start_time_s - t0) / span) * 100}%`;
+    d.style.width = `${Math.max(0.2, ((v.end_time_s - v.start_time_s) / span) * 100)}%`;
+    d.title = v.limit;
+    track.insertBefore(d, slider);
+  }
+}
+
+// ---- lens graphs ----
+const graphs = $('graphs');
+const series = [
+  { name: 'focal length', unit: 'mm', value: (k) => S.focal_length_mm[k], digits: 1 },
+  { name: 'focus', unit: 'dpt (1/m)', value: (k) => dioptres(S.focus_distance_m[k]), digits: 3 },
+  { name: 'f-number', unit: '', value: (k) => S.f_number[k], digits: 1 },
+].map((s) => {
+  let lo = Infinity, hi = -Infinity;
+  for (let k = 0; k < N; ++k) { lo = Math.min(lo, s.value(k)); hi = Math.max(hi, s.value(k)); }
+  if (!(hi > lo)) { lo -= 1; hi += 1; }
+  const pad = (hi - lo) * 0.08;
+  return { ...s, lo: lo - pad, hi: hi + pad };
+});
+function drawGraphs(k) {
+  const dpr = window.devicePixelRatio || 1;
+  const w = graphs.clientWidth, h = graphs.clientHeight;
+  if (graphs.width !== Math.round(w * dpr) || graphs.height !== Math.round(h * dpr)) {
+    graphs.width = Math.round(w * dpr);
+    graphs.height = Math.round(h * dpr);
+  }
+  const ctx = graphs.getContext('2d');
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.clearRect(0, 0, w, h);
+  const rowH = h / series.length, left = 46, right = w - 6;
+  const x = (t) => left + ((t - t0) / span) * (right - left);
+  series.forEach((s, r) => {
+    const top = r * rowH + 16, bottom = (r + 1) * rowH - 6;
+    const y = (v) => bottom - ((v - s.lo) / (s.hi - s.lo)) * (bottom - top);
+    ctx.fillStyle = '#1e2229';
+    ctx.fillRect(left, top, right - left, bottom - top);
+    ctx.fillStyle = '#ff3b2f44';
+    for (const v of data.violations) {
+      ctx.fillRect(x(v.start_time_s), top, Math.max(1, x(v.end_time_s) - x(v.start_time_s)), bottom - top);
+    }
+    ctx.strokeStyle = '#4a5360';
+    ctx.lineWidth = 1;
+    for (const shot of data.shots) {
+      ctx.beginPath();
+      ctx.moveTo(Math.round(x(shot.start_time_s)) + 0.5, top);
+      ctx.lineTo(Math.round(x(shot.start_time_s)) + 0.5, bottom);
+      ctx.stroke();
+    }
+    ctx.strokeStyle = ['#6fb7ff', '#7ee0a1', '#ffd166'][r];
+    ctx.lineWidth = 1.5;
+    ctx.beginPath();
+    for (let i = 0; i < N; ++i) (i ? ctx.lineTo : ctx.moveTo).call(ctx, x(S.time_s[i]), y(s.value(i)));
+    ctx.stroke();
+    ctx.fillStyle = '#c4cad3';
+    ctx.font = '11px DejaVu Sans, sans-serif';
+    ctx.textBaseline = 'alphabetic';
+    ctx.fillText(`${s.name} ${s.unit ? '(' + s.unit + ')' : ''}: ${fmt(s.value(k), s.digits)}`, left, top - 4);
+    ctx.fillStyle = '#8c95a3';
+    ctx.fillText(fmt(s.hi, s.digits), 2, top + 9);
+    ctx.fillText(fmt(s.lo, s.digits), 2, bottom);
+  });
+  ctx.strokeStyle = '#ff9d2e';
+  ctx.lineWidth = 1.5;
+  ctx.beginPath();
+  ctx.moveTo(x(S.time_s[k]), 0);
+  ctx.lineTo(x(S.time_s[k]), h);
+  ctx.stroke();
+}
+function seekFromGraph(event) {
+  const r = graphs.getBoundingClientRect();
+  const t = t0 + ((event.clientX - r.left - 46) / (r.width - 52)) * span;
+  setSample(sampleAtTime(t));
+}
+graphs.addEventListener('pointerdown', (e) => { seekFromGraph(e); graphs.setPointerCapture(e.pointerId); });
+graphs.addEventListener('pointermove', (e) => { if (e.buttons) seekFromGraph(e); });
+
+// ---- the current sample ----
+let k = 0;
+function sampleAtTime(t) {
+  let lo = 0, hi = N - 1;
+  while (lo < hi) {
+    const mid = (lo + hi) >> 1;
+    if (S.time_s[mid] < t) lo = mid + 1; else hi = mid;
+  }
+  if (lo > 0 && Math.abs(S.time_s[lo - 1] - t) <= Math.abs(S.time_s[lo] - t)) lo -= 1;
+  return lo;
+}
+function setSample(index) {
+  k = Math.max(0, Math.min(N - 1, index));
+  if (N === 0) return;
+  slider.value = String(k);
+  const p = pos(k), q = quat(k);
+  drone.position.copy(p);
+  currentFrustum.geometry.dispose();
+  currentFrustum.geometry = new THREE.BufferGeometry();
+  currentFrustum.geometry.setAttribute('position', new THREE.Float32BufferAttribute(frustumPoints(k, []), 3));
+  shotCamera.position.copy(p);
+  shotCamera.quaternion.copy(q);
+  shotCamera.fov = S.vertical_fov_deg[k];
+  shotCamera.updateProjectionMatrix();
+  for (const { subject, body } of subjectMarkers) {
+    body.position.set(subject.position_m[3 * k], subject.position_m[3 * k + 1], subject.position_m[3 * k + 2]);
+  }
+  const shot = data.shots[S.shot[k]];
+  const focus = S.focus_distance_m[k];
+  const e = p.x, n = -p.z, u = p.y;
+  const readout = $('readout');
+  readout.dataset.k = String(k);
+  readout.dataset.time = fmt(S.time_s[k], 6);
+  readout.dataset.e = fmt(e, 3);
+  readout.dataset.n = fmt(n, 3);
+  readout.dataset.u = fmt(u, 3);
+  readout.dataset.focal = fmt(S.focal_length_mm[k], 3);
+  readout.textContent =
+    `t ${fmt(S.time_s[k], 3)} s   frame ${k} / ${N - 1}   shot ${shot ? shot.name + ' (' + shot.type + ')' : '—'}\n` +
+    `camera  E ${fmt(e, 2)}  N ${fmt(n, 2)}  U ${fmt(u, 2)} m   speed ${fmt(S.speed_m_s[k], 2)} m/s\n` +
+    `lens    ${fmt(S.focal_length_mm[k], 1)} mm  f/${fmt(S.f_number[k], 1)}  focus ${fmt(focus, 2)} m ` +
+    `(${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(S.vertical_fov_deg[k], 1)}°`;
+  $('lens-overlay').textContent = `${fmt(S.focal_length_mm[k], 1)} mm  f/${fmt(S.f_number[k], 1)}  ` +
+    `focus ${focus === null ? '∞' : fmt(focus, 2) + ' m'}  ${fmt(S.time_s[k], 2)} s`;
+  $('time').textContent = `${fmt(S.time_s[k], 2)} s / ${fmt(t1, 2)} s · ${k}`;
+  const image = frames[String(k)];
+  const img = $('frame-img');
+  if (image) {
+    if (img.dataset.k !== String(k)) { img.src = image; img.dataset.k = String(k); }
+    img.style.display = 'block';
+    $('camera-label').textContent = `rendered frame ${k}`;
+  } else {
+    img.style.display = 'none';
+    $('camera-label').textContent = 'live preview';
+  }
+  if (follow) placeFollowCamera();
+  drawGraphs(k);
+  requestRender();
+}
+slider.addEventListener('input', () => setSample(Number(slider.value)));
+
+// ---- views of the main camera ----
+let follow = false;
+function setButtons(id) {
+  for (const b of ['view-persp', 'view-top', 'view-follow']) $(b).classList.toggle('on', b === id);
+}
+function perspectiveView() {
+  follow = false;
+  setButtons('view-persp');
+  controls.target.copy(centre);
+  view.position.set(centre.x + size * 0.35, centre.y + size * 0.45, centre.z + size * 0.7);
+  controls.update();
+  requestRender();
+}
+function topView() {
+  follow = false;
+  setButtons('view-top');
+  controls.target.set(centre.x, groundY, centre.z);
+  // Straight down, north (-z) up on the screen (the camera sits a hair south of the target), at the height
+  // where the scene's east-west and north-south extents both fit.
+  const tanHalf = Math.tan(THREE.MathUtils.degToRad(view.fov / 2));
+  const aspect = Math.max(0.1, view.aspect);
+  const height = 1.3 * Math.max((bounds.max.z - bounds.min.z) / 2 / tanHalf,
+                                (bounds.max.x - bounds.min.x) / 2 / (tanHalf * aspect));
+  view.position.set(centre.x, groundY + height, centre.z + height * 1e-4);
+  controls.update();
+  requestRender();
+}
+function placeFollowCamera() {
+  const p = pos(k), back = new THREE.Vector3(0, 0, 1).applyQuaternion(quat(k));
+  back.y = Math.max(back.y, 0.3);
+  view.position.copy(p).addScaledVector(back.normalize(), size * 0.12);
+  controls.target.copy(p);
+  controls.update();
+}
+$('view-persp').addEventListener('click', perspectiveView);
+$('view-top').addEventListener('click', topView);
+$('view-follow').addEventListener('click', () => {
+  follow = true;
+  setButtons('view-follow');
+  placeFollowCamera();
+  requestRender();
+});
+controls.addEventListener('change', requestRender);
+
+// ---- playback: the plan's frame rate, one frame per arrow key ----
+let playing = false, last = 0, carry = 0;
+function setPlaying(on) {
+  playing = on && N > 1;
+  $('play').textContent = playing ? '❚❚ Pause' : '▶ Play';
+  last = performance.now();
+  carry = 0;
+  if (playing) requestAnimationFrame(tick);
+}
+function tick(now) {
+  if (!playing) return;
+  carry += ((now - last) / 1000) * FPS;
+  last = now;
+  const steps = Math.floor(carry);
+  if (steps > 0) {
+    carry -= steps;
+    setSample(k + steps >= N ? 0 : k + steps);
+  }
+  requestAnimationFrame(tick);
+}
+$('play').addEventListener('click', () => setPlaying(!playing));
+window.addEventListener('keydown', (e) => {
+  if (e.key === 'ArrowRight' || e.key === 'ArrowLeft') {
+    setPlaying(false);
+    setSample(k + (e.key === 'ArrowRight' ? 1 : -1));
+    e.preventDefault();
+  } else if (e.key === ' ') {
+    setPlaying(!playing);
+    e.preventDefault();
+  } else if (e.key === 'Home' || e.key === 'End') {
+    setSample(e.key === 'Home' ? 0 : N - 1);
+  }
+});
+
+// ---- drawing ----
+let pending = false;
+function requestRender() {
+  if (pending) return;
+  pending = true;
+  requestAnimationFrame(() => { pending = false; render(); });
+}
+function viewportOf(rect) {
+  const H = canvas.clientHeight;
+  return [rect.left, H - rect.bottom, rect.width, rect.height];
+}
+function render() {
+  const W = canvas.clientWidth, H = canvas.clientHeight;
+  const dpr = window.devicePixelRatio || 1;
+  if (canvas.width !== Math.round(W * dpr) || canvas.height !== Math.round(H * dpr)) renderer.setSize(W, H, false);
+  const panel = $('panel').getBoundingClientRect();
+  const mainW = Math.max(1, panel.left), mainH = Math.max(1, H - 64);
+  // The panel is transparent over the canvas (the camera view shows through it): clear it first.
+  renderer.setViewport(0, 0, W, H);
+  renderer.setScissor(0, 0, W, H);
+  renderer.setClearColor(0x262b33);
+  renderer.clear();
+  renderer.setViewport(0, H - mainH, mainW, mainH);
+  renderer.setScissor(0, H - mainH, mainW, mainH);
+  renderer.setClearColor(0x2a3038);
+  view.aspect = mainW / mainH;
+  view.updateProjectionMatrix();
+  renderer.render(scene, view);
+  const box = viewportOf(cameraBox.getBoundingClientRect());
+  renderer.setViewport(...box);
+  renderer.setScissor(...box);
+  renderer.setClearColor(SKY);
+  renderer.render(scene, shotCamera);
+  // The compass: where north is on the screen of the 3D view.
+  const c = $('compass');
+  c.style.left = `${mainW - 74}px`;
+  const north = new THREE.Vector3(0, 0, -1).transformDirection(view.matrixWorldInverse);
+  const angle = Math.atan2(north.x, north.y) * 180 / Math.PI;
+  $('compass-needle').setAttribute('transform', `rotate(${angle.toFixed(2)})`);
+}
+window.addEventListener('resize', () => { drawGraphs(k); requestRender(); });
+
+// ---- start: #t=SECONDS, #k=SAMPLE and #view=top|3d|chase pick the first picture ----
+const params = new URLSearchParams(location.hash.slice(1));
+view.aspect = Math.max(1, canvas.clientWidth - 420) / Math.max(1, canvas.clientHeight - 64);
+const triangles = await loadMesh();
+const meshReadyMs = performance.now();
+if (params.get('view') === 'top') topView(); else perspectiveView();
+if (params.get('view') === 'chase') $('view-follow').click();
+// #t and #k move the slider as a person would (its input event), so the tests exercise that path.
+setSample(0);
+if (params.has('k') || params.has('t')) {
+  slider.value = String(params.has('k') ? Number(params.get('k')) : sampleAtTime(Number(params.get('t'))));
+  slider.dispatchEvent(new Event('input'));
+}
+render();
+// Where the time went, in ms since the navigation: the module started (three.js parsed), the mesh
+// decoded, the first picture drawn (shaders compiled).
+document.body.dataset.timing = [moduleStartMs, meshReadyMs, performance.now()].map((t) => Math.round(t)).join(',');
+document.body.dataset.triangles = String(triangles);
+document.body.dataset.samples = String(N);
+document.body.dataset.errors = String(window.previsErrors.length);
+document.body.dataset.state = window.previsErrors.length ? 'error' : 'ready';
+document.title = `cinepath view: ${window.previsErrors.length ? 'error' : 'ready'}, ${triangles} triangles`;

@@ -1,0 +1,133 @@
+#include "viewer/previs_page.h"
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/json.h"
+#include "core/plan_file.h"
+#include "core/reframe.h"
+#include "core/scene_file.h"
+#include "scene/glb_reader.h"
+#include "viewer/base64.h"
+#include "viewer/embedded_assets.h"
+#include "viewer/frame_images.h"
+#include "viewer/mesh_payload.h"
+#include "viewer/page_data.h"
+
+namespace cinepath::viewer {
+namespace {
+
+std::string HtmlEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<') {
+      out += "&lt;";
+    } else if (c == '>') {
+      out += "&gt;";
+    } else if (c == '&') {
+      out += "&amp;";
+    } else if (c == '"') {
+      out += "&quot;";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string JsDataUrl(std::string_view code) { return "data:text/javascript;base64," + Base64Encode(code); }
+
+std::string CompactJson(const Json& document) { return JsonForScriptElement(document.dump()); }
+
+Json MeshJson(const MeshPayload& mesh, const std::string& source) {
+  return {{"source", source},
+          {"vertices", mesh.num_vertices},
+          {"triangles", mesh.num_triangles},
+          {"has_colors", mesh.has_colors},
+          {"index_bytes", mesh.index_bytes},
+          {"min_m", mesh.min_three_m},
+          {"max_m", mesh.max_three_m},
+          {"inflated_bytes", mesh.inflated_bytes}};
+}
+
+}  // namespace
+
+std::string FillTemplate(const std::string& page_template,
+                         const std::vector<std::pair<std::string, std::string>>& values) {
+  std::string out;
+  size_t pos = 0;
+  while (true) {
+    const size_t open = page_template.find('@', pos);
+    if (open == std::string::npos) break;
+    const size_t close = page_template.find('@', open + 1);
+    if (close == std::string::npos) break;
+    const std::string name = page_template.substr(open + 1, close - open - 1);
+    const std::pair<std::string, std::string>* value = nullptr;
+    for (const auto& v : values) {
+      if (v.first == name) value = &v;
+    }
+    if (value == nullptr) {
+      // Not a placeholder (an '@' in the text): keep it and look on from the second '@'.
+      out.append(page_template, pos, close - pos);
+      pos = close;
+      continue;
+    }
+    out.append(page_template, pos, open - pos);
+    out += value->second;
+    pos = close + 1;
+  }
+  out.append(page_template, pos, std::string::npos);
+  return out;
+}
+
+std::string JsonForScriptElement(const std::string& json_text) {
+  std::string out;
+  out.reserve(json_text.size());
+  for (size_t i = 0; i < json_text.size(); ++i) {
+    out += json_text[i];
+    if (json_text[i] == '<' && i + 1 < json_text.size() && json_text[i + 1] == '/') out += '\\';
+  }
+  return out;
+}
+
+PrevisPage BuildPrevisPage(const ViewOptions& options) {
+  PrevisPage page;
+  Trajectory plan = ReadPlanFile(options.plan);
+  page.inputs.push_back(options.plan.string());
+  std::optional<Geodetic> origin = plan.origin;
+  std::optional<MeshPayload> mesh;
+  std::string mesh_source;
+  if (options.scene) {
+    const SceneFile scene = ReadSceneFile(*options.scene);
+    page.inputs.push_back(options.scene->string());
+    const std::filesystem::path& glb = scene.RequireMesh();  // InputError when absent or missing
+    page.inputs.push_back(glb.string());
+    if (scene.origin) {
+      plan = ReframeToOrigin(std::move(plan), *scene.origin);  // a plan without an origin is left as it is
+      origin = scene.origin;
+    }
+    mesh = EncodeMeshPayload(scene::ReadGlbFile(glb));
+    mesh_source = glb.filename().string();
+    page.mesh_triangles = mesh->num_triangles;
+  }
+  Json frames = Json::object();
+  if (options.frames_dir) {
+    for (const auto& [k, image] : FindRenderedFrames(*options.frames_dir, plan.samples.size())) {
+      frames[std::to_string(k)] = "data:" + image.mime_type + ";base64," + Base64Encode(ReadFileToString(image.path));
+      page.inputs.push_back(image.path.string());
+      ++page.frames_inlined;
+    }
+  }
+  const std::string plan_name = options.plan.filename().string();
+  page.html = FillTemplate(std::string(PrevisHtml()),
+                           {{"TITLE", HtmlEscape("cinepath view: " + plan_name)},
+                            {"THREE_URL", JsDataUrl(ThreeModuleJs())},
+                            {"CONTROLS_URL", JsDataUrl(OrbitControlsJs())},
+                            {"DATA_JSON", CompactJson(PageDataJson(plan, plan_name, origin))},
+                            {"MESH_JSON", mesh ? CompactJson(MeshJson(*mesh, mesh_source)) : std::string("null")},
+                            {"MESH_BASE64", mesh ? Base64Encode(mesh->deflated) : std::string()},
+                            {"FRAMES_JSON", CompactJson(frames)},
+                            {"PREVIS_JS", std::string(PrevisJs())}});
+  return page;
+}
+
+}  // namespace cinepath::viewer
