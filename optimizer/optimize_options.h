@@ -2,9 +2,21 @@
 // docs/optimize.md gives every value and why; bench/RESULTS.md gives each preset's time and result.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <vector>
+
+namespace ceres {
+class Problem;
+}
 
 namespace cinepath::optimizer {
+
+// Bench only (bench/optimize_vs_ipopt.cc): a solver run on each stage in place of Ceres' own, on the
+// same problem from the same start. It gets the problem, its variable parameter blocks and, for each,
+// the channels held fixed; it leaves the solution in the blocks and returns its iteration count.
+using ExternalSolver = std::function<int(ceres::Problem* problem, const std::vector<double*>& blocks,
+                                         const std::vector<std::vector<int>>& fixed_channels)>;
 
 enum class OptimizeQuality { kDraft, kStandard, kFinal };
 OptimizeQuality ParseOptimizeQuality(const std::string& name);  // InputError for anything else
@@ -35,6 +47,7 @@ struct OptimizeOptions {
   double max_deviation_m = 5.0;      // default when a shot gives none
   double limit_margin = 0.02;        // limits are aimed at (1 - margin) of their value, so they hold after
   CostWeights weights;
+  ExternalSolver external_solver;  // empty: Ceres (always, outside the peer benchmark)
 
   static OptimizeOptions ForQuality(OptimizeQuality quality);
 };

@@ -458,6 +458,23 @@ void PlanOptimizer::Solve(bool ramp) {
   for (double scale : stages) {
     stiffness_->Reset(scale == 1.0 ? nullptr : new ceres::ScaledLoss(nullptr, scale, ceres::TAKE_OWNERSHIP),
                       ceres::TAKE_OWNERSHIP);
+    if (options_.external_solver) {
+      std::vector<double*> blocks;
+      std::vector<std::vector<int>> fixed;
+      for (size_t i = 0; i < knots_.size(); ++i) {
+        if (problem_.IsParameterBlockConstant(knots_[i].data())) continue;
+        blocks.push_back(knots_[i].data());
+        fixed.emplace_back();
+        for (int c = 0; c < kNumChannels; ++c) {
+          if (held_[i][c] || !touched_[i][c]) fixed.back().push_back(c);
+        }
+      }
+      const auto start = std::chrono::steady_clock::now();
+      iterations_ += options_.external_solver(&problem_, blocks, fixed);
+      solve_s_ += Seconds(start);
+      termination_ = "external solver";
+      continue;
+    }
     ceres::Solver::Summary summary;
     ceres::Solve(o, &problem_, &summary);
     iterations_ += static_cast<int>(summary.iterations.size()) - 1;
