@@ -275,6 +275,27 @@ TEST(Optimizer, OverJerkCornerBecomesFeasible) {
   EXPECT_LE(r.report["max_deviation_m"].get<double>(), 5.0 + 1e-6);
 }
 
+TEST(Optimizer, OverSpeedFlybyBecomesFeasible) {
+  // A FLYBY eased with smootherstep peaks at 1.875x its mean speed: 12.75 m/s against the profile's 12
+  // (and its jerk, 60 D / T^3 = 4.08 m/s^3, is just over the 4 m/s^3 limit too).
+  const Trajectory plan = PlanFromShots(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 30,
+    "camera": {"filmback": "super35", "width_px": 1920, "height_px": 1080, "min_focal_length_mm": 24,
+               "max_focal_length_mm": 70, "min_f_number": 2.8, "max_f_number": 16},
+    "drone": "px4-multirotor",
+    "actors": [{"name": "keeper", "height_m": 1.8, "position_enu_m": [0, 0, 0]}],
+    "shots": [{"name": "flyby", "type": "FLYBY", "subject": "keeper", "duration_s": 10, "closest_distance_m": 15,
+               "height_m": 8, "speed_m_s": 6.8, "easing": "smootherstep"}]})");
+  bool over_speed = false;
+  for (const auto& v : plan.feasibility.violations) over_speed = over_speed || v.limit == "horizontal_speed";
+  ASSERT_TRUE(over_speed);
+  const OptimizeResult r = Optimize(plan);
+  EXPECT_TRUE(r.plan.feasibility.feasible()) << r.failure;
+  EXPECT_GT(r.report["max_deviation_m"].get<double>(), 0.1);  // reported
+  EXPECT_LE(r.report["max_deviation_m"].get<double>(), 5.0 + 1e-6);
+  EXPECT_FALSE(r.report["limits"]["horizontal_speed"]["before"].is_null());
+  EXPECT_TRUE(r.report["limits"]["horizontal_speed"]["after"].is_null());
+}
+
 TEST(Optimizer, Extremes) {
   // One frame.
   {
