@@ -160,20 +160,24 @@ ShotIntent ReadIntent(const JsonField& f) {
   }
   if (f.Has("background_blur_px")) intent.background_blur_px = f["background_blur_px"].AsPositive();
   if (f.Has("background_distance_m")) intent.background_distance_m = f["background_distance_m"].AsPositive();
-  if (auto hold = f.Find("hold")) {
-    for (const auto& e : hold->Elements()) {
-      const std::string channel = e.AsString();
-      if (std::find(kOptimizeChannels.begin(), kOptimizeChannels.end(), channel) == kOptimizeChannels.end()) {
-        e.Fail("unknown channel \"" + channel + "\" (position, orientation, focal_length, focus, aperture)");
-      }
-      intent.hold.push_back(channel);
-    }
-  }
+  if (auto hold = f.Find("hold")) intent.hold = ReadHoldList(*hold);
   if (f.Has("max_deviation_m")) intent.max_deviation_m = f["max_deviation_m"].AsNonNegative();
   return intent;
 }
 
 }  // namespace
+
+std::vector<std::string> ReadHoldList(const JsonField& hold) {
+  std::vector<std::string> channels;
+  for (const auto& e : hold.Elements()) {
+    const std::string channel = e.AsString();
+    if (std::find(kOptimizeChannels.begin(), kOptimizeChannels.end(), channel) == kOptimizeChannels.end()) {
+      e.Fail("unknown channel \"" + channel + "\" (position, orientation, focal_length, focus, aperture)");
+    }
+    channels.push_back(channel);
+  }
+  return channels;
+}
 
 Json PlanToJson(const Trajectory& plan) {
   Json doc = Json::object();

@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/json.h"
 #include "core/trajectory.h"
@@ -24,6 +25,10 @@ std::string PlanToText(const Trajectory& plan);  // DumpJson(PlanToJson(plan))
 // Reads a plan document; InputError("<source>: <json path>: ...") on anything malformed.
 Trajectory PlanFromJson(const Json& document, const std::string& source);
 Trajectory ReadPlanFile(const std::filesystem::path& path);
+
+// A shot's `hold` list (shots.json's "optimize" block, plan.json's intent): names out of
+// kOptimizeChannels (core/trajectory.h); InputError naming the element for anything else.
+std::vector<std::string> ReadHoldList(const JsonField& hold);
 
 // The samples as CSV (one header line, one row per sample, comma separated, '.' decimals, focus
 // "inf" at infinity, subjects joined by ';'). Columns: docs/plan-format.md.

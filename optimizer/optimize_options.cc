@@ -21,28 +21,23 @@ const char* OptimizeQualityName(OptimizeQuality quality) {
 }
 
 OptimizeOptions OptimizeOptions::ForQuality(OptimizeQuality quality) {
+  // {knot spacing s, iterations per solve, function tolerance, visibility rounds} (docs/optimize.md).
+  struct Preset {
+    double knot_spacing_s;
+    int max_iterations;
+    double function_tolerance;
+    int visibility_rounds;
+  };
+  static constexpr Preset kDraft{1.0, 30, 1e-5, 1}, kStandard{0.5, 100, 1e-8, 4}, kFinal{0.25, 300, 1e-10, 6};
+  const Preset& p = quality == OptimizeQuality::kDraft   ? kDraft
+                    : quality == OptimizeQuality::kFinal ? kFinal
+                                                         : kStandard;
   OptimizeOptions o;
   o.quality = quality;
-  switch (quality) {
-    case OptimizeQuality::kDraft:
-      o.knot_spacing_s = 1.0;
-      o.max_iterations = 30;
-      o.function_tolerance = 1e-5;
-      o.visibility_rounds = 1;
-      break;
-    case OptimizeQuality::kStandard:
-      o.knot_spacing_s = 0.5;
-      o.max_iterations = 100;
-      o.function_tolerance = 1e-8;
-      o.visibility_rounds = 4;
-      break;
-    case OptimizeQuality::kFinal:
-      o.knot_spacing_s = 0.25;
-      o.max_iterations = 300;
-      o.function_tolerance = 1e-10;
-      o.visibility_rounds = 6;
-      break;
-  }
+  o.knot_spacing_s = p.knot_spacing_s;
+  o.max_iterations = p.max_iterations;
+  o.function_tolerance = p.function_tolerance;
+  o.visibility_rounds = p.visibility_rounds;
   return o;
 }
 

@@ -22,6 +22,7 @@
 #include "optimizer/cost_terms.h"
 #include "optimizer/plan_samples.h"
 #include "optimizer/visibility_targets.h"
+#include "scene/caster_ground.h"
 #include "scene/ray_caster.h"
 #include "scene/surface_distance.h"
 #include "shots/feasibility.h"
@@ -59,21 +60,6 @@ struct SceneIndex {
   std::unique_ptr<scene::SurfaceDistance> surface;
   std::unique_ptr<scene::RayCaster> caster;  // null when the corridor has no faces
   double build_s = 0;
-};
-
-class CasterGround : public Ground {
- public:
-  CasterGround(const scene::RayCaster& caster, std::string source) : caster_(caster), source_(std::move(source)) {}
-  std::optional<double> SurfaceUpM(double east_m, double north_m, double from_up_m) const override {
-    const auto hit = caster_.SurfaceBelow(east_m, north_m, from_up_m);
-    if (!hit) return std::nullopt;
-    return hit->position_enu_m.z();
-  }
-  const std::string& source() const override { return source_; }
-
- private:
-  const scene::RayCaster& caster_;
-  std::string source_;
 };
 
 Eigen::Vector3d AimPoint(const SubjectTrack& track, size_t k) {
@@ -561,8 +547,8 @@ Trajectory PlanOptimizer::Apply() const {
     apply(base, StateAt(base), &key.position_enu_m, &key.world_from_camera, &key.focal_length_mm, &key.focus_distance_m,
           &key.f_number);
   }
-  std::unique_ptr<CasterGround> ground;
-  if (scene_.caster) ground = std::make_unique<CasterGround>(*scene_.caster, input_.scene_source);
+  std::unique_ptr<scene::CasterGround> ground;
+  if (scene_.caster) ground = std::make_unique<scene::CasterGround>(*scene_.caster, input_.scene_source);
   out.feasibility = shots::CheckFeasibility(out, split_.cut_before, {}, ground.get());
   return out;
 }
@@ -615,8 +601,8 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
     }
     return w;
   };
-  std::unique_ptr<CasterGround> ground;
-  if (scene_.caster) ground = std::make_unique<CasterGround>(*scene_.caster, input_.scene_source);
+  std::unique_ptr<scene::CasterGround> ground;
+  if (scene_.caster) ground = std::make_unique<scene::CasterGround>(*scene_.caster, input_.scene_source);
   const FeasibilityReport before = shots::CheckFeasibility(plan_, split_.cut_before, {}, ground.get());
   const auto wb = worst(before), wa = worst(optimized.feasibility);
   std::set<std::string> names;

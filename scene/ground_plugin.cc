@@ -3,27 +3,26 @@
 #include <string>
 
 #include "core/ground.h"
+#include "scene/caster_ground.h"
 #include "scene/glb_reader.h"
 #include "scene/ray_caster.h"
 
 namespace cinepath::scene {
 namespace {
 
+// The whole scene's mesh and its ray caster, owned here; the queries are CasterGround's.
 class MeshGround : public Ground {
  public:
   explicit MeshGround(const std::string& glb_path)
-      : source_(std::filesystem::path(glb_path).filename().string()), caster_(ReadGlbFile(glb_path)) {}
-
+      : caster_(ReadGlbFile(glb_path)), ground_(caster_, std::filesystem::path(glb_path).filename().string()) {}
   std::optional<double> SurfaceUpM(double east_m, double north_m, double from_up_m) const override {
-    const auto hit = caster_.SurfaceBelow(east_m, north_m, from_up_m);
-    if (!hit) return std::nullopt;
-    return hit->position_enu_m.z();
+    return ground_.SurfaceUpM(east_m, north_m, from_up_m);
   }
-  const std::string& source() const override { return source_; }
+  const std::string& source() const override { return ground_.source(); }
 
  private:
-  std::string source_;
   RayCaster caster_;
+  CasterGround ground_;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/number_format.h"
+#include "core/plan_file.h"
 #include "core/rotation.h"
 
 namespace cinepath::shots {
@@ -470,15 +471,7 @@ void ParseCommonKeys(const JsonField& f, const ShotSyntax& syntax, const ShotLis
 OptimizeSpec ParseOptimize(const JsonField& f) {
   f.RejectUnknownKeys({"hold", "max_deviation_m"});
   OptimizeSpec spec;
-  if (auto hold = f.Find("hold")) {
-    for (const auto& e : hold->Elements()) {
-      const std::string channel = e.AsString();
-      if (std::find(kOptimizeChannels.begin(), kOptimizeChannels.end(), channel) == kOptimizeChannels.end()) {
-        e.Fail("unknown channel \"" + channel + "\" (position, orientation, focal_length, focus, aperture)");
-      }
-      spec.hold.push_back(channel);
-    }
-  }
+  if (auto hold = f.Find("hold")) spec.hold = ReadHoldList(*hold);
   if (f.Has("max_deviation_m")) spec.max_deviation_m = f["max_deviation_m"].AsNonNegative();
   return spec;
 }
