@@ -1,6 +1,5 @@
 #include "shots/shot_syntax.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
