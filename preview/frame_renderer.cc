@@ -241,11 +241,13 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
         const int n = preset.gather_blur ? std::min(edge[i] ? preset.edge_samples : 1, max_samples)
                                          : SamplesFor(need, edge[i] != 0, preset, max_samples);
         image.samples[i] = uint16_t(std::min(n, 65535));
-        if (n == 1) {
+        const bool lens = !preset.gather_blur && need >= kSharpPx;
+        // One ray for a sharp pixel is the pinhole pass's; a blurred one still takes its ray through
+        // the lens and the shutter (so `--spp 1` shows depth of field and motion, noisily).
+        if (n == 1 && !lens) {
           image.rgb_linear[i] = pass.rgb[i];
           continue;
         }
-        const bool lens = !preset.gather_blur && need >= kSharpPx;
         const SampleSequence sequence(k, uint32_t(x), uint32_t(y));
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         for (int s = 0; s < n; ++s) {

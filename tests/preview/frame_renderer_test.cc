@@ -266,6 +266,19 @@ TEST(FrameRenderer, OutputSizeKeepsTheCamerasAspect) {
 namespace cinepath::preview {
 namespace {
 
+TEST(FrameRenderer, OneRayPerPixelStillGoesThroughTheLens) {
+  // One ray per pixel of an out-of-focus edge: noisy, but averaged down the columns the edge spreads over
+  // the blur circle; a copy of the pinhole pass would leave a step one column wide.
+  const Eigen::Vector3d camera(0, 0, 0);
+  const Trajectory plan = StillCamera(camera, 100, 1.4, 3);
+  const double predicted = ThinLensCamera(plan.camera, kWidth, kHeight, 100, 1.4, 3).BlurPx(20);
+  ASSERT_GT(predicted, 10);
+  const std::vector<double> profile = ColumnProfile(Render(Wall(camera, 20), plan, Settings(RenderQuality::kFinal, 1)));
+  int between = 0;
+  for (double p : profile) between += p > 0.05 && p < 0.95 ? 1 : 0;
+  EXPECT_GT(between, predicted / 2) << "columns between dark and bright: " << between;
+}
+
 TEST(FrameRenderer, MinSamplesReachesEveryPixelSharpOnesToo) {
   const Eigen::Vector3d camera(0, 0, 0);
   FrameSettings settings = Settings(RenderQuality::kStandard, 64);
