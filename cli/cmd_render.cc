@@ -12,9 +12,11 @@
 #include "cli/command.h"
 #include "cli/command_plugin.h"
 #include "cli/common_options.h"
+#include "core/error.h"
 #include "core/number_format.h"
 #include "core/progress.h"
 #include "preview/render_job.h"
+#include "preview/sun_position.h"
 
 namespace cinepath::cli {
 namespace {
@@ -38,8 +40,12 @@ class RenderCommand : public Command {
     app.add_option("--format", format_, "png | exr (linear float) | jpg")->check(CLI::IsMember({"png", "exr", "jpg"}));
     app.add_option("--width-px", width_px_, "Output width; the plan camera's aspect is kept")
         ->check(CLI::PositiveNumber);
-    app.add_option("--shading", shading_, "flat (vertex colours, unlit) | sun")->check(CLI::IsMember({"flat", "sun"}));
+    shading_option_ = app.add_option("--shading", shading_, "flat (vertex colours, unlit) | sun")
+                          ->check(CLI::IsMember({"flat", "sun"}));
     app.add_option("--sun", sun_, "Sun AZIMUTH,ELEVATION in degrees for --shading sun (default 135,45)");
+    app.add_option("--sun-time", sun_time_,
+                   "The sun of this UTC moment (YYYY-MM-DDTHH:MM[:SS]Z) at the scene's origin; implies --shading sun")
+        ->excludes("--sun");
     app.add_option("--exposure", exposure_, "fixed (default) | physical (t * ISO / N^2, 1 at 1/50 s ISO 100 f/4)")
         ->check(CLI::IsMember({"fixed", "physical"}));
     app.add_option("--iso", options_.iso, "ISO for --exposure physical")->check(PositiveFinite());
@@ -52,6 +58,7 @@ class RenderCommand : public Command {
   }
 
   int Run() override {
+    shading_given_ = shading_option_ && shading_option_->count() > 0;
     options_.output_dir = output_dir_;
     if (!frames_.empty()) options_.frames.range = ParseFrameRange(frames_);
     options_.frames.every = size_t(every_);
@@ -63,6 +70,11 @@ class RenderCommand : public Command {
     options_.width_px = width_px_;
     options_.shading = ParseShading(shading_);
     if (!sun_.empty()) options_.sun = ParseSunDirection(sun_);
+    if (!sun_time_.empty()) {
+      if (shading_ == "flat" && shading_given_) throw InputError("--sun-time lights the scene: it needs --shading sun");
+      options_.sun_time_unix_s = ParseUtcTime(sun_time_, "--sun-time");
+      options_.shading = Shading::kSun;
+    }
     options_.exposure = exposure_ == "physical" ? Exposure::kPhysical : Exposure::kFixed;
     if (!aov_.empty()) ParseAovs(aov_, &options_);
     if (!contact_sheet_.empty()) options_.contact_sheet = contact_sheet_;
@@ -89,7 +101,9 @@ class RenderCommand : public Command {
  private:
   std::string plan_path_, scene_path_, output_dir_;
   std::string frames_, shard_, quality_ = "standard", format_ = "png", shading_ = "flat", sun_, exposure_ = "fixed";
-  std::string aov_, contact_sheet_, video_;
+  std::string aov_, contact_sheet_, video_, sun_time_;
+  CLI::Option* shading_option_ = nullptr;
+  bool shading_given_ = false;
   int every_ = 1;
   std::optional<int> spp_, min_spp_, width_px_;
   bool verbose_ = false;

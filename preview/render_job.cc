@@ -18,6 +18,7 @@
 #include "core/scene_file.h"
 #include "preview/image_files.h"
 #include "preview/preview_scene.h"
+#include "preview/sun_position.h"
 #include "preview/thin_lens_camera.h"
 #include "scene/glb_reader.h"
 
@@ -155,6 +156,19 @@ class VideoWriter {
   FILE* pipe_ = nullptr;
 };
 
+// --sun AZ,EL as given, or with --sun-time the sun of that moment at the scene's WGS84 origin.
+SunDirection SunForOptions(const RenderOptions& options, const Trajectory& plan, const SceneFile& scene_file) {
+  if (!options.sun_time_unix_s) return options.sun;
+  const std::optional<Geodetic>& where = scene_file.origin ? scene_file.origin : plan.origin;
+  if (!where) throw InputError("--sun-time: neither the scene nor the plan has a WGS84 origin to find the sun from");
+  const SunDirection sun = SunPositionAt(*where, *options.sun_time_unix_s);
+  if (sun.elevation_deg <= 0) {
+    throw InputError("--sun-time: the sun is " + FormatFixed(-sun.elevation_deg, 1) +
+                     " deg below the horizon then at the scene (azimuth " + FormatFixed(sun.azimuth_deg, 1) + " deg)");
+  }
+  return sun;
+}
+
 }  // namespace
 
 std::string FrameLabel(const Trajectory& plan, size_t k) {
@@ -192,8 +206,9 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   }
   const bool labels = options.overlay || options.contact_sheet;
   if (labels) RequireLabelFont();
+  const SunDirection sun = SunForOptions(options, plan, scene_file);
   CheckWritableFolder(options.output_dir);
-  const PreviewScene scene(scene::ReadGlbFile(glb), plan, options.shading, options.sun);
+  const PreviewScene scene(scene::ReadGlbFile(glb), plan, options.shading, sun);
   // Every frame allocates the same few image-sized buffers: keep freed ones in the heap instead of
   // returning them to the kernel, so the next frame does not page-fault them in again (measured: a
   // fifth of a draft frame's time went to page faults and zeroing).

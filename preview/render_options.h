@@ -2,6 +2,7 @@
 // presets with the figures they were tuned to (docs/render.md, "Presets"; bench/RESULTS.md).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -47,6 +48,7 @@ struct RenderOptions {
   std::optional<int> width_px;  // the aspect of the plan's camera is kept
   Shading shading = Shading::kFlat;
   SunDirection sun;
+  std::optional<int64_t> sun_time_unix_s;  // --sun-time: the sun of that moment at the scene's origin
   Exposure exposure = Exposure::kFixed;
   double iso = 100;  // --exposure physical: relative exposure t * ISO / N^2, 1 at 1/50 s, ISO 100, f/4
   bool aov_depth = false;

@@ -60,6 +60,9 @@ sed 's/"mesh": *"scene.glb"/"mesh": "scene.glb"/' "$work/scene/scene.json" > "$w
 expect_refusal "$work/out3" "scene.glb" -- "$CINEPATH" render "$work/plan.json" --scene "$work/empty/scene.json"
 touch "$work/a_file"
 expect_refusal "$work/a_file/frames" "a_file" -- "$CINEPATH" render "$work/plan.json" --scene "$work/scene/scene.json"
+# Midnight at the scene: the sun is below the horizon.
+expect_refusal "$work/out4" "below the horizon" -- "$CINEPATH" render "$work/plan.json" \
+  --scene "$work/scene/scene.json" --sun-time 2026-06-21T06:00:00Z
 echo "bad input: exit 2, nothing written"
 
 # --video without ffmpeg on PATH: a clear message, nothing rendered.
