@@ -9,6 +9,7 @@
 #include "photogrammetry/gcp_file.h"
 #include "photogrammetry/ply_reader.h"
 #include "photogrammetry/refs_file.h"
+#include "photogrammetry/scene_cameras.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -199,6 +200,7 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
                     {"points3d", model.points3d.size()}};
   for (auto it = input_note.begin(); it != input_note.end(); ++it) scene["input"][it.key()] = it.value();
   scene["surface"] = built.report;
+  scene["cameras"] = SceneCamerasJson(geo.model_enu);
 
   result.glb = std::move(built.glb);
   result.scene = std::move(scene);
