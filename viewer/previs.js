@@ -263,6 +263,12 @@ function frustumPoints(k, out) {
   overlay(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0xffffff, transparent: true,
                                                                    opacity: 0.3 })));
 }
+// Where the photos that built the scene were taken (scene.json's cameras), as small blue points.
+if (data.photos && data.photos.length) {
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(data.photos.flatMap((p) => p.position_m), 3));
+  overlay(new THREE.Points(g, new THREE.PointsMaterial({ color: 0x4db8ff, size: 6, sizeAttenuation: false })));
+}
 const current = new THREE.Group();
 const currentFrustum = new THREE.LineSegments(new THREE.BufferGeometry(),
                                               new THREE.LineBasicMaterial({ color: 0xff9d2e }));
@@ -299,7 +305,8 @@ const cameraBox = $('camera-box');
 cameraBox.style.aspectRatio = `${data.camera.width_px} / ${data.camera.height_px}`;
 const origin = data.origin;
 $('hud-plan').textContent = `${data.plan} · ${N} samples at ${FPS} fps · ${data.shots.length} shots` +
-  (meshInfo ? ` · ${meshInfo.source}: ${meshInfo.triangles} triangles` : ' · no scene mesh');
+  (meshInfo ? ` · ${meshInfo.source}: ${meshInfo.triangles} triangles` : ' · no scene mesh') +
+  (data.photos && data.photos.length ? ` · ${data.photos.length} photos (blue)` : '');
 $('hud-origin').textContent = origin
   ? `WGS84 origin ${fmt(Math.abs(origin.lat_deg), 7)}°${origin.lat_deg >= 0 ? 'N' : 'S'} ` +
     `${fmt(Math.abs(origin.lon_deg), 7)}°${origin.lon_deg >= 0 ? 'E' : 'W'} ${fmt(origin.height_m, 2)} m ellipsoidal`

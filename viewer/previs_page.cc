@@ -12,6 +12,7 @@
 #include "viewer/frame_images.h"
 #include "viewer/mesh_payload.h"
 #include "viewer/page_data.h"
+#include "viewer/three_frame.h"
 
 namespace cinepath::viewer {
 namespace {
@@ -47,6 +48,35 @@ Json MeshJson(const MeshPayload& mesh, const std::string& source) {
           {"min_m", mesh.min_three_m},
           {"max_m", mesh.max_three_m},
           {"inflated_bytes", mesh.inflated_bytes}};
+}
+
+// Where the photos that built the scene were taken (scene.json's `cameras`, written by `cinepath mesh`),
+// in three.js's frame, millimetres: {name, position_m}. Absent or malformed entries are skipped: the
+// page is a preview, and scene.json's reader does not require the key.
+Json PhotoPositionsJson(const SceneFile& scene) {
+  Json photos = Json::array();
+  const auto it = scene.document.find("cameras");
+  if (it == scene.document.end() || !it->is_array()) return photos;
+  for (const Json& camera : *it) {
+    if (!camera.is_object() || !camera.contains("position_enu_m") || !camera["position_enu_m"].is_array() ||
+        camera["position_enu_m"].size() != 3 || !camera.value("image", Json()).is_string()) {
+      continue;
+    }
+    const Json& p = camera["position_enu_m"];
+    if (!p[0].is_number() || !p[1].is_number() || !p[2].is_number()) continue;
+    const Eigen::Vector3d three = ThreeFromEnu({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
+    Json photo = Json::object();
+    photo["name"] = camera["image"];
+    photo["position_m"] =
+        Json::array({RoundToDecimals(three.x(), 3), RoundToDecimals(three.y(), 3), RoundToDecimals(three.z(), 3)});
+    photos.push_back(photo);
+  }
+  return photos;
+}
+
+Json WithPhotos(Json data, Json photos) {
+  data["photos"] = std::move(photos);
+  return data;
 }
 
 }  // namespace
@@ -96,6 +126,7 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
   std::optional<Geodetic> origin = plan.origin;
   std::optional<MeshPayload> mesh;
   std::string mesh_source;
+  Json photos = Json::array();
   if (options.scene) {
     const SceneFile scene = ReadSceneFile(*options.scene);
     page.inputs.push_back(options.scene->string());
@@ -105,6 +136,7 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
       plan = ReframeToOrigin(std::move(plan), *scene.origin);  // a plan without an origin is left as it is
       origin = scene.origin;
     }
+    photos = PhotoPositionsJson(scene);
     mesh = EncodeMeshPayload(scene::ReadGlbFile(glb));
     mesh_source = glb.filename().string();
     page.mesh_triangles = mesh->num_triangles;
@@ -122,7 +154,7 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
                            {{"TITLE", HtmlEscape("cinepath view: " + plan_name)},
                             {"THREE_URL", JsDataUrl(ThreeModuleJs())},
                             {"CONTROLS_URL", JsDataUrl(OrbitControlsJs())},
-                            {"DATA_JSON", CompactJson(PageDataJson(plan, plan_name, origin))},
+                            {"DATA_JSON", CompactJson(WithPhotos(PageDataJson(plan, plan_name, origin), photos))},
                             {"MESH_JSON", mesh ? CompactJson(MeshJson(*mesh, mesh_source)) : std::string("null")},
                             {"MESH_BASE64", mesh ? Base64Encode(mesh->deflated) : std::string()},
                             {"FRAMES_JSON", CompactJson(frames)},

@@ -6,6 +6,8 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/json.h"
+#include "core/number_format.h"
 
 namespace cinepath::viewer {
 namespace {
@@ -34,6 +36,26 @@ TEST(PrevisPage, PlanWithoutOriginOverAScene) {
   EXPECT_EQ(page.html.find("http://"), std::string::npos);  // nothing to fetch
   // The same bytes each run.
   EXPECT_EQ(BuildPrevisPage(options).html, page.html);
+}
+
+TEST(PrevisPage, ThePhotosOfTheSceneAreMarked) {
+  // The golden scene records its 6 photos (scene.json `cameras`); the page carries each position, in
+  // three.js's frame (e, u, -n), to the millimetre.
+  ViewOptions options;
+  options.plan = kLookDownPlan;
+  options.scene = kGoldenScene;
+  const std::string html = BuildPrevisPage(options).html;
+  const Json scene = ParseJsonFile(kGoldenScene);
+  ASSERT_EQ(scene["cameras"].size(), 6u);
+  for (const Json& camera : scene["cameras"]) {
+    EXPECT_NE(html.find("\"name\":\"" + camera["image"].get<std::string>() + "\""), std::string::npos)
+        << camera["image"];
+  }
+  const Json& p = scene["cameras"][0]["position_enu_m"];
+  const std::string three = "[" + FormatShortest(RoundToDecimals(p[0].get<double>(), 3)) + "," +
+                            FormatShortest(RoundToDecimals(p[2].get<double>(), 3)) + "," +
+                            FormatShortest(RoundToDecimals(-p[1].get<double>(), 3)) + "]";
+  EXPECT_NE(html.find("\"position_m\":" + three), std::string::npos) << three;
 }
 
 TEST(PrevisPage, PlanAloneViewsInLocalMetres) {
