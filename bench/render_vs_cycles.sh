@@ -11,16 +11,16 @@
 # alone (cinepath -v frame time; Cycles from scene sync to the written file, after Blender's start-up and
 # the glTF import). PSNR (idiff, OpenImageIO: 20 log10(1 / RMS) over R, G, B) on the EXRs clamped to [0, 1]
 # and sRGB-encoded, kept in float (no 8-bit rounding). Prints markdown tables; keeps everything in OUT.
-#   bench/render_vs_cycles.sh BUILD_DIR OUT_DIR
+#   bench/render_vs_cycles.sh BUILD_DIR [OUT_DIR]     (make bench passes BUILD_DIR only: a temporary OUT)
 # Environment: WIDTH (640), FRAME (840), REF_SPP (4096), SPPS ("1 2 4 ... REF_SPP"), THREADS (2, Cycles).
 set -euo pipefail
-if [[ $# -ne 2 ]]; then
-  echo "usage: $0 BUILD_DIR OUT_DIR" >&2
+if [[ $# -lt 1 || $# -gt 2 ]]; then
+  echo "usage: $0 BUILD_DIR [OUT_DIR]" >&2
   exit 2
 fi
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 CINEPATH=$(cd "$1" && pwd)/cli/cinepath
-OUT=$2
+OUT=${2:-$(mktemp -d)}
 WIDTH=${WIDTH:-640}
 FRAME=${FRAME:-840}
 REF_SPP=${REF_SPP:-4096}
