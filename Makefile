@@ -37,13 +37,15 @@ bench: build
 	@scripts/bench.sh $(BUILD_DIR)
 
 # The sanitizers catch what the optimized build hides; interop (Node.js tools) and the COLMAP run add
-# nothing under them and take long, so they are left out.
+# nothing under them and take long, so they are left out. A failing test is run once more: under load,
+# LeakSanitizer's tracer itself sometimes dies ("Tracer caught signal 11", seen once on preview.golden_images,
+# which then passed twice alone); a real finding fails both runs.
 sanitize: deps
 	@cmake --preset sanitize > build-sanitize.configure.log 2>&1 || (cat build-sanitize.configure.log; exit 1)
 	@cmake --build build-sanitize -j $(JOBS)
 	@cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 \
 	  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:suppressions=$(CURDIR)/tests/sanitizers/ubsan.supp \
-	  ctest --output-on-failure -j $(JOBS) -E '^(interop\.|colmap_runner|repo\.)'
+	  ctest --output-on-failure -j $(JOBS) --repeat until-pass:2 -E '^(interop\.|colmap_runner|repo\.)'
 
 FUZZ_SECONDS ?= 60
 fuzz:
