@@ -85,11 +85,9 @@ double BlurCircleMm(double focal_length_mm, double f_number, double focus_distan
   ValidateFNumber(f_number);
   ValidateFocusDistanceM(focus_distance_m, focal_length_mm);
   ValidateSubjectDistanceM(subject_distance_m, focal_length_mm);
-  const double f_m = focal_length_mm / kMmPerM;
   const double inv_s = 1.0 / focus_distance_m;  // 0 at infinity
   const double inv_d = 1.0 / subject_distance_m;
-  const double c_m = (f_m * f_m / f_number) * std::fabs(inv_s - inv_d) / (1.0 - f_m * inv_s);
-  return c_m * kMmPerM;
+  return BlurCircleDiameterM(focal_length_mm / kMmPerM, f_number, inv_s, inv_d) * kMmPerM;
 }
 
 double MmToPixels(double sensor_mm, double sensor_width_mm, int width_px) {

@@ -9,6 +9,7 @@
 // non-finite input) throw InputError naming the quantity.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -44,6 +45,21 @@ void ValidateFocusDistanceM(double focus_distance_m, double focal_length_mm,
 //   c = (f^2 / N) * |1/s - 1/d| / (1 - f/s)
 // s = +inf gives c = f^2 / (N d); d = +inf gives c = (f^2/N) (1/s) / (1 - f/s).
 double BlurCircleMm(double focal_length_mm, double f_number, double focus_distance_m, double subject_distance_m);
+
+// The same thin lens in dioptres, templated so that automatic differentiation (optimize) runs through it;
+// metres and dioptres (1/m, 0 at infinity), no validation. BlurCircleMm is this with checked inputs.
+//   blur-circle diameter c = (f^2 / N) |D - B| / (1 - f D)        focus at 1/D, point at 1/B
+//   depth of field: 1/near = D + K (1 - f D), 1/far = D - K (1 - f D), K = N c0 / f^2 (the limits of
+//   DepthOfFieldLimits, symmetric in dioptres about the focus); this returns K (1 - f D).
+template <typename T>
+T BlurCircleDiameterM(const T& focal_m, const T& f_number, const T& focus_dioptre, const T& point_dioptre) {
+  using std::abs;
+  return focal_m * focal_m / f_number * abs(focus_dioptre - point_dioptre) / (T(1) - focal_m * focus_dioptre);
+}
+template <typename T>
+T DepthOfFieldHalfWidthDioptres(const T& focal_m, const T& f_number, const T& focus_dioptre, double coc_m) {
+  return f_number * coc_m / (focal_m * focal_m) * (T(1) - focal_m * focus_dioptre);
+}
 
 // mm on the sensor to pixels: c_px = c * width_px / sensor_width_mm.
 double MmToPixels(double sensor_mm, double sensor_width_mm, int width_px);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/drone_profile.h"
+#include "core/optics.h"
 #include "core/trajectory.h"
 #include "optimizer/sample_model.h"
 
@@ -77,20 +78,6 @@ struct FramingCost {
   }
 };
 
-// Thin lens in dioptres (docs/optimize.md): with K = N c / f^2, the near and far limits of the depth of
-// field are 1/near = D + K (1 - f D) and 1/far = D - K (1 - f D): the field is symmetric in dioptres.
-template <typename T>
-T DofHalfWidthDioptres(const T& focal_m, const T& f_number, const T& dioptre, double coc_m) {
-  return f_number * coc_m / (focal_m * focal_m) * (T(1) - focal_m * dioptre);
-}
-
-// Blur-circle diameter on the sensor (metres) of a point at 1/point_dioptre when focused at 1/dioptre.
-template <typename T>
-T BlurCircleM(const T& focal_m, const T& f_number, const T& dioptre, const T& point_dioptre) {
-  using std::abs;
-  return focal_m * focal_m / f_number * abs(dioptre - point_dioptre) / (T(1) - focal_m * dioptre);
-}
-
 // depth of field: an actor that must be sharp lies inside [near, far]; residual = the dioptres outside,
 // relative to the actor's own (so 0.01 is 1 % of its distance). With follow = true the focus itself
 // tracks the actor (a shot that asks nothing of the depth of field, whose camera moves).
@@ -113,7 +100,7 @@ struct SharpCost {
       return true;
     }
     const T focal_m = FocalLengthMm(base, s) * 1e-3;
-    const T half = DofHalfWidthDioptres(focal_m, FNumber(base, s), s.dioptre, coc_m);
+    const T half = DepthOfFieldHalfWidthDioptres(focal_m, FNumber(base, s), s.dioptre, coc_m);
     r[0] = weight * depth * Hinge(abs(T(1) / depth - s.dioptre) - half);
     return true;
   }
@@ -136,7 +123,7 @@ struct BackgroundBlurCost {
     const T depth = p[2] > T(0.05) ? p[2] : T(0.05);
     const T background_dioptre = std::isinf(background_behind_m) ? T(0) : T(1) / (depth + T(background_behind_m));
     const T focal_m = FocalLengthMm(base, s) * 1e-3;
-    return BlurCircleM(focal_m, FNumber(base, s), s.dioptre, background_dioptre) * pixels_per_m;
+    return BlurCircleDiameterM(focal_m, FNumber(base, s), s.dioptre, background_dioptre) * pixels_per_m;
   }
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
