@@ -15,7 +15,7 @@
 #include "core/plan_file.h"
 #include "core/reframe.h"
 #include "core/scene_file.h"
-#include "optimizer/optimizer.h"
+#include "optimizer/team_optimizer.h"
 #include "scene/glb_reader.h"
 
 namespace cinepath::cli {
@@ -38,8 +38,8 @@ class OptimizeCommand : public Command {
   }
 
   int Run() override {
-    OptimizeInput input;
-    input.plan = ReadPlanFile(plan_path_);
+    TeamOptimizeInput input;
+    input.plan = ReadTeamPlanFile(plan_path_);
     input.plan_source = plan_path_;
     std::vector<std::string> inputs = {plan_path_};
     scene::SceneMesh mesh;
@@ -54,12 +54,12 @@ class OptimizeCommand : public Command {
       inputs.push_back(scene_path_);
       inputs.push_back(glb.string());
     }
-    const OptimizeResult result = OptimizePlan(input, OptimizeOptions::ForQuality(ParseOptimizeQuality(quality_)));
+    const TeamOptimizeResult result = OptimizeTeam(input, OptimizeOptions::ForQuality(ParseOptimizeQuality(quality_)));
     if (strict_ && !result.failure.empty()) {
       throw InfeasibleError("after optimizing, " + result.failure + " (--strict; nothing written)");
     }
     AtomicOutputs outputs;
-    outputs.Add(output_, PlanToText(result.plan));
+    outputs.Add(output_, TeamPlanToText(result.plan));
     std::vector<std::string> targets = {output_};
     if (!report_path_.empty()) {
       outputs.Add(report_path_, DumpJson(result.report));

@@ -16,6 +16,7 @@
 #include "shots/plan_plot.h"
 #include "shots/planner.h"
 #include "shots/shot_list.h"
+#include "shots/team_planner.h"
 
 namespace cinepath::cli {
 namespace {
@@ -48,24 +49,19 @@ class PlanCommand : public Command {
       }
     }
     const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin, ground);
-    const Trajectory plan = shots::PlanShots(list);
-
-    if (strict_ && !plan.feasibility.feasible()) {
-      std::string msg = "the plan breaks " + std::to_string(plan.feasibility.violations.size()) +
-                        " limit range(s) (--strict; nothing written):";
-      for (const auto& v : plan.feasibility.violations) {
-        const bool minimum = v.limit.ends_with("_min") || v.limit == "subject_distance";
-        msg += "\n  " + FormatFixed(v.start_time_s, 3) + "-" + FormatFixed(v.end_time_s, 3) + " s  shot \"" + v.shot +
-               "\"  " + v.limit + ": " + FormatSignificant(v.worst_value, 4) + (v.unit.empty() ? "" : " " + v.unit) +
-               (minimum ? " < " : " > ") + FormatSignificant(v.limit_value, 4) + (v.unit.empty() ? "" : " " + v.unit);
-      }
-      throw InfeasibleError(msg);
+    TeamPlan plan;
+    if (list.drones.empty()) {
+      plan.single = true;
+      plan.flights.push_back({list.drone.name, std::nullopt, shots::PlanShots(list)});
+    } else {
+      plan = shots::PlanTeam(list);
     }
+    if (strict_) RefuseBrokenLimits(plan);
 
     AtomicOutputs outputs;
-    outputs.Add(output_, PlanToText(plan));
-    if (!csv_path_.empty()) outputs.Add(csv_path_, PlanSamplesToCsv(plan));
-    if (!plot_path_.empty()) outputs.Add(plot_path_, shots::PlanToSvg(plan));
+    outputs.Add(output_, TeamPlanToText(plan));
+    if (!csv_path_.empty()) outputs.Add(csv_path_, TeamPlanSamplesToCsv(plan));
+    if (!plot_path_.empty()) outputs.Add(plot_path_, shots::TeamPlanToSvg(plan));
     outputs.Commit();
 
     std::vector<std::string> targets = {output_};
@@ -73,6 +69,32 @@ class PlanCommand : public Command {
     if (!plot_path_.empty()) targets.push_back(plot_path_);
     common_.WriteDepfileIfAsked(targets, inputs);
     return 0;
+  }
+
+  // --strict: exit 3 naming every broken range, of every flight and of the team.
+  static void RefuseBrokenLimits(const TeamPlan& plan) {
+    size_t broken = plan.team.conflicts.size();
+    for (const auto& f : plan.flights) broken += f.plan.feasibility.violations.size();
+    if (broken == 0) return;
+    std::string msg = "the plan breaks " + std::to_string(broken) + " limit range(s) (--strict; nothing written):";
+    auto range = [](double a, double b) { return FormatFixed(a, 3) + "-" + FormatFixed(b, 3) + " s  "; };
+    for (const auto& f : plan.flights) {
+      for (const auto& v : f.plan.feasibility.violations) {
+        const bool minimum = v.limit.ends_with("_min") || v.limit == "subject_distance";
+        const std::string unit = v.unit.empty() ? "" : " " + v.unit;
+        msg += "\n  " + range(v.start_time_s, v.end_time_s) + (plan.single ? "" : "drone \"" + f.name + "\"  ") +
+               "shot \"" + v.shot + "\"  " + v.limit + ": " + FormatSignificant(v.worst_value, 4) + unit +
+               (minimum ? " < " : " > ") + FormatSignificant(v.limit_value, 4) + unit;
+      }
+    }
+    for (const auto& c : plan.team.conflicts) {
+      const bool separation = c.limit == "separation";
+      msg += "\n  " + range(c.start_time_s, c.end_time_s) + c.limit + ": drone \"" + c.other + "\" " +
+             (separation ? FormatSignificant(c.worst_value, 4) + " m from \"" + c.drone + "\" (< " +
+                               FormatSignificant(c.limit_value, 4) + " m)"
+                         : "in the shot of \"" + c.drone + "\" (" + FormatSignificant(c.worst_value, 4) + " px across)");
+    }
+    throw InfeasibleError(msg);
   }
 
   FieldFlags field_flags() const override {

@@ -27,15 +27,18 @@ const std::vector<DroneProfileField>& DroneProfileFields() {
       {.key = "dji_drone_enum", .integer = &D::dji_drone_enum, .check = C::kNonNegative},
       {.key = "dji_drone_sub_enum", .integer = &D::dji_drone_sub_enum, .check = C::kNonNegative},
       {.key = "dji_payload_enum", .integer = &D::dji_payload_enum, .check = C::kNonNegative},
+      {.key = "body_radius_m", .number = &D::body_radius_m, .team = true},
+      {.key = "min_separation_m", .number = &D::min_separation_m, .check = C::kNonNegative, .team = true},
   };
   return fields;
 }
 
-Json DroneProfileToJson(const DroneProfile& profile) {
+Json DroneProfileToJson(const DroneProfile& profile, bool team_fields) {
   Json j = Json::object();
   j["name"] = profile.name;
   if (!profile.firmware.empty()) j["firmware"] = profile.firmware;
   for (const DroneProfileField& f : DroneProfileFields()) {
+    if (f.team && !team_fields) continue;
     if (f.number) {
       j[f.key] = profile.*f.number;
     } else {

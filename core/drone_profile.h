@@ -54,6 +54,10 @@ struct DroneProfile {
   int dji_drone_enum = 67;       // WPML droneInfo / payloadInfo (DJI only)
   int dji_drone_sub_enum = 0;
   int dji_payload_enum = 52;
+  // Several drones in one plan (core/team_plan.h): the aircraft as a sphere (propeller tips included),
+  // for "no drone in another's shot", and the least distance between any two drones' centres.
+  double body_radius_m = 0.4;
+  double min_separation_m = 5;
 
   std::optional<FixedLens> lens;  // a built-in lens, when the aircraft has one
 };
@@ -66,11 +70,13 @@ struct DroneProfileField {
   double DroneProfile::*number = nullptr;  // set for real-valued fields
   int DroneProfile::*integer = nullptr;    // set for integer fields
   Check check = Check::kPositive;
+  bool team = false;  // only meaningful with several drones: written in "cinepath.plan/2" plans only
 };
 const std::vector<DroneProfileField>& DroneProfileFields();
 
-// {"name", "firmware" (unless empty), <every field>, "lens" (when present)}, in the table's order.
-Json DroneProfileToJson(const DroneProfile& profile);
+// {"name", "firmware" (unless empty), <every field>, "lens" (when present)}, in the table's order. The
+// team fields only with `team_fields` (a one-drone plan reads and writes as it did before they existed).
+Json DroneProfileToJson(const DroneProfile& profile, bool team_fields = false);
 
 // Applies the fields present in `object` to `profile` (unknown keys other than `allowed_extra` are
 // refused) and checks the bands (max > min). InputError names the key.

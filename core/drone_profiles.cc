@@ -47,6 +47,8 @@ std::vector<DroneProfile> MakeProfiles() {
       .min_relative_altitude_m = -200,    // assumed (as MSDK v4)
       .max_relative_altitude_m = 500,     // assumed (as MSDK v4)
       .max_mission_items = 2000,          // [PX4] NUM_MISSIONS_SUPPORTED
+      .body_radius_m = 0.4,               // assumed: a 500 mm-wheelbase quad with 10-inch propellers
+      .min_separation_m = 5,              // assumed
   });
   p.push_back({
       .name = "ardupilot-copter",
@@ -67,6 +69,8 @@ std::vector<DroneProfile> MakeProfiles() {
       .min_relative_altitude_m = -200,    // assumed
       .max_relative_altitude_m = 500,     // assumed
       .max_mission_items = 724,           // [AP]
+      .body_radius_m = 0.4,               // assumed, as px4-multirotor
+      .min_separation_m = 5,              // assumed
   });
   p.push_back({
       .name = "dji-m30",
@@ -90,6 +94,8 @@ std::vector<DroneProfile> MakeProfiles() {
       .dji_drone_enum = 67,                // [WPML]
       .dji_drone_sub_enum = 0,
       .dji_payload_enum = 52,  // [WPML]
+      .body_radius_m = 0.55,   // [M30] 668 mm diagonal wheelbase, half of it plus a propeller's radius
+      .min_separation_m = 5,   // assumed
   });
   p.push_back({
       .name = "dji-mini4pro",
@@ -113,6 +119,8 @@ std::vector<DroneProfile> MakeProfiles() {
       .dji_drone_enum = 68,                // [WPML]
       .dji_drone_sub_enum = 0,
       .dji_payload_enum = 0,
+      .body_radius_m = 0.24,  // [MINI4] 298 x 373 mm unfolded with propellers: half its diagonal
+      .min_separation_m = 5,  // assumed
       .lens = FixedLens{.min_focal_length_mm = 6.7,  // [MINI4] 24 mm equivalent
                         .max_focal_length_mm = 6.7,
                         .min_f_number = 1.7,  // [MINI4] fixed aperture

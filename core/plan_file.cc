@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/drone_profiles.h"
 #include "core/error.h"
@@ -179,14 +180,13 @@ std::vector<std::string> ReadHoldList(const JsonField& hold) {
   return channels;
 }
 
-Json PlanToJson(const Trajectory& plan) {
-  Json doc = Json::object();
-  doc["schema"] = kPlanSchema;
-  doc["generator"] = std::string("cinepath ") + kVersion;
-  doc["origin"] = plan.origin ? GeodeticToJson(*plan.origin) : Json(nullptr);
-  doc["frame_rate_hz"] = plan.frame_rate_hz;
+namespace {
+
+// Everything of a flight after the plan's header (origin, frame rate), appended to `doc` in the order
+// version 1 writes it.
+void AppendFlightJson(const Trajectory& plan, bool drone_team_fields, Json& doc) {
   doc["camera"] = CameraJson(plan.camera);
-  doc["drone"] = DroneProfileToJson(plan.drone);
+  doc["drone"] = DroneProfileToJson(plan.drone, drone_team_fields);
 
   Json shots = Json::array();
   for (const auto& s : plan.shots) {
@@ -271,21 +271,27 @@ Json PlanToJson(const Trajectory& plan) {
   report["skipped"] = plan.feasibility.skipped;
   doc["feasibility"] = std::move(report);
   if (!plan.optimized.is_null()) doc["optimized"] = plan.optimized;
+}
+
+}  // namespace
+
+Json PlanToJson(const Trajectory& plan) {
+  Json doc = Json::object();
+  doc["schema"] = kPlanSchema;
+  doc["generator"] = std::string("cinepath ") + kVersion;
+  doc["origin"] = plan.origin ? GeodeticToJson(*plan.origin) : Json(nullptr);
+  doc["frame_rate_hz"] = plan.frame_rate_hz;
+  AppendFlightJson(plan, false, doc);
   return doc;
 }
 
 std::string PlanToText(const Trajectory& plan) { return DumpJson(PlanToJson(plan)); }
 
-Trajectory PlanFromJson(const Json& document, const std::string& source) {
-  const JsonField root(document, source);
-  if (!root.IsObject()) root.Fail("expected a cinepath plan (a JSON object)");
-  const std::string schema = root["schema"].AsString();
-  if (schema != kPlanSchema) {
-    root["schema"].Fail("unsupported plan version \"" + schema + "\" (this cinepath reads \"" + kPlanSchema + "\")");
-  }
-  Trajectory plan;
-  if (auto o = root.Find("origin")) plan.origin = GeodeticFromJson(*o);
-  plan.frame_rate_hz = root["frame_rate_hz"].AsDoubleIn(0.01, 1000);
+namespace {
+
+// A flight's keys after the header (camera, drone, shots, samples, ...), into `plan` (origin and frame
+// rate already set).
+void ReadFlight(const JsonField& root, Trajectory& plan) {
   plan.camera = ReadCamera(root["camera"]);
   if (auto d = root.Find("drone")) plan.drone = ReadDrone(*d);
 
@@ -378,10 +384,186 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
     if (!optimized->IsObject() && !optimized->IsNull()) optimized->Fail("expected an object");
     plan.optimized = optimized->node();
   }
+}
+
+}  // namespace
+
+Trajectory PlanFromJson(const Json& document, const std::string& source) {
+  const JsonField root(document, source);
+  if (!root.IsObject()) root.Fail("expected a cinepath plan (a JSON object)");
+  const std::string schema = root["schema"].AsString();
+  if (schema == kTeamPlanSchema) {
+    root["schema"].Fail("this plan holds several drones (\"" + schema +
+                        "\"); this step reads one flight (\"" + kPlanSchema + "\")");
+  }
+  if (schema != kPlanSchema) {
+    root["schema"].Fail("unsupported plan version \"" + schema + "\" (this cinepath reads \"" + kPlanSchema +
+                        "\" and \"" + kTeamPlanSchema + "\")");
+  }
+  Trajectory plan;
+  if (auto o = root.Find("origin")) plan.origin = GeodeticFromJson(*o);
+  plan.frame_rate_hz = root["frame_rate_hz"].AsDoubleIn(0.01, 1000);
+  ReadFlight(root, plan);
   return plan;
 }
 
 Trajectory ReadPlanFile(const std::filesystem::path& path) { return PlanFromJson(ParseJsonFile(path), path.string()); }
+
+namespace {
+
+Json ConflictJson(const TeamConflict& c) {
+  Json j = Json::object();
+  j["limit"] = c.limit;
+  j["drone"] = c.drone;
+  j["other"] = c.other;
+  j["start_time_s"] = R(c.start_time_s, kTime);
+  j["end_time_s"] = R(c.end_time_s, kTime);
+  j["worst_value"] = R(c.worst_value, kLens);
+  j["limit_value"] = R(c.limit_value, kLens);
+  j["unit"] = c.unit;
+  return j;
+}
+
+}  // namespace
+
+Json TeamPlanToJson(const TeamPlan& plan) {
+  if (plan.single) {
+    if (plan.flights.size() != 1) throw std::logic_error("TeamPlanToJson: a version 1 plan holds one flight");
+    return PlanToJson(plan.flights[0].plan);
+  }
+  Json doc = Json::object();
+  doc["schema"] = kTeamPlanSchema;
+  doc["generator"] = std::string("cinepath ") + kVersion;
+  doc["origin"] = plan.origin ? GeodeticToJson(*plan.origin) : Json(nullptr);
+  doc["frame_rate_hz"] = plan.frame_rate_hz;
+  Json edit = Json::array();
+  for (const auto& cut : plan.edit) {
+    Json j = Json::object();
+    j["at_s"] = R(cut.at_s, kTime);
+    j["drone"] = cut.drone;
+    if (cut.match_focus) j["match_focus"] = true;
+    edit.push_back(std::move(j));
+  }
+  doc["edit"] = std::move(edit);
+
+  Json team = Json::object();
+  team["clear"] = plan.team.clear();
+  team["min_separation_m"] = R(plan.team.min_separation_m, kMetres);
+  Json conflicts = Json::array();
+  for (const auto& c : plan.team.conflicts) conflicts.push_back(ConflictJson(c));
+  team["conflicts"] = std::move(conflicts);
+  Json matches = Json::array();
+  for (const auto& m : plan.team.focus_matches) {
+    Json j = Json::object();
+    j["at_s"] = R(m.at_s, kTime);
+    j["from_drone"] = m.from_drone;
+    j["to_drone"] = m.to_drone;
+    j["subject"] = m.subject;
+    j["from_focus_error_dioptres"] = R(m.from_focus_error_dioptres, kLens);
+    j["to_focus_error_dioptres"] = R(m.to_focus_error_dioptres, kLens);
+    matches.push_back(std::move(j));
+  }
+  team["focus_matches"] = std::move(matches);
+  doc["team"] = std::move(team);
+  if (!plan.optimized.is_null()) doc["optimized"] = plan.optimized;
+
+  Json flights = Json::array();
+  for (const auto& f : plan.flights) {
+    Json j = Json::object();
+    j["name"] = f.name;
+    j["home_enu_m"] = f.home_enu_m ? Vec3(*f.home_enu_m) : Json(nullptr);
+    AppendFlightJson(f.plan, true, j);
+    flights.push_back(std::move(j));
+  }
+  doc["flights"] = std::move(flights);
+  return doc;
+}
+
+std::string TeamPlanToText(const TeamPlan& plan) { return DumpJson(TeamPlanToJson(plan)); }
+
+TeamPlan TeamPlanFromJson(const Json& document, const std::string& source) {
+  const JsonField root(document, source);
+  if (!root.IsObject()) root.Fail("expected a cinepath plan (a JSON object)");
+  TeamPlan team;
+  if (root["schema"].AsString() == kPlanSchema) {
+    Trajectory single = PlanFromJson(document, source);
+    team.origin = single.origin;
+    team.frame_rate_hz = single.frame_rate_hz;
+    team.single = true;
+    team.team.min_separation_m = single.drone.min_separation_m;
+    team.flights.push_back({single.drone.name, std::nullopt, std::move(single)});
+    return team;
+  }
+  const std::string schema = root["schema"].AsString();
+  if (schema != kTeamPlanSchema) {
+    root["schema"].Fail("unsupported plan version \"" + schema + "\" (this cinepath reads \"" + kPlanSchema +
+                        "\" and \"" + kTeamPlanSchema + "\")");
+  }
+  if (auto o = root.Find("origin")) team.origin = GeodeticFromJson(*o);
+  team.frame_rate_hz = root["frame_rate_hz"].AsDoubleIn(0.01, 1000);
+  const JsonField flights = root["flights"];
+  if (flights.size() == 0) flights.Fail("must hold at least one flight");
+  for (const auto& f : flights.Elements()) {
+    DroneFlight flight;
+    flight.name = f["name"].AsString();
+    if (flight.name.empty()) f["name"].Fail("must not be empty");
+    if (team.FindFlight(flight.name) >= 0) f["name"].Fail("duplicate drone name \"" + flight.name + "\"");
+    if (auto h = f.Find("home_enu_m")) flight.home_enu_m = ReadVec3(*h);
+    flight.plan.origin = team.origin;
+    flight.plan.frame_rate_hz = team.frame_rate_hz;
+    ReadFlight(f, flight.plan);
+    team.flights.push_back(std::move(flight));
+  }
+  if (auto edit = root.Find("edit")) {
+    for (const auto& e : edit->Elements()) {
+      EditCut cut;
+      cut.at_s = e["at_s"].AsNonNegative();
+      cut.drone = e["drone"].AsString();
+      cut.match_focus = e.BoolOr("match_focus", false);
+      if (team.FindFlight(cut.drone) < 0) e["drone"].Fail("no flight is named \"" + cut.drone + "\"");
+      if (!team.edit.empty() && !(cut.at_s > team.edit.back().at_s)) e["at_s"].Fail("cuts must be in increasing time");
+      team.edit.push_back(std::move(cut));
+    }
+  }
+  if (auto t = root.Find("team")) {
+    team.team.min_separation_m = t->DoubleOr("min_separation_m", 0.0);
+    if (auto conflicts = t->Find("conflicts")) {
+      for (const auto& f : conflicts->Elements()) {
+        TeamConflict c;
+        c.limit = f["limit"].AsString();
+        c.drone = f["drone"].AsString();
+        c.other = f["other"].AsString();
+        c.start_time_s = f["start_time_s"].AsDouble();
+        c.end_time_s = f["end_time_s"].AsDouble();
+        c.worst_value = f["worst_value"].AsDouble();
+        c.limit_value = f["limit_value"].AsDouble();
+        c.unit = f.StringOr("unit", "");
+        team.team.conflicts.push_back(std::move(c));
+      }
+    }
+    if (auto matches = t->Find("focus_matches")) {
+      for (const auto& f : matches->Elements()) {
+        FocusMatch m;
+        m.at_s = f["at_s"].AsDouble();
+        m.from_drone = f["from_drone"].AsString();
+        m.to_drone = f["to_drone"].AsString();
+        m.subject = f["subject"].AsString();
+        m.from_focus_error_dioptres = f["from_focus_error_dioptres"].AsDouble();
+        m.to_focus_error_dioptres = f["to_focus_error_dioptres"].AsDouble();
+        team.team.focus_matches.push_back(std::move(m));
+      }
+    }
+  }
+  if (auto optimized = root.Find("optimized")) {
+    if (!optimized->IsObject() && !optimized->IsNull()) optimized->Fail("expected an object");
+    team.optimized = optimized->node();
+  }
+  return team;
+}
+
+TeamPlan ReadTeamPlanFile(const std::filesystem::path& path) {
+  return TeamPlanFromJson(ParseJsonFile(path), path.string());
+}
 
 std::string PlanSamplesToCsv(const Trajectory& plan) {
   std::string out =
@@ -408,6 +590,32 @@ std::string PlanSamplesToCsv(const Trajectory& plan) {
            num(s.gimbal_yaw_deg, kDegrees) + "," + num(s.focal_length_mm, kLens) + "," +
            num(s.focus_distance_m, kMetres) + "," + num(s.f_number, kLens) + "," + num(s.shutter_s, kTime) + "," +
            subjects + "\n";
+  }
+  return out;
+}
+
+}  // namespace cinepath
+
+namespace cinepath {
+
+std::string TeamPlanSamplesToCsv(const TeamPlan& plan) {
+  if (plan.single) return PlanSamplesToCsv(plan.flights.at(0).plan);
+  std::string out;
+  for (size_t i = 0; i < plan.flights.size(); ++i) {
+    const std::string csv = PlanSamplesToCsv(plan.flights[i].plan);
+    size_t line_start = 0;
+    bool header = true;
+    while (line_start < csv.size()) {
+      const size_t end = csv.find('\n', line_start);
+      const std::string line = csv.substr(line_start, end == std::string::npos ? std::string::npos : end - line_start);
+      line_start = end == std::string::npos ? csv.size() : end + 1;
+      if (header) {
+        if (i == 0) out += "drone," + line + "\n";
+        header = false;
+        continue;
+      }
+      out += plan.flights[i].name + "," + line + "\n";
+    }
   }
   return out;
 }

@@ -13,11 +13,14 @@
 #include <vector>
 
 #include "core/json.h"
+#include "core/team_plan.h"
 #include "core/trajectory.h"
 
 namespace cinepath {
 
 inline constexpr const char* kPlanSchema = "cinepath.plan/1";
+// Several drones (core/team_plan.h): one flight per drone, the edit and the team report.
+inline constexpr const char* kTeamPlanSchema = "cinepath.plan/2";
 
 Json PlanToJson(const Trajectory& plan);
 std::string PlanToText(const Trajectory& plan);  // DumpJson(PlanToJson(plan))
@@ -26,6 +29,13 @@ std::string PlanToText(const Trajectory& plan);  // DumpJson(PlanToJson(plan))
 Trajectory PlanFromJson(const Json& document, const std::string& source);
 Trajectory ReadPlanFile(const std::filesystem::path& path);
 
+// Either version as a team: a "cinepath.plan/1" file reads as one flight with `single` set (its drone
+// named after its profile); TeamPlanToJson writes such a plan back as version 1, byte for byte.
+TeamPlan TeamPlanFromJson(const Json& document, const std::string& source);
+TeamPlan ReadTeamPlanFile(const std::filesystem::path& path);
+Json TeamPlanToJson(const TeamPlan& plan);
+std::string TeamPlanToText(const TeamPlan& plan);
+
 // A shot's `hold` list (shots.json's "optimize" block, plan.json's intent): names out of
 // kOptimizeChannels (core/trajectory.h); InputError naming the element for anything else.
 std::vector<std::string> ReadHoldList(const JsonField& hold);
@@ -33,5 +43,8 @@ std::vector<std::string> ReadHoldList(const JsonField& hold);
 // The samples as CSV (one header line, one row per sample, comma separated, '.' decimals, focus
 // "inf" at infinity, subjects joined by ';'). Columns: docs/plan-format.md.
 std::string PlanSamplesToCsv(const Trajectory& plan);
+// The same for a team: a first column "drone" (the flight's name) before them, flights in order. A
+// version 1 plan gives PlanSamplesToCsv's text.
+std::string TeamPlanSamplesToCsv(const TeamPlan& plan);
 
 }  // namespace cinepath

@@ -27,4 +27,15 @@ Trajectory ReframeToOrigin(Trajectory plan, const Geodetic& origin) {
   return plan;
 }
 
+TeamPlan ReframeToOrigin(TeamPlan plan, const Geodetic& origin) {
+  if (!plan.origin) return plan;
+  const EnuFrame source(*plan.origin), target(origin);
+  for (DroneFlight& f : plan.flights) {
+    f.plan = ReframeToOrigin(std::move(f.plan), origin);
+    if (f.home_enu_m) f.home_enu_m = target.EnuFromEcef(source.EcefFromEnu(*f.home_enu_m));
+  }
+  plan.origin = origin;
+  return plan;
+}
+
 }  // namespace cinepath

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/geodesy.h"
+#include "core/team_plan.h"
 #include "core/trajectory.h"
 
 namespace cinepath {
@@ -12,5 +13,7 @@ namespace cinepath {
 // The plan in the frame of `origin`: samples, keyframes and subjects; `plan.origin` becomes `origin`.
 // A plan without an origin is taken to be in that frame already and is returned unchanged.
 Trajectory ReframeToOrigin(Trajectory plan, const Geodetic& origin);
+// Every flight and take-off point of a team.
+TeamPlan ReframeToOrigin(TeamPlan plan, const Geodetic& origin);
 
 }  // namespace cinepath

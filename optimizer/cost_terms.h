@@ -214,6 +214,49 @@ struct KeepOutCost {
   }
 };
 
+// out_of_shot (several drones): a drone's body, a sphere, outside another drone's live frame. Either this
+// drone is the body and the viewer is held fixed (`this_drone_views` false: `other_enu_m` is the viewer,
+// with its orientation and focal length), or this drone's camera is the viewer and the other drone's
+// body is held fixed (`other_enu_m` is the body; this sample's pose and focal length are the camera's).
+// The residual is how far (metres at the body's depth) the sphere reaches into the frame past its
+// nearest edge, so the cheapest way out is across that edge. Behind the camera is out.
+struct OutOfShotCost {
+  SampleBase base;
+  bool this_drone_views = false;
+  Eigen::Vector3d other_enu_m;
+  Eigen::Matrix3d viewer_camera_from_world = Eigen::Matrix3d::Identity();  // this_drone_views false only
+  double viewer_focal_length_mm = 24;                                      // this_drone_views false only
+  double image_width_mm = 24.89, image_height_mm = 14;
+  double body_radius_m = 0.4;
+  double margin = 0.02;
+  double weight = 1;
+
+  template <typename T>
+  bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
+    using std::abs;
+    const T* k[4] = {k0, k1, k2, k3};
+    const SampleState<T> s = EvaluateSample(base, k);
+    Vec3T<T> c;
+    T f_mm;
+    if (this_drone_views) {
+      c = CameraPoint(base, s, other_enu_m);
+      f_mm = FocalLengthMm(base, s);
+    } else {
+      c = viewer_camera_from_world.cast<T>() * (s.position - other_enu_m.cast<T>());
+      f_mm = T(viewer_focal_length_mm);
+    }
+    if (c[2] <= T(body_radius_m)) {
+      r[0] = T(0);
+      return true;
+    }
+    const T reach = T(body_radius_m * (1.0 + margin) + margin);
+    const T inside_x = T(0.5 * image_width_mm) / f_mm * c[2] + reach - abs(c[0]);
+    const T inside_y = T(0.5 * image_height_mm) / f_mm * c[2] + reach - abs(c[1]);
+    r[0] = weight * Hinge(inside_x < inside_y ? inside_x : inside_y);
+    return true;
+  }
+};
+
 // smoothness: over one spline segment, the jerk and the acceleration of the path change and the rates
 // and accelerations of the angle and lens changes (at the segment's middle), each over a reference scale, times sqrt(h)
 // so that the sum over segments approximates an integral over time whatever the knot spacing.

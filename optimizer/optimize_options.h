@@ -35,6 +35,8 @@ struct CostWeights {
   double limits = 100.0;     // per fraction of a limit exceeded (stiff)
   double clearance = 100.0;  // per metre inside the clearance margin (stiff)
   double occlusion = 30.0;   // per metre from the nearest viewpoint with a clear line of sight
+  double team = 100.0;       // several drones: per fraction of the separation missing, per metre into
+                             // another drone's live frame (stiff)
 };
 
 struct OptimizeOptions {

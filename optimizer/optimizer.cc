@@ -114,7 +114,10 @@ class PlanOptimizer {
   }
   // The drone's and the lens's limits: penalties whose weight is ramped up over the solve (Solve). The
   // clearance is at full weight from the start: a soft stage must not let the path ring into the ground.
-  static bool IsStiff(const std::string& term) { return term == "limits" || term == "keep_out"; }
+  static bool IsStiff(const std::string& term) {
+    return term == "limits" || term == "keep_out" || term == "separation" || term == "out_of_shot";
+  }
+  void AddTeamTerms(size_t k, double max_deviation_m);
 
   const OptimizeInput& input_;
   const Trajectory& plan_;
@@ -324,6 +327,7 @@ void PlanOptimizer::AddTerms() {
           new KeepOutCost{base, foot, t.height_m, plan_.drone.min_subject_distance_m, options_.limit_margin, w.limits},
           base, 1);
     }
+    if (!input_.others.empty()) AddTeamTerms(k, max_dev);
     if (scene_.surface && scene_.surface->num_faces() > 0) {
       const auto closest = scene_.surface->Closest(sample.position_enu_m);
       if (closest && closest->distance_m < options_.clearance_margin_m + max_dev + 0.5) {
@@ -373,6 +377,50 @@ void PlanOptimizer::AddTerms() {
       problem_.SetParameterBlockConstant(knots_[i].data());
     } else if (!fixed.empty()) {
       problem_.SetManifold(knots_[i].data(), new ceres::SubsetManifold(kNumChannels, fixed));
+    }
+  }
+}
+
+// Several drones: keep the separation from each other drone (a sphere about its fixed position, as the
+// keep-out term does for actors), and stay out of its frame while its camera is live. Only samples within
+// reach (the deviation allowed plus a metre) get a term.
+void PlanOptimizer::AddTeamTerms(size_t k, double max_deviation_m) {
+  const SampleBase& base = split_.bases[k];
+  const Eigen::Vector3d& position = plan_.samples[k].position_enu_m;
+  const double radius = plan_.drone.body_radius_m;
+  for (const OtherDrone& other : input_.others) {
+    const TrajectorySample& o = other.samples[k];
+    const double separation = other.separation_m[k];
+    if (separation > 0 && (position - o.position_enu_m).norm() < separation + max_deviation_m + 1.0) {
+      AddSampleTerm("separation",
+                    new KeepOutCost{base, o.position_enu_m, 0.0, separation, options_.limit_margin, options_.weights.team},
+                    base, 1);
+    }
+    // This drone in the other's live frame (the other's camera held), and the other in this drone's.
+    for (const bool this_views : {false, true}) {
+      if (this_views ? !input_.own_live[k] : !other.live[k]) continue;
+      const CameraSpec& camera = this_views ? plan_.camera : other.camera;
+      const Eigen::Vector3d& viewer = this_views ? position : o.position_enu_m;
+      const Eigen::Vector3d& body = this_views ? o.position_enu_m : position;
+      const Eigen::Quaterniond& world_from_camera =
+          this_views ? plan_.samples[k].world_from_camera : o.world_from_camera;
+      const double focal_mm = this_views ? plan_.samples[k].focal_length_mm : o.focal_length_mm;
+      const double body_radius = this_views ? other.body_radius_m : radius;
+      const ImageExtentMm image = camera.image_extent_mm();
+      const Eigen::Matrix3d camera_from_world = world_from_camera.conjugate().toRotationMatrix();
+      const Eigen::Vector3d c = camera_from_world * (body - viewer);
+      const double half_w = image.width_mm / (2 * focal_mm), half_h = image.height_mm / (2 * focal_mm);
+      // Within reach: the deviation allowed, and for this drone's own camera the frame widening as it zooms.
+      const double reach = body_radius + max_deviation_m + 1.0 + (this_views ? 0.5 * c.z() * half_w : 0.0);
+      if (c.z() <= body_radius || std::fabs(c.x()) > half_w * c.z() + reach ||
+          std::fabs(c.y()) > half_h * c.z() + reach) {
+        continue;
+      }
+      AddSampleTerm("out_of_shot",
+                    new OutOfShotCost{base, this_views, this_views ? body : viewer, camera_from_world, focal_mm,
+                                      image.width_mm, image.height_mm, body_radius, options_.limit_margin,
+                                      options_.weights.team},
+                    base, 1);
     }
   }
 }

@@ -19,7 +19,22 @@
 
 namespace cinepath::optimizer {
 
+// Another drone of a team (optimizer/team_optimizer.h), held fixed while this plan is optimized: this
+// drone keeps `separation_m[k]` from it and stays out of its frame at the samples where `live[k]`.
+// Every vector has one entry per sample of the plan being optimized.
+struct OtherDrone {
+  std::string name;
+  double body_radius_m = 0.4;
+  CameraSpec camera;
+  std::vector<TrajectorySample> samples;  // its pose and lens on this plan's clock
+  std::vector<double> separation_m;
+  std::vector<bool> live;
+};
+// This drone's own camera is live at sample k (its frame must not hold the others): `own_live[k]`.
+
 struct OptimizeInput {
+  std::vector<OtherDrone> others;  // several drones only
+  std::vector<bool> own_live;      // with others: one per sample
   Trajectory plan;
   std::string plan_source = "plan.json";   // for messages
   const scene::SceneMesh* mesh = nullptr;  // the scene (ENU, the plan's frame), or null

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/error.h"
 #include "core/number_format.h"
 #include "core/optics.h"
 
@@ -227,6 +228,11 @@ std::string PlanToSvg(const Trajectory& plan) {
   }
   svg += "</svg>\n";
   return svg;
+}
+
+std::string TeamPlanToSvg(const TeamPlan& plan) {
+  if (plan.single || plan.flights.size() == 1) return PlanToSvg(plan.flights.at(0).plan);
+  throw InputError("--plot: several drones are not drawn yet");
 }
 
 }  // namespace cinepath::shots

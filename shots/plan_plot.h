@@ -10,10 +10,14 @@
 
 #include <string>
 
+#include "core/team_plan.h"
 #include "core/trajectory.h"
 
 namespace cinepath::shots {
 
 std::string PlanToSvg(const Trajectory& plan);
+// Several drones: every flight in its own colour, the team's conflicts shaded on the time axis. A version
+// 1 plan gives PlanToSvg's picture.
+std::string TeamPlanToSvg(const TeamPlan& plan);
 
 }  // namespace cinepath::shots

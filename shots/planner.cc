@@ -59,12 +59,23 @@ class Planner {
                                    double fallback_heading_deg, double blend_w, bool apply_rotation_offset) const;
   double RequestedFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
                          const Eigen::Quaterniond& q, double t, double tau, double lens_time) const;
+  double ShotFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
+                    const Eigen::Quaterniond& q, double t, double tau, double lens_time) const;
   std::vector<std::string> SubjectsInFrame(const TrajectorySample& s, double t) const;
   ShotIntent IntentOf(const ShotSpec& shot) const;
 
   const ShotList& list_;
+  std::vector<FocusOverride> focus_overrides_;
   std::vector<ShotState> states_;
 };
+
+// The distance to an actor's aim point along the optical axis (its straight distance when it is not in
+// front of the camera).
+double AxialDistanceM(const Actor& actor, const Eigen::Vector3d& position, const Eigen::Quaterniond& q, double t) {
+  const Eigen::Vector3d v = actor.AimPointAt(t) - position;
+  const double along = v.dot(q * Eigen::Vector3d::UnitZ());
+  return along > 1e-9 ? along : v.norm();
+}
 
 double Smootherstep(double x) { return Ease(Easing::kSmootherstep, x); }
 
@@ -267,17 +278,29 @@ Eigen::Quaterniond Planner::OrientationAt(const ShotSpec& shot, const ShotState&
 // axis with racks between subjects in dioptres; +inf for infinity.
 double Planner::RequestedFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
                                 const Eigen::Quaterniond& q, double t, double tau, double lens_time) const {
+  double focus = ShotFocusM(shot, st, position, q, t, tau, lens_time);
+  for (const FocusOverride& o : focus_overrides_) {
+    double w = 0;
+    if (t >= o.start_s - 1e-9 && t <= o.end_s + 1e-9) {
+      w = 1;
+    } else if (t < o.start_s && t > o.start_s - o.ramp_s) {
+      w = Ease(Easing::kSmoothstep, (t - (o.start_s - o.ramp_s)) / o.ramp_s);
+    } else if (t > o.end_s && t < o.end_s + o.ramp_s) {
+      w = Ease(Easing::kSmoothstep, (o.end_s + o.ramp_s - t) / o.ramp_s);
+    }
+    if (w > 0) focus = InterpolateFocusDistanceM(focus, AxialDistanceM(list_.actors[o.actor], position, q, t), w);
+  }
+  return focus;
+}
+
+double Planner::ShotFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
+                           const Eigen::Quaterniond& q, double t, double tau, double lens_time) const {
   const LensSpec& lens = shot.lens;
   if (!st.keyframes.focus.empty())
     return InterpolateLensKeys(st.keyframes.focus, lens_time, LensQuantity::kFocusDistance);
   if (lens.focus == LensSpec::Focus::kFixed) return lens.focus_distance_m;
   if (lens.focus != LensSpec::Focus::kFollow || shot.subject < 0) return kInf;
-  const Eigen::Vector3d forward = q * Eigen::Vector3d::UnitZ();
-  auto axial = [&](const Actor& a) {
-    const Eigen::Vector3d v = a.AimPointAt(t) - position;
-    const double along = v.dot(forward);
-    return along > 1e-9 ? along : v.norm();
-  };
+  auto axial = [&](const Actor& a) { return AxialDistanceM(a, position, q, t); };
   const Actor* current = &list_.actors[shot.subject];
   double focus = axial(*current);
   for (const auto& r : lens.rack) {
@@ -375,6 +398,8 @@ ShotIntent Planner::IntentOf(const ShotSpec& shot) const {
 }
 
 Trajectory Planner::Run(const PlanOptions& options) {
+  focus_overrides_ = options.focus_overrides;
+  for (const FocusOverride& o : focus_overrides_) CINEPATH_CHECK(o.actor >= 0 && o.ramp_s > 0);
   Prepare();
   Trajectory plan;
   plan.origin = list_.origin;

@@ -27,14 +27,26 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "core/trajectory.h"
 #include "shots/shot_list.h"
 
 namespace cinepath::shots {
 
+// Matched focus across a cut (several drones, shots.json "edit"): over [start_s, end_s] the camera
+// focuses on `actor` (its aim point, along the optical axis) instead of its shot's own focus, blending
+// in before and out after over ramp_s in dioptres (smoothstep) while another camera is live.
+struct FocusOverride {
+  double start_s = 0;
+  double end_s = 0;
+  int actor = -1;  // index into ShotList::actors
+  double ramp_s = 2.0;
+};
+
 struct PlanOptions {
   size_t max_samples = 20'000'000;  // guards against a frame rate x duration that cannot fit
+  std::vector<FocusOverride> focus_overrides;
 };
 
 Trajectory PlanShots(const ShotList& list, const PlanOptions& options = {});

@@ -1,5 +1,6 @@
 #include "shots/shot_list.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -116,7 +117,63 @@ void CheckCameraAgainstFixedLens(const JsonField& camera_field, const CameraSpec
   }
 }
 
+// "drones": [{"name", "drone" (a profile or overrides), "camera", "home_enu_m" | "home"}]. A drone without
+// "drone" or "camera" takes the top-level one.
+void ParseDrones(const JsonField& drones, const JsonField& root, const EnuFrame* frame, ShotList& list) {
+  if (!drones.IsArray() || drones.size() == 0) drones.Fail("expected a non-empty array of drones");
+  for (const auto& f : drones.Elements()) {
+    f.RejectUnknownKeys({"name", "drone", "camera", "home_enu_m", "home", "above_ground_m"});
+    DroneSpec d;
+    d.name = f["name"].AsString();
+    if (d.name.empty()) f["name"].Fail("must not be empty");
+    if (d.name.find_first_of("/\\") != std::string::npos || d.name == "." || d.name == ".." || d.name == "edit") {
+      f["name"].Fail("must be usable as a folder name (no '/', '\\', \".\", \"..\" or \"edit\")");
+    }
+    if (list.FindDrone(d.name) >= 0) f["name"].Fail("duplicate drone name \"" + d.name + "\"");
+    d.drone = f.Has("drone") ? ParseDrone(f["drone"]) : list.drone;
+    if (f.Has("camera")) {
+      d.camera = ParseCamera(f["camera"]);
+      CheckCameraAgainstFixedLens(f["camera"], d.camera, d.drone);
+    } else if (root.Has("camera")) {
+      d.camera = list.camera;
+      CheckCameraAgainstFixedLens(root["camera"], d.camera, d.drone);
+    } else {
+      f.Fail("missing \"camera\" (give it here or at the top level)");
+    }
+    if (f.Has("home_enu_m") || f.Has("home")) {
+      d.home_enu_m = ParsePosition(f, "home_enu_m", "home", PositionContext{frame, list.ground.get()});
+    }
+    list.drones.push_back(std::move(d));
+  }
+}
+
+// "edit": [{"at_s", "drone", "match_focus"}], cuts in increasing time.
+void ParseEdit(const JsonField& edit, ShotList& list) {
+  if (!edit.IsArray()) edit.Fail("expected an array of cuts");
+  for (const auto& f : edit.Elements()) {
+    f.RejectUnknownKeys({"at_s", "drone", "match_focus"});
+    EditCut cut;
+    cut.at_s = f["at_s"].AsNonNegative();
+    cut.drone = f["drone"].AsString();
+    if (list.FindDrone(cut.drone) < 0) f["drone"].Fail("no drone is named \"" + cut.drone + "\" (see \"drones\")");
+    cut.match_focus = f.BoolOr("match_focus", false);
+    if (!list.edit.empty() && !(cut.at_s > list.edit.back().at_s)) f["at_s"].Fail("cuts must be in increasing time");
+    if (!list.edit.empty() && list.edit.back().drone == cut.drone) {
+      f["drone"].Fail("cuts to the drone that is already live");
+    }
+    if (cut.match_focus && list.edit.empty()) f["match_focus"].Fail("the first cut has no outgoing camera");
+    list.edit.push_back(std::move(cut));
+  }
+}
+
 }  // namespace
+
+int ShotList::FindDrone(const std::string& name) const {
+  for (size_t i = 0; i < drones.size(); ++i) {
+    if (drones[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
 
 int ShotList::FindActor(const std::string& name) const {
   for (size_t i = 0; i < actors.size(); ++i) {
@@ -129,7 +186,8 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
                        std::shared_ptr<const Ground> ground) {
   const JsonField root(document, source);
   if (!root.IsObject()) root.Fail("expected a shot list (a JSON object)");
-  root.RejectUnknownKeys({"schema", "origin", "frame_rate_hz", "camera", "drone", "actors", "shots", "description"});
+  root.RejectUnknownKeys(
+      {"schema", "origin", "frame_rate_hz", "camera", "drone", "drones", "edit", "actors", "shots", "description"});
   const std::string schema = root["schema"].AsString();
   if (schema != kShotsSchema) {
     root["schema"].Fail("unsupported shot-list version \"" + schema + "\" (expected \"" + kShotsSchema + "\")");
@@ -155,9 +213,11 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
     list.frame_rate_hz = root["frame_rate_hz"].AsPositive();
     if (list.frame_rate_hz < 0.01 || list.frame_rate_hz > 1000) root["frame_rate_hz"].Fail("must be in [0.01, 1000]");
   }
-  list.camera = ParseCamera(root["camera"]);
+  const auto drones = root.Find("drones");
+  // With "drones", the top-level camera and drone are the defaults each drone may replace.
+  if (!drones || root.Has("camera")) list.camera = ParseCamera(root["camera"]);
   list.drone = root.Has("drone") ? ParseDrone(root["drone"]) : DefaultDroneProfile();
-  CheckCameraAgainstFixedLens(root["camera"], list.camera, list.drone);
+  if (!drones || root.Has("camera")) CheckCameraAgainstFixedLens(root["camera"], list.camera, list.drone);
 
   if (auto actors = root.Find("actors")) {
     for (const auto& a : actors->Elements()) {
@@ -166,16 +226,52 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
       list.actors.push_back(std::move(actor));
     }
   }
+  if (drones) ParseDrones(*drones, root, frame ? &*frame : nullptr, list);
+
   const JsonField shots = root["shots"];
   if (shots.size() == 0) shots.Fail("must hold at least one shot");
-  double start = 0;
+  // Each drone's shots run back to back from t = 0; a shot is parsed against its drone's camera.
+  std::vector<double> start(std::max<size_t>(list.drones.size(), 1), 0.0);
+  std::vector<ShotList> drone_views;
+  for (const auto& d : list.drones) {
+    ShotList view;
+    view.source = list.source;
+    view.origin = list.origin;
+    view.frame_rate_hz = list.frame_rate_hz;
+    view.camera = d.camera;
+    view.drone = d.drone;
+    view.actors = list.actors;
+    view.ground = list.ground;
+    drone_views.push_back(std::move(view));
+  }
   for (size_t i = 0; i < shots.size(); ++i) {
-    ShotSpec s = ParseShotSpec(shots.At(i), i, list, start, frame ? &*frame : nullptr);
-    for (const auto& other : list.shots) {
-      if (other.name == s.name) shots.At(i)["name"].Fail("duplicate shot name \"" + s.name + "\"");
+    const JsonField f = shots.At(i);
+    int drone = -1;
+    if (auto d = f.Find("drone")) {
+      if (list.drones.empty()) d->Fail("names a drone, but the shot list has no \"drones\"");
+      drone = list.FindDrone(d->AsString());
+      if (drone < 0) d->Fail("no drone is named \"" + d->AsString() + "\" (see \"drones\")");
+    } else if (!list.drones.empty()) {
+      f.Fail("missing \"drone\": with \"drones\", every shot names the drone that flies it");
     }
-    start += s.duration_s;
+    const ShotList& context = drone >= 0 ? drone_views[static_cast<size_t>(drone)] : list;
+    double& drone_start = start[static_cast<size_t>(std::max(drone, 0))];
+    ShotSpec s = ParseShotSpec(f, i, context, drone_start, frame ? &*frame : nullptr);
+    s.drone = drone;
+    for (const auto& other : list.shots) {
+      if (other.name == s.name) f["name"].Fail("duplicate shot name \"" + s.name + "\"");
+    }
+    drone_start += s.duration_s;
     list.shots.push_back(std::move(s));
+  }
+  for (size_t d = 0; d < list.drones.size(); ++d) {
+    bool flies = false;
+    for (const auto& s : list.shots) flies = flies || s.drone == static_cast<int>(d);
+    if (!flies) (*drones).At(d).Fail("drone \"" + list.drones[d].name + "\" flies no shot");
+  }
+  if (auto edit = root.Find("edit")) {
+    if (list.drones.empty()) edit->Fail("an edit cuts between drones: it needs \"drones\"");
+    ParseEdit(*edit, list);
   }
   return list;
 }

@@ -16,6 +16,7 @@
 #include "core/easing.h"
 #include "core/geodesy.h"
 #include "core/json.h"
+#include "core/team_plan.h"
 #include "core/trajectory.h"
 #include "shots/actor.h"
 #include "shots/lens_track.h"
@@ -74,6 +75,7 @@ enum class HeightReference { kSubject, kGround };
 
 struct ShotSpec {
   std::string name;
+  int drone = -1;  // index into ShotList::drones; -1 in a one-drone list
   ShotType type = ShotType::kOrbit;
   std::string type_name;  // as written (e.g. "TRACK")
   int subject = -1;       // index into ShotList::actors, -1 = none
@@ -113,6 +115,14 @@ struct ShotSpec {
   OrientationInterpolation orientation = OrientationInterpolation::kSquad;
 };
 
+// One drone of a team (shots.json "drones"): its name, aircraft, camera and take-off point.
+struct DroneSpec {
+  std::string name;
+  DroneProfile drone;
+  CameraSpec camera;
+  std::optional<Eigen::Vector3d> home_enu_m;
+};
+
 struct ShotList {
   std::string source;  // file name, for messages
   std::optional<Geodetic> origin;
@@ -122,8 +132,13 @@ struct ShotList {
   std::vector<Actor> actors;
   std::vector<ShotSpec> shots;
   std::shared_ptr<const Ground> ground;  // the scene's mesh (plan --scene), or null
+  // Several drones (empty: one drone, `camera` and `drone` above). Each shot names its drone; the shots
+  // of one drone run back to back, the drones in parallel on one clock.
+  std::vector<DroneSpec> drones;
+  std::vector<EditCut> edit;  // which camera is live when (shots.json "edit"; several drones only)
 
   int FindActor(const std::string& name) const;  // -1 when absent
+  int FindDrone(const std::string& name) const;  // -1 when absent
 };
 
 // Parses a shot list. `scene_origin` (from the scene's scene.json) is used when shots.json has no

@@ -497,7 +497,7 @@ void ParseShotLens(const JsonField& f, const ShotList& list, ShotSpec& s) {
 
 const std::vector<std::string_view>& CommonShotKeys() {
   static const std::vector<std::string_view> keys = {"name",       "type",    "subject", "duration_s", "easing",
-                                                     "transition", "blend_s", "lens",    "optimize"};
+                                                     "transition", "blend_s", "lens",    "optimize",   "drone"};
   return keys;
 }
 
