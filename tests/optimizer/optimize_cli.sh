@@ -71,4 +71,22 @@ plan["drone"]["max_altitude_m"] = 1.0  # the orbit flies at 10 m: no 5 m deviati
 json.dump(plan, open(sys.argv[2], "w"))
 PY
 expect_refusal 3 "after optimizing" "$T/strict.json" --strict --quality draft
+# Several drones: the team plan of the golden test (north's 24 mm orbit sees south for 1.4 s) comes back
+# as version 2 with the conflict resolved, the same bytes on one core, and a report per drone.
+"$CINEPATH" plan "$SRC/tests/golden/plan/team_two_drones/shots.json" -o "$T/team.json"
+"$CINEPATH" optimize "$T/team.json" --quality standard --strict --report "$T/team_report.json" -o "$T/team_opt.json"
+taskset -c 0 "$CINEPATH" optimize "$T/team.json" --quality standard -o "$T/team_opt1.json"
+cmp "$T/team_opt.json" "$T/team_opt1.json" || fail "a team plan differs on one core"
+python3 - "$T/team.json" "$T/team_opt.json" "$T/team_report.json" << 'PY'
+import json, sys
+before, after, report = (json.load(open(p)) for p in sys.argv[1:4])
+assert after["schema"] == "cinepath.plan/2", after["schema"]
+assert [c["limit"] for c in before["team"]["conflicts"]] == ["in_shot"], before["team"]["conflicts"]
+assert after["team"]["conflicts"] == [] and after["team"]["clear"], after["team"]
+assert after["optimized"]["conflicts_before"] == 1 and after["optimized"]["conflicts_after"] == 0
+assert [d["drone"] for d in report["drones"]] == ["north", "south"]
+assert len(report["team"]["conflicts_before"]) == 1 and report["team"]["conflicts_after"] == []
+for f in after["flights"]:
+    assert f["optimized"]["by"] == "cinepath optimize", f["name"]
+PY
 echo "optimize_cli: ok"
