@@ -5,7 +5,7 @@
 #     radii of curvature: the homes lie 30 m from the origin, where that is exact to well under 1 cm);
 #   - each mission's waypoints are its own flight's samples (first waypoint = first sample within 1 cm, every
 #     waypoint within the 0.5 m deviation of that flight and far from the other);
-#   - the report names both drones (text and --json);
+#   - the report names both drones (text and --json); `info` summarizes the plan per drone and the team;
 #   - --home with several drones exits 2 and writes nothing.
 #   team_export.sh CINEPATH SOURCE_DIR
 set -euo pipefail
@@ -73,6 +73,14 @@ for name, other in (("north", "south"), ("south", "north")):
 team = json.load(open(f"{work}/report.json"))
 assert [d["name"] for d in team["drones"]] == ["north", "south"], team
 PY
+
+# info: one line per drone and the team report.
+"$CINEPATH" info "$work/plan.json" > "$work/info.txt"
+grep -q "^cinepath plan, 2 drones, 9 samples at 4 Hz" "$work/info.txt" || fail "info: $(cat "$work/info.txt")"
+grep -q "^  south: px4-multirotor, 7 samples (1.50 s)" "$work/info.txt" || fail "info lacks south: $(cat "$work/info.txt")"
+grep -q "^team: min separation 5 m; no conflicts" "$work/info.txt" || fail "info lacks the team: $(cat "$work/info.txt")"
+"$CINEPATH" info "$work/plan.json" --json | python3 -c "import json, sys; d = json.load(sys.stdin); \
+assert [f['name'] for f in d['drones']] == ['north', 'south'] and len(d['edit']) == 2 and d['team']['clear'], d"
 
 # --home cannot be every drone's take-off point.
 set +e
