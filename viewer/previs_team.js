@@ -184,9 +184,19 @@ setSample = function (index) {
     $('camera-label').textContent = `${f.name}${selected === 'edit' ? ' (live in the edit)' : ''}` +
       `${j < k ? ', holding its last sample' : ''}`;
   }
+  // The readout is the viewed drone's (the lens graphs stay the primary flight's).
+  const p = f.pos(j), focus = f.focus_distance_m[j];
   const readout = $('readout');
   readout.dataset.drone = f.name;
-  readout.textContent += `\ncamera view: ${f.name}` + (live >= 0 ? `   live in the edit: ${team.flights[live].name}` : '');
+  readout.dataset.e = fmt(p.x, 3);
+  readout.dataset.n = fmt(-p.z, 3);
+  readout.dataset.u = fmt(p.y, 3);
+  readout.textContent =
+    `t ${fmt(t, 3)} s   frame ${k} / ${N - 1}   drone ${f.name}` +
+    `${live >= 0 ? '   live in the edit: ' + team.flights[live].name : ''}\n` +
+    `camera  E ${fmt(p.x, 2)}  N ${fmt(-p.z, 2)}  U ${fmt(p.y, 2)} m${j < k ? '   (flight ended: holding)' : ''}\n` +
+    `lens    focus ${fmt(focus, 2)} m (${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(f.vertical_fov_deg[j], 1)}°` +
+    `   (lens graphs: ${team.flights[team.primary].name})`;
   requestRender();
 };
 setSample(k);
