@@ -7,6 +7,7 @@
 #     after its flight ends at 1.5 s; plus the edit's contact sheet;
 #   - with --frames 7-8 (south's last sample not rendered) the held frame is rendered for the edit and is
 #     the same bytes as in the full run; no temporary file is left;
+#   - two shards (--shard 0/2, 1/2) give the same frames as one run;
 #   - --contact-sheet PATH writes every drone's tiles to PATH and the edit's beside it (PATH.edit.png);
 #   - --video is refused for several drones (exit 2).
 #   render_team.sh CINEPATH SOURCE_DIR
@@ -35,6 +36,11 @@ for k in 0 1 2 3 4 5 6 7 8; do
     "$work/out/${src%/*}/$(printf 'frame_%06d.png' "${src#*/}")" || fail "edit frame $k is not $src"
 done
 cmp -s "$work/out/north/frame_000004.png" "$work/out/south/frame_000004.png" && fail "north and south drew the same"
+
+# Two shards on the shared clock give the frames of one run (each shard's contact sheet is of its frames).
+"${render[@]}" --shard 0/2 -o "$work/shards"
+"${render[@]}" --shard 1/2 -o "$work/shards"
+diff -r -x contact_sheet.png "$work/out" "$work/shards" > /dev/null || fail "two shards differ from one run"
 
 # Frames 7-8 only: south's last sample (6) is not in the selection; the edit renders it.
 "${render[@]}" --frames 7-8 -o "$work/part"
