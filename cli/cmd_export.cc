@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "core/drone_profiles.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/geoid.h"
 #include "core/ground.h"
 #include "core/json.h"
 #include "core/number_format.h"
@@ -89,7 +91,9 @@ class ExportCommand : public Command {
     if (!home_text_.empty()) options.build.home = exporter::ParseHomeSpec(home_text_, "--home");
     options.Check();  // option errors before any file is read
 
-    const Trajectory plan = ReadPlanFile(plan_path_);
+    TeamPlan team = ReadTeamPlanFile(plan_path_);
+    if (!team.single) return RunTeam(team, options);
+    const Trajectory plan = std::move(team.flights.front().plan);
     std::vector<std::string> inputs = {plan_path_};
     if (!scene_path_.empty()) {
       const SceneFile scene = ReadSceneFile(scene_path_);
@@ -116,6 +120,103 @@ class ExportCommand : public Command {
     targets.push_back((std::filesystem::path(output_dir_) / "export_report.json").string());
     common_.WriteDepfileIfAsked(targets, inputs);
     return 0;
+  }
+
+  // A plan for several drones: one mission per drone into OUTPUT/<drone>/ (the file names of a one-drone
+  // export), each with its own home and checked against its own profile (--drone overrides for all).
+  int RunTeam(const TeamPlan& team, const exporter::ExportOptions& shared) const {
+    if (!home_text_.empty()) {
+      throw InputError("--home: " + plan_path_ + " holds " + std::to_string(team.flights.size()) +
+                       " drones, and one --home cannot be every drone's take-off point; give each drone its "
+                       "`home_enu_m` or `home` in shots.json (docs/export.md, \"Several drones\")");
+    }
+    std::vector<std::string> inputs = {plan_path_};
+    std::optional<SceneFile> scene;
+    std::unique_ptr<Ground> ground;
+    if (!scene_path_.empty()) {
+      scene = ReadSceneFile(scene_path_);
+      inputs.push_back(scene_path_);
+      if (scene->mesh) {
+        inputs.push_back(scene->RequireMesh().string());
+        ground = LoadGround(scene->RequireMesh());
+      }
+    }
+    for (const auto& flight : team.flights) CheckDroneFolderName(flight.name, plan_path_);
+    struct DroneExport {
+      std::string name;
+      exporter::ExportOptions options;
+      exporter::ExportResult result;
+    };
+    std::vector<DroneExport> exports;
+    for (const auto& flight : team.flights) {
+      exporter::ExportOptions options = shared;
+      options.build.plan_name = plan_path_ + " (drone " + flight.name + ")";
+      if (scene) options.build.scene_origin = scene->RequireOrigin();
+      const std::optional<Geodetic> origin = flight.plan.origin ? flight.plan.origin : options.build.scene_origin;
+      if (flight.home_enu_m) {
+        if (!origin) {
+          throw InputError(plan_path_ + ": flights[" + flight.name +
+                           "].home_enu_m: the plan has no WGS84 origin to place it; pass --scene");
+        }
+        const Geodetic home = EnuFrame(*origin).GeodeticFromEnu(*flight.home_enu_m);
+        options.build.home =
+            exporter::HomeSpec{home.lat_deg, home.lon_deg,
+                               Egm96Geoid::Default().AmslFromEllipsoidalM(home.lat_deg, home.lon_deg, home.height_m)};
+      } else if (ground) {
+        options.build.home = exporter::TakeoffOnGround(flight.plan, scene->RequireOrigin(), *ground);
+      }
+      try {
+        exporter::ExportResult result = exporter::ExportMission(flight.plan, options);
+        exports.push_back({flight.name, std::move(options), std::move(result)});
+      } catch (const InfeasibleError& e) {
+        throw InfeasibleError("drone " + flight.name + ": " + e.what());
+      } catch (const InputError& e) {
+        throw InputError("drone " + flight.name + ": " + e.what());
+      }
+    }
+
+    EnsureDirectory(output_dir_);
+    AtomicOutputs outputs;
+    std::vector<std::string> targets;
+    Json drones = Json::array();
+    std::string text;
+    for (const auto& e : exports) {
+      const std::filesystem::path dir = std::filesystem::path(output_dir_) / e.name;
+      EnsureDirectory(dir.string());
+      Json report = exporter::ReportJson(e.result, e.options);
+      for (const auto& file : e.result.files) {
+        outputs.Add(dir / file.file_name, file.contents);
+        targets.push_back((dir / file.file_name).string());
+      }
+      outputs.Add(dir / "export_report.json", DumpJson(report));
+      targets.push_back((dir / "export_report.json").string());
+      Json entry = Json{{"name", e.name}, {"folder", e.name}};
+      entry.update(report);
+      drones.push_back(entry);
+      text += "drone " + e.name + " -> " + dir.string() + "/ (profile " + e.result.drone_name + ", home " +
+              FormatFixed(e.result.mission.home.lat_deg, 7) + ", " + FormatFixed(e.result.mission.home.lon_deg, 7) +
+              ", " + FormatFixed(e.result.mission.home.amsl_m, 2) + " m AMSL)\n";
+      for (const auto& line : SplitLines(exporter::ReportText(e.result, e.options))) text += "  " + line + "\n";
+    }
+    const Json report = Json{{"drones", drones}};
+    outputs.Add(std::filesystem::path(output_dir_) / "export_report.json", DumpJson(report));
+    targets.push_back((std::filesystem::path(output_dir_) / "export_report.json").string());
+    outputs.Commit();
+    std::cout << (json_ ? DumpJson(report) : text);
+    common_.WriteDepfileIfAsked(targets, inputs);
+    return 0;
+  }
+
+  static std::vector<std::string> SplitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    size_t start = 0;
+    while (start < text.size()) {
+      size_t end = text.find('\n', start);
+      if (end == std::string::npos) end = text.size();
+      lines.push_back(text.substr(start, end - start));
+      start = end + 1;
+    }
+    return lines;
   }
 
   // Home on the mesh's ground under the first sample, or --home checked against that ground.

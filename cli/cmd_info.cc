@@ -10,6 +10,8 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
+#include "core/plan_file.h"
+#include "core/team_summary.h"
 #include "export/mission_reader.h"
 
 namespace cinepath::cli {
@@ -18,12 +20,17 @@ namespace {
 class InfoCommand : public Command {
  public:
   void Setup(CLI::App& app) override {
-    app.add_option("file", path_, "File to inspect (.plan, .waypoints)")->required();
+    app.add_option("file", path_, "File to inspect (.plan, .waypoints, a plan.json of several drones)")->required();
     app.add_flag("--json", json_, "Print JSON instead of text");
   }
 
   int Run() override {
     const std::string text = ReadFileToString(path_);
+    if (IsTeamPlan(text)) {
+      const TeamPlan plan = ReadTeamPlanFile(path_);
+      std::cout << (json_ ? DumpJson(TeamPlanSummaryJson(plan)) : TeamPlanSummaryText(plan));
+      return 0;
+    }
     if (!exporter::LooksLikeMission(text)) {
       throw InputError(path_ + ": not a file kind `cinepath info` understands (QGC .plan, QGC WPL 110)");
     }
@@ -34,6 +41,13 @@ class InfoCommand : public Command {
   }
 
  private:
+  // A plan of several drones ("cinepath.plan/2"); other plans are not summarized here.
+  static bool IsTeamPlan(const std::string& text) {
+    if (text.find(kTeamPlanSchema) == std::string::npos) return false;
+    const Json doc = Json::parse(text, nullptr, false);
+    return doc.is_object() && doc.contains("schema") && doc["schema"] == kTeamPlanSchema;
+  }
+
   std::string path_;
   bool json_ = false;
 };

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "core/error.h"
 #include "core/geodesy.h"
 #include "core/json.h"
 #include "core/trajectory.h"
@@ -94,6 +95,20 @@ inline int LiveFlightAt(const TeamPlan& plan, double t) {
     if (cut.at_s <= t + 1e-9) live = plan.FindFlight(cut.drone);
   }
   return live;
+}
+
+// Outputs for several drones go to a folder per drone (export, render): a drone's name must be usable as
+// a folder name (as shots.json requires: not empty, no '/' or '\\', not "." or ".."), and `reserved`
+// names (render's "edit") are refused. InputError naming `source` and the drone.
+inline void CheckDroneFolderName(const std::string& name, const std::string& source,
+                                 const std::vector<std::string>& reserved = {}) {
+  if (name.empty() || name.find_first_of("/\\") != std::string::npos || name == "." || name == "..") {
+    throw InputError(source + ": drone \"" + name +
+                     "\": its outputs go to a folder of that name (no '/', '\\', \".\" or \"..\")");
+  }
+  for (const auto& r : reserved) {
+    if (name == r) throw InputError(source + ": drone \"" + name + "\": the folder \"" + r + "\" is reserved here");
+  }
 }
 
 }  // namespace cinepath

@@ -3,10 +3,12 @@
 #include <malloc.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -16,6 +18,7 @@
 #include "core/plan_file.h"
 #include "core/reframe.h"
 #include "core/scene_file.h"
+#include "core/team_plan.h"
 #include "preview/image_files.h"
 #include "preview/preview_scene.h"
 #include "preview/sun_position.h"
@@ -182,14 +185,237 @@ std::string FrameFileName(size_t k, ImageFormat format) {
   return name;
 }
 
+namespace {
+
+FrameSettings SettingsFor(const RenderOptions& options, int width, int height) {
+  FrameSettings settings;
+  settings.width_px = width;
+  settings.height_px = height;
+  settings.preset = PresetFor(options.quality);
+  if (options.max_samples) settings.preset.max_samples = *options.max_samples;
+  if (options.min_samples) {
+    settings.preset.min_samples = *options.min_samples;
+    settings.preset.max_samples = std::max(settings.preset.max_samples, *options.min_samples);
+  }
+  settings.exposure = options.exposure;
+  settings.iso = options.iso;
+  return settings;
+}
+
+// One frame written as `path` (and its AOVs beside it); its thumbnail when asked.
+void WriteFrame(const FrameImage& frame, const Trajectory& plan, size_t k, const fs::path& path,
+                const RenderOptions& options, int width, int height, RenderSummary* summary) {
+  if (options.format == ImageFormat::kExr) {
+    std::vector<float> values(frame.rgb_linear.size() * 3);
+    for (size_t i = 0; i < frame.rgb_linear.size(); ++i) {
+      for (int c = 0; c < 3; ++c) values[3 * i + c] = frame.rgb_linear[i][c];
+    }
+    WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
+  } else {
+    Srgb8Image encoded = EncodeSrgb8(frame.rgb_linear, width, height);
+    if (options.overlay) BurnOverlay(&encoded, plan, k);
+    WriteSrgb8Atomic(path, encoded);
+  }
+  summary->outputs.push_back(path.string());
+  const std::string stem = path.stem().string();
+  if (options.aov_depth) {
+    const fs::path aov = path.parent_path() / (stem + ".depth.exr");
+    WriteExrAtomic(aov, width, height, {"Z"}, frame.depth_m);
+    summary->outputs.push_back(aov.string());
+  }
+  if (options.aov_blur) {
+    const fs::path aov = path.parent_path() / (stem + ".blur.exr");
+    WriteExrAtomic(aov, width, height, {"Y"}, frame.blur_px);
+    summary->outputs.push_back(aov.string());
+  }
+}
+
+// The same frame (and AOVs) under another name, byte for byte.
+void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& options, RenderSummary* summary) {
+  WriteFileAtomic(to, ReadFileToString(from));
+  summary->outputs.push_back(to.string());
+  const std::pair<bool, const char*> aovs[] = {{options.aov_depth, ".depth.exr"}, {options.aov_blur, ".blur.exr"}};
+  for (const auto& [wanted, suffix] : aovs) {
+    if (!wanted) continue;
+    const fs::path aov_to = to.parent_path() / (to.stem().string() + suffix);
+    WriteFileAtomic(aov_to, ReadFileToString(from.parent_path() / (from.stem().string() + suffix)));
+    summary->outputs.push_back(aov_to.string());
+  }
+}
+
+// A plan for several drones (docs/render.md, "Several drones"): OUTPUT/<drone>/frame_%06d.<ext> for each
+// flight's selected samples (the selection is of sample indexes on the shared clock), and with an edit
+// OUTPUT/edit/frame_%06d.<ext>: frame k is the live drone's frame k (before the first cut, the first
+// cut's drone; a flight that has ended holds its last sample), copied from its folder when it was
+// rendered there. The edit's contact sheet, each tile labelled with its time and drone, goes to
+// OUTPUT/edit/contact_sheet.png, or with --contact-sheet PATH beside PATH as STEM.edit.EXT (PATH then
+// holds every drone's tiles).
+RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::path& plan_json,
+                         const fs::path& scene_json, const RenderOptions& options, const RenderLog& log) {
+  RenderSummary summary;
+  summary.inputs.push_back(plan_json.string());
+  for (const auto& flight : team.flights) CheckDroneFolderName(flight.name, plan_json.string(), {"edit"});
+  if (scene_file.origin) team = ReframeToOrigin(std::move(team), *scene_file.origin);
+  if (options.video) {
+    throw InputError("--video: " + plan_json.string() +
+                     " holds several drones; their frames and the edit's are image sequences (docs/render.md)");
+  }
+  const std::vector<size_t> frames = SelectFrames(team.SampleCount(), options.frames);
+  if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");
+  // One output size for every drone (the edit cuts between them): the first flight's camera's.
+  const std::pair<int, int> size = OutputSize(team.flights.front().plan.camera, options.width_px);
+  const int width = size.first, height = size.second;
+  for (const auto& flight : team.flights) {
+    const auto [w, h] = OutputSize(flight.plan.camera, options.width_px);
+    if (w != width || h != height) {
+      throw InputError(plan_json.string() + ": drone " + flight.name + "'s camera renders " + std::to_string(w) + "x" +
+                       std::to_string(h) + " px, drone " + team.flights.front().name + "'s " + std::to_string(width) +
+                       "x" + std::to_string(height) + ": the edit needs one frame size (give the cameras one aspect)");
+    }
+    for (size_t k : frames) {
+      if (k >= flight.plan.samples.size()) break;
+      const auto& s = flight.plan.samples[k];
+      ThinLensCamera(flight.plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
+    }
+  }
+  summary.inputs.push_back(scene_json.string());
+  const fs::path& glb = scene_file.RequireMesh();
+  summary.inputs.push_back(glb.string());
+  const bool has_edit = !team.edit.empty();
+  const bool sheets = has_edit || options.contact_sheet;
+  if (options.overlay || sheets) RequireLabelFont();
+  const SunDirection sun = SunForOptions(options, team.flights.front().plan, scene_file);
+  CheckWritableFolder(options.output_dir);
+  for (const auto& flight : team.flights) CheckWritableFolder(options.output_dir / flight.name);
+  if (has_edit) CheckWritableFolder(options.output_dir / "edit");
+  const scene::SceneMesh mesh = scene::ReadGlbFile(glb);
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  const FrameSettings settings = SettingsFor(options, width, height);
+
+  // The (flight, sample) of the edit's frame k.
+  auto edit_source = [&](size_t k) {
+    const double t = double(k) / team.frame_rate_hz;
+    int live = LiveFlightAt(team, t);
+    if (live < 0) live = team.FindFlight(team.edit.front().drone);
+    const size_t n = team.flights[size_t(live)].plan.samples.size();
+    return std::pair<size_t, size_t>(size_t(live), std::min(k, n - 1));
+  };
+  size_t total = 0;
+  for (const auto& flight : team.flights) {
+    for (size_t k : frames) total += k < flight.plan.samples.size() ? 1 : 0;
+  }
+  std::vector<std::pair<size_t, size_t>> extra;  // edit frames whose sample no drone folder holds
+  if (has_edit) {
+    for (size_t k : frames) {
+      const auto [f, j] = edit_source(k);
+      if (!std::binary_search(frames.begin(), frames.end(), j)) extra.push_back({f, j});
+    }
+    std::sort(extra.begin(), extra.end());
+    extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+    total += extra.size();
+  }
+
+  // thumbs[f][j]: the thumbnail of flight f's sample j (when sheets are asked for).
+  std::vector<std::map<size_t, Srgb8Image>> thumbs(team.flights.size());
+  std::map<std::pair<size_t, size_t>, fs::path> held;  // extra frames, rendered into the edit folder
+  size_t done = 0;
+  for (size_t f = 0; f < team.flights.size(); ++f) {
+    const Trajectory& plan = team.flights[f].plan;
+    const PreviewScene scene(mesh, plan, options.shading, sun);
+    auto render = [&](size_t k, const fs::path& path) {
+      const auto start = std::chrono::steady_clock::now();
+      const FrameImage frame = RenderFrame(scene, plan, k, settings);
+      WriteFrame(frame, plan, k, path, options, width, height, &summary);
+      if (sheets) thumbs[f][k] = Thumbnail(frame);
+      RenderedFrame rendered{k, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                             double(frame.total_samples) / (double(width) * height)};
+      summary.frames.push_back(rendered);
+      if (log.frame_done) log.frame_done(rendered, ++done, total);
+    };
+    for (size_t k : frames) {
+      if (k >= plan.samples.size()) break;
+      render(k, options.output_dir / team.flights[f].name / FrameFileName(k, options.format));
+    }
+    for (const auto& [ef, j] : extra) {
+      if (ef != f) continue;
+      const fs::path path = options.output_dir / "edit" / (".held_" + FrameFileName(j, options.format));
+      render(j, path);
+      held[{ef, j}] = path;
+    }
+  }
+
+  auto tile_label = [&](size_t f, size_t j, size_t k) {
+    const Trajectory& plan = team.flights[f].plan;
+    std::vector<std::string> lines = LabelLines(plan, j);
+    lines[0] = "#" + std::to_string(k) + "  t " + FormatFixed(double(k) / team.frame_rate_hz, 3) + " s  " +
+               team.flights[f].name + "  " + plan.samples[j].shot;
+    return lines;
+  };
+  std::vector<Srgb8Image> edit_thumbs;
+  std::vector<std::vector<std::string>> edit_labels;
+  if (has_edit) {
+    for (size_t k : frames) {
+      const auto [f, j] = edit_source(k);
+      const fs::path to = options.output_dir / "edit" / FrameFileName(k, options.format);
+      const auto h = held.find({f, j});
+      const fs::path from =
+          h != held.end() ? h->second : options.output_dir / team.flights[f].name / FrameFileName(j, options.format);
+      CopyFrame(from, to, options, &summary);
+      edit_thumbs.push_back(thumbs[f].at(j));
+      edit_labels.push_back(tile_label(f, j, k));
+    }
+    for (const auto& [key, path] : held) {  // held frames were written only to be copied
+      std::error_code ignored;
+      fs::remove(path, ignored);
+      for (const char* suffix : {".depth.exr", ".blur.exr"}) {
+        fs::remove(path.parent_path() / (path.stem().string() + suffix), ignored);
+      }
+    }
+    summary.outputs.erase(std::remove_if(summary.outputs.begin(), summary.outputs.end(),
+                                         [](const std::string& o) { return o.find("/.held_") != std::string::npos; }),
+                          summary.outputs.end());
+  }
+  if (has_edit && !edit_thumbs.empty()) {
+    fs::path sheet = options.output_dir / "edit" / "contact_sheet.png";
+    if (options.contact_sheet) {
+      const fs::path& given = *options.contact_sheet;
+      sheet = given.parent_path() / (given.stem().string() + ".edit" + given.extension().string());
+    }
+    WriteSrgb8Atomic(sheet, ContactSheet(edit_thumbs, edit_labels));
+    summary.outputs.push_back(sheet.string());
+  }
+  if (options.contact_sheet) {
+    std::vector<Srgb8Image> all;
+    std::vector<std::vector<std::string>> labels;
+    for (size_t k : frames) {
+      for (size_t f = 0; f < team.flights.size(); ++f) {
+        const auto t = thumbs[f].find(k);
+        if (t == thumbs[f].end()) continue;
+        all.push_back(t->second);
+        labels.push_back(tile_label(f, k, k));
+      }
+    }
+    if (!all.empty()) {
+      WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(all, labels));
+      summary.outputs.push_back(options.contact_sheet->string());
+    }
+  }
+  return summary;
+}
+
+}  // namespace
+
 RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, const RenderOptions& options,
                          const RenderLog& log) {
   RenderSummary summary;
   // Everything that can be refused, before anything is written.
   const SceneFile scene_file = ReadSceneFile(scene_json);
+  TeamPlan team = ReadTeamPlanFile(plan_json);
+  if (!team.single) return RenderTeam(std::move(team), scene_file, plan_json, scene_json, options, log);
   // A plan planned about another origin than the mesh's is moved into the mesh's frame (exact).
-  const Trajectory plan =
-      scene_file.origin ? ReframeToOrigin(ReadPlanFile(plan_json), *scene_file.origin) : ReadPlanFile(plan_json);
+  const Trajectory plan = scene_file.origin ? ReframeToOrigin(std::move(team.flights.front().plan), *scene_file.origin)
+                                            : std::move(team.flights.front().plan);
   summary.inputs.push_back(plan_json.string());
   const std::vector<size_t> frames = SelectFrames(plan.samples.size(), options.frames);
   if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");

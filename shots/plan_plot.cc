@@ -231,8 +231,215 @@ std::string PlanToSvg(const Trajectory& plan) {
 }
 
 std::string TeamPlanToSvg(const TeamPlan& plan) {
-  if (plan.single || plan.flights.size() == 1) return PlanToSvg(plan.flights.at(0).plan);
-  throw InputError("--plot: several drones are not drawn yet");
+  if (plan.single) return PlanToSvg(plan.flights.at(0).plan);
+  const double width = 1200, height = 1000;
+  std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + F(width) + "\" height=\"" + F(height) +
+         "\" viewBox=\"0 0 " + F(width) + " " + F(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const size_t n = plan.SampleCount();
+  if (n == 0) {
+    svg += "<text x=\"20\" y=\"40\">empty plan</text>\n</svg>\n";
+    return svg;
+  }
+  auto colour_of = [&](size_t flight) { return std::string(kPalette[flight % 10]); };
+  auto flight_colour = [&](const std::string& name) {
+    const int k = plan.FindFlight(name);
+    return k < 0 ? std::string("#555") : colour_of(static_cast<size_t>(k));
+  };
+
+  // Extents over every flight, home and subject.
+  double min_e = std::numeric_limits<double>::infinity(), max_e = -min_e, min_n = min_e, max_n = -min_e, min_u = min_e,
+         max_u = -min_e, t_end = 0;
+  auto grow = [&](const Eigen::Vector3d& p) {
+    min_e = std::min(min_e, p.x()), max_e = std::max(max_e, p.x());
+    min_n = std::min(min_n, p.y()), max_n = std::max(max_n, p.y());
+    min_u = std::min(min_u, p.z()), max_u = std::max(max_u, p.z());
+  };
+  for (const auto& flight : plan.flights) {
+    for (const auto& s : flight.plan.samples) grow(s.position_enu_m);
+    if (flight.home_enu_m) grow(*flight.home_enu_m);
+    if (!flight.plan.samples.empty()) t_end = std::max(t_end, flight.plan.samples.back().time_s);
+  }
+  // Subjects are the scene's, shared by every flight: drawn once (the first flight that has each).
+  std::vector<const SubjectTrack*> subjects;
+  for (const auto& flight : plan.flights) {
+    for (const auto& subj : flight.plan.subjects) {
+      bool seen = false;
+      for (const SubjectTrack* other : subjects) seen = seen || other->name == subj.name;
+      if (seen) continue;
+      subjects.push_back(&subj);
+      for (const auto& p : subj.positions_enu_m) {
+        grow(p);
+        grow(p + Eigen::Vector3d(0, 0, subj.height_m));
+      }
+    }
+  }
+  const double extent = std::max({max_e - min_e, max_n - min_n, max_u - min_u, 1.0});
+  const double frustum_len = 0.08 * extent;
+  const Frame top = MakeFrame(40, 50, 540, 480, min_e, max_e, min_n, max_n, true);
+  const Frame side = MakeFrame(630, 50, 540, 480, min_e, max_e, min_u, max_u, true);
+  Panel(svg, top, "Top-down (north up), " + std::to_string(plan.flights.size()) + " drones", "east m", "north m");
+  Panel(svg, side, "Side (looking north)", "east m", "up m");
+
+  for (const SubjectTrack* subj : subjects) {
+    const auto& P = subj->positions_enu_m;
+    if (P.empty()) continue;
+    svg += Polyline(
+        top, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].y(); },
+        "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
+    svg += Polyline(
+        side, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].z(); },
+        "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
+    svg += "<text x=\"" + F(top.PX(P.front().x()) + 5) + "\" y=\"" + F(top.PY(P.front().y()) - 5) +
+           "\" fill=\"#555\">" + Escape(subj->name) + "</text>\n";
+    svg += "<circle cx=\"" + F(top.PX(P.front().x())) + "\" cy=\"" + F(top.PY(P.front().y())) +
+           "\" r=\"3\" fill=\"#555\"/>\n";
+    svg += "<line x1=\"" + F(side.PX(P.front().x())) + "\" y1=\"" + F(side.PY(P.front().z())) + "\" x2=\"" +
+           F(side.PX(P.front().x())) + "\" y2=\"" + F(side.PY(P.front().z() + subj->height_m)) +
+           "\" stroke=\"#555\" stroke-width=\"3\"/>\n";
+  }
+  // Each drone's flight in its own colour, one path per drone and view; its home as a square, its name at
+  // its first sample; frustums every ~2 s (8..60 of them along the longest flight).
+  const size_t count = std::clamp<size_t>(static_cast<size_t>(t_end / 2.0), 8, 60);
+  const size_t stride = std::max<size_t>(1, n / count);
+  for (size_t k = 0; k < plan.flights.size(); ++k) {
+    const auto& flight = plan.flights[k];
+    const auto& S = flight.plan.samples;
+    if (S.empty()) continue;
+    const std::string colour = colour_of(k);
+    const std::string style =
+        "class=\"flight\" data-drone=\"" + Escape(flight.name) + "\" stroke=\"" + colour + "\" stroke-width=\"2.5\"";
+    // One path per drone and view, lifted at the drone's cuts (a "cut" transition: it does not fly there).
+    std::vector<size_t> runs = {0};
+    for (size_t i = 1; i < S.size(); ++i) {
+      if (S[i].shot == S[i - 1].shot) continue;
+      for (const auto& shot : flight.plan.shots) {
+        if (shot.name == S[i].shot && shot.transition == "cut") runs.push_back(i);
+      }
+    }
+    runs.push_back(S.size());
+    for (const Frame* view : {&top, &side}) {
+      std::string d;
+      for (size_t r = 0; r + 1 < runs.size(); ++r) {
+        const size_t begin = runs[r], end = runs[r + 1];
+        const size_t step = std::max<size_t>(1, (end - begin) / 1000);
+        for (size_t i = begin; i < end; i += step) {
+          const Eigen::Vector3d& p = S[i].position_enu_m;
+          d += (i == begin ? "M" : " L") + F(view->PX(p.x())) + "," + F(view->PY(view == &top ? p.y() : p.z()));
+        }
+        const Eigen::Vector3d& p = S[end - 1].position_enu_m;
+        d += " L" + F(view->PX(p.x())) + "," + F(view->PY(view == &top ? p.y() : p.z())) + " ";
+      }
+      svg += "<path fill=\"none\" " + style + " d=\"" + d + "\"/>\n";
+    }
+    svg += "<text x=\"" + F(top.PX(S.front().position_enu_m.x()) + 6) + "\" y=\"" +
+           F(top.PY(S.front().position_enu_m.y()) + 14) + "\" fill=\"" + colour + "\" font-weight=\"bold\">" +
+           Escape(flight.name) + "</text>\n";
+    if (flight.home_enu_m) {
+      const Eigen::Vector3d& h = *flight.home_enu_m;
+      svg += "<rect x=\"" + F(top.PX(h.x()) - 5) + "\" y=\"" + F(top.PY(h.y()) - 5) +
+             "\" width=\"10\" height=\"10\" fill=\"white\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n";
+      svg += "<rect x=\"" + F(side.PX(h.x()) - 5) + "\" y=\"" + F(side.PY(h.z()) - 5) +
+             "\" width=\"10\" height=\"10\" fill=\"white\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n";
+    }
+    const ImageExtentMm image = flight.plan.camera.image_extent_mm();
+    for (size_t i = 0; i < S.size(); i += stride) {
+      const auto& s = S[i];
+      const double hh = std::tan(FieldOfViewRad(image.width_mm, s.focal_length_mm) / 2);
+      const double vh = std::tan(FieldOfViewRad(image.height_mm, s.focal_length_mm) / 2);
+      const Eigen::Vector3d c = s.position_enu_m;
+      auto corner = [&](double x, double y) {
+        return Eigen::Vector3d(c + frustum_len * (s.world_from_camera * Eigen::Vector3d(x, y, 1.0)));
+      };
+      const Eigen::Vector3d l = corner(-hh, 0), r = corner(hh, 0), u = corner(0, -vh), d = corner(0, vh);
+      svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.12\" stroke=\"" + colour + "\" points=\"" +
+             F(top.PX(c.x())) + "," + F(top.PY(c.y())) + " " + F(top.PX(l.x())) + "," + F(top.PY(l.y())) + " " +
+             F(top.PX(r.x())) + "," + F(top.PY(r.y())) + "\"/>\n";
+      svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.12\" stroke=\"" + colour + "\" points=\"" +
+             F(side.PX(c.x())) + "," + F(side.PY(c.z())) + " " + F(side.PX(u.x())) + "," + F(side.PY(u.z())) + " " +
+             F(side.PX(d.x())) + "," + F(side.PY(d.z())) + "\"/>\n";
+    }
+  }
+
+  // Time panels: the edit (which camera is live) with the team's conflicts, then every drone's focal
+  // length and focus.
+  const double t_max = std::max(t_end, 1e-3);
+  double f_min = std::numeric_limits<double>::infinity(), f_max = 0, dio_max = 0;
+  for (const auto& flight : plan.flights) {
+    for (const auto& s : flight.plan.samples) {
+      f_min = std::min(f_min, s.focal_length_mm), f_max = std::max(f_max, s.focal_length_mm);
+      if (std::isfinite(s.focus_distance_m)) dio_max = std::max(dio_max, 1.0 / s.focus_distance_m);
+    }
+  }
+  const Frame team = MakeFrame(40, 590, 1130, 110, 0, t_max, 0, 1, false);
+  // At least 2 % of focal length top to bottom, so rounding noise in a constant lens draws flat.
+  const double log_mid = 0.5 * (std::log(f_min) + std::log(f_max));
+  const double log_half = std::max(0.5 * (std::log(f_max) - std::log(f_min)), 0.01);
+  const Frame focal = MakeFrame(40, 740, 1130, 90, 0, t_max, log_mid - log_half, log_mid + log_half, false);
+  const Frame focus = MakeFrame(40, 870, 1130, 80, 0, t_max, 0, std::max(dio_max, 1e-3), false);
+  const std::string team_title = "Team: the edit (live camera) and conflicts (separation < " +
+                                 F(plan.team.min_separation_m) + " m in red, a drone in another's shot in orange): " +
+                                 (plan.team.clear() ? std::string("none") : std::to_string(plan.team.conflicts.size()));
+  Panel(svg, team, team_title, "time s", "", false);
+  Panel(svg, focal, "Focal length (log scale)", "time s", "focal mm " + F(f_min) + " .. " + F(f_max), false);
+  Panel(svg, focus, "Focus (dioptres; 0 = infinity)", "time s", "1/m");
+  // The edit: a bar in the live drone's colour from each cut to the next (or the end).
+  const double bar_y = team.y0 + 22, bar_h = 16;
+  for (size_t c = 0; c < plan.edit.size(); ++c) {
+    const EditCut& cut = plan.edit[c];
+    const double end_s = c + 1 < plan.edit.size() ? plan.edit[c + 1].at_s : t_max;
+    const double x0 = team.PX(cut.at_s), x1 = std::max(team.PX(end_s), x0 + 1);
+    svg += "<rect class=\"edit\" data-drone=\"" + Escape(cut.drone) + "\" x=\"" + F(x0) + "\" y=\"" + F(bar_y) +
+           "\" width=\"" + F(x1 - x0) + "\" height=\"" + F(bar_h) + "\" fill=\"" + flight_colour(cut.drone) +
+           "\" fill-opacity=\"0.8\"/>\n";
+    svg += "<text x=\"" + F(x0 + 3) + "\" y=\"" + F(bar_y + 12) + "\" fill=\"white\">" + Escape(cut.drone) +
+           (cut.match_focus ? " (focus matched)" : "") + "</text>\n";
+  }
+  if (plan.edit.empty()) {
+    svg += "<text x=\"" + F(team.x0 + 4) + "\" y=\"" + F(bar_y + 12) +
+           "\" fill=\"#555\">no edit: every camera counts as live</text>\n";
+  }
+  // Conflicts: shaded over every time panel, labelled on the team panel (one row per conflict, wrapping).
+  for (size_t c = 0; c < plan.team.conflicts.size(); ++c) {
+    const TeamConflict& v = plan.team.conflicts[c];
+    const std::string fill = v.limit == "separation" ? "red" : "orange";
+    for (const Frame* fr : {&team, &focal, &focus}) {
+      const double x0 = fr->PX(v.start_time_s), x1 = std::max(fr->PX(v.end_time_s), x0 + 2);
+      svg += "<rect class=\"conflict\" data-limit=\"" + Escape(v.limit) + "\" x=\"" + F(x0) + "\" y=\"" + F(fr->y0) +
+             "\" width=\"" + F(x1 - x0) + "\" height=\"" + F(fr->h) + "\" fill=\"" + fill +
+             "\" fill-opacity=\"0.18\"/>\n";
+    }
+    const std::string label = v.limit == "separation"
+                                  ? v.drone + "-" + v.other + " " + F(v.worst_value) + " m apart"
+                                  : v.other + " in " + v.drone + "'s shot (" + F(v.worst_value) + " px)";
+    const double row = static_cast<double>(c % 4);
+    svg += "<text x=\"" + F(team.PX(v.start_time_s) + 2) + "\" y=\"" + F(bar_y + bar_h + 14 + 14 * row) + "\" fill=\"" +
+           (v.limit == "separation" ? std::string("#b00") : std::string("#c60")) + "\">" + Escape(label) + "</text>\n";
+  }
+  for (size_t k = 0; k < plan.flights.size(); ++k) {
+    const auto& S = plan.flights[k].plan.samples;
+    const std::string style = "stroke=\"" + colour_of(k) + "\" stroke-width=\"2\"";
+    svg += Polyline(
+        focal, 0, S.size(), [&](size_t i) { return S[i].time_s; },
+        [&](size_t i) { return std::log(S[i].focal_length_mm); }, style);
+    svg += Polyline(
+        focus, 0, S.size(), [&](size_t i) { return S[i].time_s; },
+        [&](size_t i) { return std::isfinite(S[i].focus_distance_m) ? 1.0 / S[i].focus_distance_m : 0.0; }, style);
+  }
+  // Legend: the drones by name.
+  double lx = 40;
+  for (size_t k = 0; k < plan.flights.size(); ++k) {
+    const auto& flight = plan.flights[k];
+    std::string label = flight.name + " (" + flight.plan.drone.name + ", " + std::to_string(flight.plan.shots.size()) +
+                        " shot" + (flight.plan.shots.size() == 1 ? "" : "s") + ")";
+    svg += "<rect class=\"legend\" x=\"" + F(lx) + "\" y=\"" + F(height - 22) +
+           "\" width=\"12\" height=\"12\" fill=\"" + colour_of(k) + "\"/>\n";
+    svg += "<text x=\"" + F(lx + 16) + "\" y=\"" + F(height - 12) + "\">" + Escape(label) + "</text>\n";
+    lx += 30 + 7.0 * static_cast<double>(label.size());
+  }
+  svg += "</svg>\n";
+  return svg;
 }
 
 }  // namespace cinepath::shots

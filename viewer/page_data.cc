@@ -1,5 +1,6 @@
 #include "viewer/page_data.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "viewer/three_frame.h"
@@ -129,6 +130,73 @@ Json PageDataJson(const Trajectory& plan, const std::string& plan_name, const st
   }
   data["violations"] = violations;
   data["skipped_checks"] = plan.feasibility.skipped;
+  return data;
+}
+
+Json TeamPageDataJson(const TeamPlan& plan, size_t primary, const std::string& plan_name,
+                      const std::optional<Geodetic>& origin) {
+  static const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                         "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
+  Json data = PageDataJson(plan.flights.at(primary).plan, plan_name, origin);
+  Json flights = Json::array();
+  for (size_t f = 0; f < plan.flights.size(); ++f) {
+    const DroneFlight& flight = plan.flights[f];
+    const Trajectory& t = flight.plan;
+    Json time = Json::array(), position = Json::array(), quaternion = Json::array(), vfov = Json::array();
+    Json focus = Json::array();
+    for (const TrajectorySample& s : t.samples) {
+      time.push_back(RoundToDecimals(s.time_s, 6));
+      AppendVector(&position, ThreeFromEnu(s.position_enu_m), 3);
+      const Eigen::Quaterniond q = ThreeCameraFromWorldFromCamera(s.world_from_camera);
+      for (double c : {q.x(), q.y(), q.z(), q.w()}) quaternion.push_back(RoundToDecimals(c, 6));
+      vfov.push_back(RoundToDecimals(VerticalFieldOfViewDeg(t.camera, s.focal_length_mm), 4));
+      focus.push_back(FiniteOrNull(s.focus_distance_m, 3));
+    }
+    Json cuts = Json::array();
+    const std::vector<bool> cut_before = CutBeforeSamples(t);
+    for (size_t k = 0; k < cut_before.size(); ++k) {
+      if (cut_before[k]) cuts.push_back(k);
+    }
+    Json home = nullptr;
+    if (flight.home_enu_m) {
+      home = Json::array();
+      AppendVector(&home, ThreeFromEnu(*flight.home_enu_m), 3);
+    }
+    Json shots = Json::array();
+    for (const ShotSpan& shot : t.shots) shots.push_back(shot.name);
+    flights.push_back({{"name", flight.name},
+                       {"colour", kPalette[f % 10]},
+                       {"drone", t.drone.name},
+                       {"aspect", double(t.camera.width_px) / double(std::max(1, t.camera.height_px))},
+                       {"home_m", home},
+                       {"shots", shots},
+                       {"cuts_before_sample", cuts},
+                       {"time_s", time},
+                       {"position_m", position},
+                       {"quaternion", quaternion},
+                       {"vertical_fov_deg", vfov},
+                       {"focus_distance_m", focus}});
+  }
+  Json edit = Json::array();
+  for (const EditCut& cut : plan.edit) {
+    edit.push_back({{"at_s", RoundToDecimals(cut.at_s, 6)}, {"drone", cut.drone}, {"match_focus", cut.match_focus}});
+  }
+  Json conflicts = Json::array();
+  for (const TeamConflict& c : plan.team.conflicts) {
+    conflicts.push_back({{"limit", c.limit},
+                         {"drone", c.drone},
+                         {"other", c.other},
+                         {"start_time_s", RoundToDecimals(c.start_time_s, 6)},
+                         {"end_time_s", RoundToDecimals(c.end_time_s, 6)},
+                         {"worst_value", RoundToDecimals(c.worst_value, 6)},
+                         {"limit_value", RoundToDecimals(c.limit_value, 6)},
+                         {"unit", c.unit}});
+  }
+  data["team"] = {{"primary", primary},
+                  {"flights", flights},
+                  {"edit", edit},
+                  {"conflicts", conflicts},
+                  {"min_separation_m", RoundToDecimals(plan.team.min_separation_m, 6)}};
   return data;
 }
 

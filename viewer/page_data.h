@@ -11,6 +11,7 @@
 
 #include "core/geodesy.h"
 #include "core/json.h"
+#include "core/team_plan.h"
 #include "core/trajectory.h"
 
 namespace cinepath::viewer {
@@ -25,5 +26,13 @@ std::vector<double> SampleSpeedsMps(const Trajectory& plan);
 
 // `origin`: the WGS84 origin the page shows (the scene's or the plan's), none = local metres.
 Json PageDataJson(const Trajectory& plan, const std::string& plan_name, const std::optional<Geodetic>& origin);
+
+// A plan of several drones (docs/view.md, "Several drones"): the page data of `plan.flights[primary]`
+// (PageDataJson: its lens graphs, shots and readout) plus a "team" block the page's team code
+// (viewer/previs_team.js) reads: every flight's name, colour (the palette of `plan --plot`), samples
+// (time, position, camera orientation, vertical angle of view, focus), its own cuts and home; the edit;
+// and the team report's conflicts and minimum separation.
+Json TeamPageDataJson(const TeamPlan& plan, size_t primary, const std::string& plan_name,
+                      const std::optional<Geodetic>& origin);
 
 }  // namespace cinepath::viewer

@@ -121,7 +121,14 @@ std::string JsonForScriptElement(const std::string& json_text) {
 
 PrevisPage BuildPrevisPage(const ViewOptions& options) {
   PrevisPage page;
-  Trajectory plan = ReadPlanFile(options.plan);
+  TeamPlan team = ReadTeamPlanFile(options.plan);
+  // Several drones: the page is drawn about the longest flight (the first of the longest), and the team
+  // code shows every flight over it.
+  size_t primary = 0;
+  for (size_t f = 0; f < team.flights.size(); ++f) {
+    if (team.flights[f].plan.samples.size() > team.flights[primary].plan.samples.size()) primary = f;
+  }
+  Trajectory plan = team.flights[primary].plan;
   page.inputs.push_back(options.plan.string());
   std::optional<Geodetic> origin = plan.origin;
   std::optional<MeshPayload> mesh;
@@ -134,6 +141,7 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
     page.inputs.push_back(glb.string());
     if (scene.origin) {
       plan = ReframeToOrigin(std::move(plan), *scene.origin);  // a plan without an origin is left as it is
+      if (!team.single) team = ReframeToOrigin(std::move(team), *scene.origin);
       origin = scene.origin;
     }
     photos = PhotoPositionsJson(scene);
@@ -150,15 +158,19 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
     }
   }
   const std::string plan_name = options.plan.filename().string();
+  const Json data =
+      team.single ? PageDataJson(plan, plan_name, origin) : TeamPageDataJson(team, primary, plan_name, origin);
+  const std::string js =
+      team.single ? std::string(PrevisJs()) : std::string(PrevisJs()) + "\n" + std::string(PrevisTeamJs());
   page.html = FillTemplate(std::string(PrevisHtml()),
                            {{"TITLE", HtmlEscape("cinepath view: " + plan_name)},
                             {"THREE_URL", JsDataUrl(ThreeModuleJs())},
                             {"CONTROLS_URL", JsDataUrl(OrbitControlsJs())},
-                            {"DATA_JSON", CompactJson(WithPhotos(PageDataJson(plan, plan_name, origin), photos))},
+                            {"DATA_JSON", CompactJson(WithPhotos(data, photos))},
                             {"MESH_JSON", mesh ? CompactJson(MeshJson(*mesh, mesh_source)) : std::string("null")},
                             {"MESH_BASE64", mesh ? Base64Encode(mesh->deflated) : std::string()},
                             {"FRAMES_JSON", CompactJson(frames)},
-                            {"PREVIS_JS", std::string(PrevisJs())}});
+                            {"PREVIS_JS", js}});
   return page;
 }
 

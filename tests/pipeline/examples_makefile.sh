@@ -35,4 +35,12 @@ run > "$work/second.log" 2>&1 || { cat "$work/second.log"; fail "make after touc
 [[ $(stat -c %Y "$work/out/scene/scene.json") == "$before" ]] || fail "the mesh was rebuilt"
 [[ "$work/out/plan.json" -nt "$work/shots.json" ]] || fail "plan.json not rebuilt"
 run -q || fail "not up to date after the rerun"
+# The two-drone target: plan, optimize, a mission per drone, every drone's frames and the edit.
+run team > "$work/team.log" 2>&1 || { cat "$work/team.log"; fail "make team"; }
+for f in team/plan.json team/plan.svg team/optimized.json team/missions/rocks/mission.plan \
+  team/missions/shore/mission.plan team/frames/rocks/frame_000000.png team/frames/shore/frame_000000.png \
+  team/frames/edit/frame_000000.png team/frames/edit/contact_sheet.png; do
+  [[ -s $work/out/$f ]] || fail "make team: no out/$f"
+done
+run -q team || fail "a second make team would run something: $(run -n team)"
 echo "examples_makefile: ok"

@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <regex>
+#include <set>
+
 #include "shots/planner.h"
+#include "shots/team_planner.h"
 
 namespace cinepath::shots {
 namespace {
@@ -31,6 +36,83 @@ TEST(PlanPlot, PanelsFrustumsAndDeterminism) {
   EXPECT_EQ(Count(svg, "<polygon"), 2u * 11u);
   EXPECT_NE(svg.find("hero &lt;1&gt;"), std::string::npos);  // names are escaped
   EXPECT_EQ(svg, PlanToSvg(PlanShots(list)));
+}
+
+// Two drones orbiting one actor half a turn apart with a wide lens: each sees the other (in_shot conflicts).
+TeamPlan WideOrbitTeam() {
+  const ShotList list = ParseShotList(Json::parse(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 10,
+      "camera": {"filmback": "super35", "min_focal_length_mm": 12},
+      "drone": "px4-multirotor",
+      "drones": [{"name": "north", "home_enu_m": [0, 30, 0]}, {"name": "south", "home_enu_m": [0, -30, 0]}],
+      "actors": [{"name": "hero", "position_enu_m": [0, 0, 0]}],
+      "shots": [{"name": "a", "drone": "north", "type": "ORBIT", "subject": "hero", "duration_s": 20,
+                 "radius_m": 20, "height_m": 5, "turns": 1, "start_bearing_deg": 0, "lens": {"focal_length_mm": 12}},
+                {"name": "b", "drone": "south", "type": "ORBIT", "subject": "hero", "duration_s": 20,
+                 "radius_m": 20, "height_m": 5, "turns": 1, "start_bearing_deg": 180, "lens": {"focal_length_mm": 12}}],
+      "edit": [{"at_s": 0, "drone": "north"}, {"at_s": 10, "drone": "south", "match_focus": true}]})"),
+                                      "shots.json");
+  return PlanTeam(list);
+}
+
+TEST(PlanPlot, TeamDrawsOnePathPerDroneInItsColourAndShadesEveryConflict) {
+  TeamPlan plan = WideOrbitTeam();
+  ASSERT_EQ(plan.flights.size(), 2u);
+  // The wide lens puts each drone in the other's live shot; add a separation breach so both kinds show.
+  ASSERT_FALSE(plan.team.conflicts.empty());
+  TeamConflict breach;
+  breach.limit = "separation";
+  breach.drone = "north";
+  breach.other = "south";
+  breach.start_time_s = 3;
+  breach.end_time_s = 4.5;
+  breach.worst_value = 2.5;
+  breach.limit_value = 5;
+  breach.unit = "m";
+  plan.team.conflicts.push_back(breach);
+  const std::string svg = TeamPlanToSvg(plan);
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+
+  // One path per drone in each of the two views, each drone in one colour, the two colours distinct.
+  const std::regex path_re("class=\"flight\" data-drone=\"([a-z]+)\" stroke=\"(#[0-9a-f]{6})\"");
+  std::map<std::string, std::set<std::string>> colours;
+  size_t paths = 0;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), path_re); it != std::sregex_iterator(); ++it) {
+    colours[(*it)[1]].insert((*it)[2]);
+    ++paths;
+  }
+  EXPECT_EQ(paths, 4u);
+  ASSERT_EQ(colours.size(), 2u);
+  ASSERT_EQ(colours["north"].size(), 1u);
+  ASSERT_EQ(colours["south"].size(), 1u);
+  EXPECT_NE(*colours["north"].begin(), *colours["south"].begin());
+
+  // A shaded rect per conflict range on each of the three time panels, at the conflict's times.
+  EXPECT_EQ(Count(svg, "class=\"conflict\""), 3u * plan.team.conflicts.size());
+  EXPECT_EQ(Count(svg, "class=\"conflict\" data-limit=\"separation\""), 3u);
+  EXPECT_EQ(Count(svg, "class=\"conflict\" data-limit=\"in_shot\""), 3u * (plan.team.conflicts.size() - 1));
+  EXPECT_NE(svg.find("north-south 2.50 m apart"), std::string::npos);  // labelled
+  EXPECT_NE(svg.find("'s shot ("), std::string::npos);                 // in_shot labelled
+  // The edit's two cuts, and the legend names both drones.
+  EXPECT_EQ(Count(svg, "class=\"edit\""), 2u);
+  EXPECT_NE(svg.find(">north (px4-multirotor, 1 shot)<"), std::string::npos);
+  EXPECT_NE(svg.find(">south (px4-multirotor, 1 shot)<"), std::string::npos);
+  EXPECT_EQ(svg, TeamPlanToSvg(plan));  // deterministic
+}
+
+TEST(PlanPlot, AVersionOnePlanDrawsAsBefore) {
+  const ShotList list = ParseShotList(Json::parse(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 10,
+      "camera": {"filmback": "super35", "min_focal_length_mm": 24},
+      "actors": [{"name": "hero", "position_enu_m": [0, 0, 0]}],
+      "shots": [{"name": "o", "type": "ORBIT", "subject": "hero", "duration_s": 10, "radius_m": 20,
+        "height_m": 5, "turns": 1}]})"),
+                                      "shots.json");
+  // A version 1 plan read as a team (core/plan_file.h): one flight, `single` set.
+  TeamPlan team;
+  team.single = true;
+  team.flights.push_back({"px4-multirotor", std::nullopt, PlanShots(list)});
+  EXPECT_EQ(TeamPlanToSvg(team), PlanToSvg(PlanShots(list)));
+  EXPECT_EQ(TeamPlanToSvg(team).find("class=\"flight\""), std::string::npos);
 }
 
 }  // namespace
