@@ -28,9 +28,9 @@ struct OverlapSample {
 };
 
 struct ExposureGainOptions {
-  double prior = 0.05;
+  double prior = 0.001;
   double max_ratio = 2.0;
-  double min_linear = 0.01;  // samples darker than this (in every channel) carry no gain information
+  double min_linear = 0.01;  // a pair with a sample darker than this in any channel is left out
 };
 
 struct ExposureGains {
