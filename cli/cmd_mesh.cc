@@ -1,6 +1,7 @@
 // cinepath mesh: COLMAP reconstruction (+ GPS references) -> cleaned, georeferenced mesh.
 //   reads   COLMAP sparse model (text or binary), optional dense PLY points or a PLY mesh in the same
 //           frame, references (file or EXIF), ground control points (--gcp), EXIF focal lengths
+//           photos (--images, or found beside the model): EXIF, and the texture
 //   writes  OUTDIR/scene.glb and OUTDIR/scene.json (origin, enu_from_colmap, georeferencing report,
 //           surface report), both or neither.
 #include <algorithm>
@@ -91,6 +92,17 @@ class MeshCommand : public Command {
     app.add_option("--remesh-edge-m", options_.surface.remesh_edge_m,
                    "After simplifying, remesh isotropically to edges of about L m")
         ->check(PositiveFinite());
+    app.add_flag("--no-texture", no_texture_, "Vertex colours only: do not texture the mesh from the photos");
+    app.add_option("--texture-px", texture_px_,
+                   "Texture atlas size in texels (square; default per --quality: draft 2048, standard 4096, "
+                   "final 8192)")
+        ->check(CLI::Range(64, 16384));
+    app.add_option("--texture-format", texture_format_, "jpeg (default, quality --texture-jpeg-quality) | png")
+        ->check(CLI::IsMember({"jpeg", "png"}));
+    app.add_option("--texture-jpeg-quality", options_.texture_options.jpeg_quality, "JPEG quality 1..100 (default 90)")
+        ->check(CLI::Range(1, 100));
+    app.add_option("--texture-exclude", options_.texture_options.excluded_images,
+                   "Never texture from this photo (image name as in the model; repeatable)");
     app.add_flag("--draco", draco_, "Compress the GLB with KHR_draco_mesh_compression");
     app.add_flag("--no-timestamp", no_timestamp_, "Leave wall-clock times out of scene.json (byte-identical runs)");
     app.add_option("-o,--output", output_dir_, "Output folder (scene.glb, scene.json)")->required();
@@ -113,6 +125,9 @@ class MeshCommand : public Command {
     options_.surface.method = ParseSurfaceMethod(surface_);
     options_.surface.draco = draco_;
     options_.timestamps = !no_timestamp_;
+    options_.texture = !no_texture_;
+    options_.texture_px = texture_px_;
+    options_.texture_options.format = texture_format_ == "png" ? TextureFormat::kPng : TextureFormat::kJpeg;
     options_.output_dir = output_dir_;
 
     const bool tty = isatty(STDERR_FILENO) != 0 || common_.progress_mode() == ProgressMode::kAlways;
@@ -150,6 +165,9 @@ class MeshCommand : public Command {
             {"max_rmse_m", "--max-rmse-m"},
             {"altitude_datum", "--altitude-datum"},
             {"focal_prior_px", "--focal-prior-px"},
+            {"texture_px", "--texture-px"},
+            {"jpeg_quality", "--texture-jpeg-quality"},
+            {"texture_exclude", "--texture-exclude"},
             {"progress", "--progress"}};
   }
 
@@ -163,7 +181,9 @@ class MeshCommand : public Command {
   bool no_bundle_adjust_ = false;
   std::optional<double> gps_sigma_m_;
   std::string quality_ = "standard", surface_ = "auto";
-  bool draco_ = false, no_timestamp_ = false;
+  bool draco_ = false, no_timestamp_ = false, no_texture_ = false;
+  std::optional<int> texture_px_;
+  std::string texture_format_ = "jpeg";
   std::string output_dir_;
   CommonOptions common_;
 };

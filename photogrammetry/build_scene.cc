@@ -1,12 +1,14 @@
 #include "photogrammetry/build_scene.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include "core/error.h"
 #include "photogrammetry/colmap_reader.h"
 #include "photogrammetry/colmap_runner.h"
 #include "photogrammetry/exif_gps.h"
 #include "photogrammetry/gcp_file.h"
+#include "photogrammetry/gltf_writer.h"
 #include "photogrammetry/ply_reader.h"
 #include "photogrammetry/refs_file.h"
 #include "photogrammetry/scene_cameras.h"
@@ -60,15 +62,20 @@ void SetFocalPriors(const ColmapModel& model, const std::vector<ExifInfo>& exif,
   }
 }
 
-// The surface from the sparse points, a dense cloud or a given mesh, all in ENU.
-SurfacePipelineResult BuildSurface(const SceneBuildOptions& options, const ColmapModel& model,
-                                   const ModelGeoreference& geo, SurfacePipelineOptions surface,
-                                   std::vector<std::string>* inputs, Json* input_note) {
+// asset.extras and scene.extras of scene.glb: the origin and the frame.
+Json GltfExtras(const ModelGeoreference& geo) {
   Json extras = Json::object();
   extras["origin"] = {
       {"lat_deg", geo.origin.lat_deg}, {"lon_deg", geo.origin.lon_deg}, {"height_m", geo.origin.height_m}};
   extras["frame"] = "ENU metres about origin (glTF x = east, y = up, z = -north); heights WGS84 ellipsoidal";
-  surface.gltf_extras = extras;
+  return extras;
+}
+
+// The surface from the sparse points, a dense cloud or a given mesh, all in ENU.
+SurfacePipelineResult BuildSurface(const SceneBuildOptions& options, const ColmapModel& model,
+                                   const ModelGeoreference& geo, SurfacePipelineOptions surface,
+                                   std::vector<std::string>* inputs, Json* input_note) {
+  surface.gltf_extras = GltfExtras(geo);
   surface.Check();
 
   PointCloud cloud = PointCloudFromModel(geo.model_enu);
@@ -111,6 +118,10 @@ void SceneBuildOptions::Check() const {
     throw InputError("points_path and mesh_path: give a dense cloud or a mesh, not both");
   }
   surface.Check();
+  texture_options.Check();
+  if (texture_px && (*texture_px < 64 || *texture_px > 16384)) {
+    throw InputError("texture_px: must be between 64 and 16384, got " + std::to_string(*texture_px));
+  }
 }
 
 SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLog& log) {
@@ -182,6 +193,37 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
   Json input_note = Json::object();
   SurfacePipelineResult built = BuildSurface(options, model, geo, surface, &inputs, &input_note);
 
+  // The texture from the photos, and scene.glb written again with it.
+  Json texture_report = nullptr;
+  if (options.texture && !images.dir.empty()) {
+    const auto start = std::chrono::steady_clock::now();
+    MeshTextureOptions texture_options = options.texture_options;
+    texture_options.texture_px = options.texture_px.value_or(DefaultTexturePx(surface.quality));
+    texture_options.report_times = options.timestamps;
+    const TexturedMesh textured =
+        TextureMeshFromPhotos(built.mesh, geo.model_enu, images.dir, texture_options, nullptr);
+    GlbWriteOptions glb;
+    glb.draco = surface.draco;
+    glb.extras = GltfExtras(geo);
+    const GlbTexture texture{textured.texcoords, textured.image_bytes, textured.mime_type};
+    built.glb = WriteGlb(textured.mesh, &texture, glb);
+    texture_report = textured.report;
+    if (options.timestamps) {
+      texture_report["time_s"]["total_s"] =
+          RoundToDecimals(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3);
+    }
+    for (Json& step : built.report["steps"]) {
+      if (step.value("step", "") == "glb") {
+        step["bytes"] = static_cast<int64_t>(built.glb.size());
+        step["texture"] = true;
+      }
+    }
+  } else if (!options.texture) {
+    texture_report = {{"skipped", "--no-texture"}};
+  } else {
+    texture_report = {{"skipped", "no photos"}};
+  }
+
   // scene.json (docs/scene-format.md): what a reader needs first, then the reports.
   Json scene = Json::object();
   scene["format"] = "cinepath.scene";
@@ -200,6 +242,7 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
                     {"points3d", model.points3d.size()}};
   for (auto it = input_note.begin(); it != input_note.end(); ++it) scene["input"][it.key()] = it.value();
   scene["surface"] = built.report;
+  scene["texture"] = texture_report;
   scene["cameras"] = SceneCamerasJson(geo.model_enu);
 
   result.glb = std::move(built.glb);

@@ -7,7 +7,8 @@
 // photos (given, or an images/ folder beside the model), read their EXIF, take the references (the
 // refs file, else EXIF GPS), the focal-length priors (a given one, else EXIF), georeference
 // (georeference_model.h), build the surface from the sparse points, a dense PLY or a given mesh
-// (surface_pipeline.h), and assemble scene.json (docs/scene-format.md, docs/mesh.md).
+// (surface_pipeline.h), texture it from the photos (mesh_texture.h), and assemble scene.json (docs/scene-format.md,
+// docs/mesh.md).
 #pragma once
 
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include "core/geodesy.h"
 #include "core/json.h"
 #include "photogrammetry/georeference_model.h"
+#include "photogrammetry/mesh_texture.h"
 #include "photogrammetry/surface_pipeline.h"
 
 namespace cinepath::photogrammetry {
@@ -36,6 +38,11 @@ struct SceneBuildOptions {
   std::optional<double> focal_prior_px;   // for every camera; overrides EXIF
   std::optional<double> sensor_width_mm;  // EXIF FocalLength -> pixels
   SurfacePipelineOptions surface;
+  // Texture the mesh from the photos (mesh_texture.h) when there are photos; texture.texture_px unset
+  // here (texture_px) takes the quality preset's (DefaultTexturePx).
+  bool texture = true;
+  MeshTextureOptions texture_options;
+  std::optional<int> texture_px;
   bool timestamps = true;  // wall-clock times in scene.json
 
   // InputError naming the field: neither a model nor photos; both a dense cloud and a mesh.

@@ -61,3 +61,37 @@ extern "C" __attribute__((visibility("default"))) int cinepath_exif_read(const c
   input->close();
   return 1;
 }
+
+extern "C" __attribute__((visibility("default"))) int cinepath_image_read_rgb8(const char* path, void* context,
+                                                                               CinepathImageAllocFn alloc, int* width,
+                                                                               int* height, char* error,
+                                                                               size_t error_size) {
+  auto input = OIIO::ImageInput::open(path);
+  if (!input) {
+    CopyString(OIIO::geterror(), error, error_size);
+    return 0;
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    CopyString("empty image", error, error_size);
+    return 0;
+  }
+  const int channels = spec.nchannels >= 3 ? 3 : 1;
+  const size_t n = size_t(spec.width) * size_t(spec.height);
+  unsigned char* out = alloc(context, n * 3);
+  if (out == nullptr) {
+    CopyString("out of memory", error, error_size);
+    return 0;
+  }
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, out)) {
+    CopyString(input->geterror(), error, error_size);
+    return 0;
+  }
+  if (channels == 1) {  // grey in the first n bytes: spread to RGB from the end backwards
+    for (size_t i = n; i-- > 0;) out[3 * i] = out[3 * i + 1] = out[3 * i + 2] = out[i];
+  }
+  *width = spec.width;
+  *height = spec.height;
+  input->close();
+  return 1;
+}

@@ -68,6 +68,7 @@ int AddBufferView(tinygltf::Model& model, size_t offset, size_t length, int targ
 struct VertexData {
   std::vector<float> positions;  // glTF frame, xyz per vertex
   std::vector<float> colors;     // linear rgb per vertex, or empty
+  std::vector<float> texcoords;  // uv per vertex, or empty
   std::vector<uint32_t> indices;
 };
 
@@ -86,6 +87,7 @@ struct DracoResult {
   std::vector<unsigned char> bytes;
   int position_id = -1;
   int color_id = -1;
+  int texcoord_id = -1;
   size_t num_points = 0;
   size_t num_faces = 0;
   std::vector<double> position_min, position_max;
@@ -104,7 +106,17 @@ DracoResult EncodeDraco(const VertexData& data, const GlbWriteOptions& options) 
     color.Init(draco::GeometryAttribute::COLOR, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
     color_att = mesh.AddAttribute(color, true, static_cast<uint32_t>(n));
   }
+  int texcoord_att = -1;
+  if (!data.texcoords.empty()) {
+    draco::GeometryAttribute texcoord;
+    texcoord.Init(draco::GeometryAttribute::TEX_COORD, nullptr, 2, draco::DT_FLOAT32, false, sizeof(float) * 2, 0);
+    texcoord_att = mesh.AddAttribute(texcoord, true, static_cast<uint32_t>(n));
+  }
   for (size_t i = 0; i < n; ++i) {
+    if (texcoord_att >= 0) {
+      mesh.attribute(texcoord_att)
+          ->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)), &data.texcoords[2 * i]);
+    }
     mesh.attribute(position_att)
         ->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)), &data.positions[3 * i]);
     if (color_att >= 0) {
@@ -121,6 +133,7 @@ DracoResult EncodeDraco(const VertexData& data, const GlbWriteOptions& options) 
   draco::Encoder encoder;
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.draco_position_bits);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, options.draco_color_bits);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, options.draco_texcoord_bits);
   const int speed = 10 - std::clamp(options.draco_compression_level, 0, 10);
   encoder.SetSpeedOptions(speed, speed);
   encoder.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
@@ -132,6 +145,7 @@ DracoResult EncodeDraco(const VertexData& data, const GlbWriteOptions& options) 
   result.bytes.assign(buffer.data(), buffer.data() + buffer.size());
   result.position_id = static_cast<int>(mesh.attribute(position_att)->unique_id());
   if (color_att >= 0) result.color_id = static_cast<int>(mesh.attribute(color_att)->unique_id());
+  if (texcoord_att >= 0) result.texcoord_id = static_cast<int>(mesh.attribute(texcoord_att)->unique_id());
 
   draco::DecoderBuffer decode_buffer;
   decode_buffer.Init(buffer.data(), buffer.size());
@@ -166,6 +180,10 @@ float LinearFromSrgb8(uint8_t value) {
 }
 
 std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& options) {
+  return WriteGlb(mesh_enu, nullptr, options);
+}
+
+std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbTexture* texture, const GlbWriteOptions& options) {
   if (mesh_enu.num_faces() == 0 || mesh_enu.num_vertices() == 0) {
     throw InputError("glb: the mesh is empty");
   }
@@ -176,7 +194,21 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& option
     throw InputError("glb: extras: must be an object");
   }
 
+  if (texture != nullptr) {
+    if (texture->texcoords.size() != mesh_enu.num_vertices()) {
+      throw InputError("glb: texture coordinates: one per vertex expected");
+    }
+    if (texture->image_bytes.empty() || texture->mime_type.empty()) throw InputError("glb: texture: no image");
+  }
+
   VertexData data;
+  if (texture != nullptr) {
+    data.texcoords.reserve(2 * texture->texcoords.size());
+    for (const Eigen::Vector2f& t : texture->texcoords) {
+      if (!t.allFinite()) throw InputError("glb: a texture coordinate is not finite");
+      data.texcoords.insert(data.texcoords.end(), {t.x(), t.y()});
+    }
+  }
   data.positions.reserve(3 * mesh_enu.num_vertices());
   for (const Eigen::Vector3d& v : mesh_enu.vertices_m) {
     if (!v.allFinite()) throw InputError("glb: a vertex position is not finite");
@@ -219,6 +251,9 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& option
   tinygltf::Accessor color_accessor;
   color_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   color_accessor.type = TINYGLTF_TYPE_VEC3;
+  tinygltf::Accessor texcoord_accessor;
+  texcoord_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  texcoord_accessor.type = TINYGLTF_TYPE_VEC2;
 
   if (options.draco) {
     const DracoResult draco = EncodeDraco(data, options);
@@ -230,10 +265,12 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& option
     position_accessor.minValues = draco.position_min;
     position_accessor.maxValues = draco.position_max;
     color_accessor.count = draco.num_points;
+    texcoord_accessor.count = draco.num_points;
 
     tinygltf::Value::Object attributes;
     attributes["POSITION"] = tinygltf::Value(draco.position_id);
     if (draco.color_id >= 0) attributes["COLOR_0"] = tinygltf::Value(draco.color_id);
+    if (draco.texcoord_id >= 0) attributes["TEXCOORD_0"] = tinygltf::Value(draco.texcoord_id);
     tinygltf::Value::Object extension;
     extension["bufferView"] = tinygltf::Value(view);
     extension["attributes"] = tinygltf::Value(std::move(attributes));
@@ -262,6 +299,13 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& option
           AddBufferView(model, color_offset, bin.size() - color_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
       color_accessor.count = mesh_enu.num_vertices();
     }
+    if (!data.texcoords.empty()) {
+      const size_t texcoord_offset = bin.size();
+      AppendBytes(bin, data.texcoords.data(), data.texcoords.size() * sizeof(float));
+      texcoord_accessor.bufferView =
+          AddBufferView(model, texcoord_offset, bin.size() - texcoord_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
+      texcoord_accessor.count = mesh_enu.num_vertices();
+    }
   }
 
   model.accessors.push_back(index_accessor);
@@ -270,11 +314,39 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& option
   primitive.attributes["POSITION"] = 1;
   if (!data.colors.empty()) {
     model.accessors.push_back(color_accessor);
-    primitive.attributes["COLOR_0"] = 2;
+    primitive.attributes["COLOR_0"] = static_cast<int>(model.accessors.size()) - 1;
+  }
+  if (!data.texcoords.empty()) {
+    model.accessors.push_back(texcoord_accessor);
+    primitive.attributes["TEXCOORD_0"] = static_cast<int>(model.accessors.size()) - 1;
   }
 
-  // A matte material: the colour comes from COLOR_0 (multiplied with baseColorFactor 1).
+  // A matte material: the colour comes from COLOR_0 (multiplied with baseColorFactor 1) and, with a
+  // texture, from the texture multiplied by COLOR_0.
   tinygltf::Material material;
+  if (texture != nullptr) {
+    PadTo4(bin);
+    const size_t image_offset = bin.size();
+    AppendBytes(bin, texture->image_bytes.data(), texture->image_bytes.size());
+    tinygltf::Image image;
+    image.name = "atlas";
+    image.mimeType = texture->mime_type;
+    image.bufferView = AddBufferView(model, image_offset, texture->image_bytes.size(), 0);
+    PadTo4(bin);
+    model.images.push_back(image);
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    model.samplers.push_back(sampler);
+    tinygltf::Texture gltf_texture;
+    gltf_texture.source = 0;
+    gltf_texture.sampler = 0;
+    model.textures.push_back(gltf_texture);
+    material.pbrMetallicRoughness.baseColorTexture.index = 0;
+    material.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
+  }
   material.name = "terrain";
   material.pbrMetallicRoughness.metallicFactor = 0.0;
   material.pbrMetallicRoughness.roughnessFactor = 1.0;

@@ -33,6 +33,17 @@ MeshPayload EncodeMeshPayload(const scene::SceneMesh& mesh) {
   payload.num_vertices = mesh.num_vertices();
   payload.num_triangles = mesh.num_faces();
   payload.has_colors = mesh.has_colors();
+  // The texture of the first material that has one (cinepath mesh writes one material).
+  for (const auto& material : mesh.materials) {
+    if (material.base_color_image >= 0 && size_t(material.base_color_image) < mesh.images.size() &&
+        mesh.has_texcoords()) {
+      const auto& image = mesh.images[size_t(material.base_color_image)];
+      payload.has_texcoords = true;
+      payload.texture_mime_type = image.mime_type;
+      payload.texture = image.encoded;
+      break;
+    }
+  }
   payload.index_bytes = mesh.num_vertices() <= 65536 ? 2 : 4;
   Eigen::AlignedBox3d box;
   for (const auto& p : mesh.positions_enu_m) box.extend(ThreeFromEnu(p));
@@ -59,6 +70,14 @@ MeshPayload EncodeMeshPayload(const scene::SceneMesh& mesh) {
       for (int a = 0; a < 3; ++a) colors.push_back(LinearToSrgb8(c[a]));
     }
     raw += DeltaBytePlanes(colors, 1, 3);
+  }
+  if (payload.has_texcoords) {
+    std::vector<uint32_t> uv;
+    uv.reserve(2 * mesh.num_vertices());
+    for (const auto& t : mesh.texcoords) {
+      for (int a = 0; a < 2; ++a) uv.push_back(uint32_t(std::lround(std::clamp(double(t[a]), 0.0, 1.0) * 65535.0)));
+    }
+    raw += DeltaBytePlanes(uv, 2, 2);
   }
   std::vector<uint32_t> indices;
   indices.reserve(3 * mesh.num_faces());

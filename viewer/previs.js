@@ -102,6 +102,17 @@ async function loadMesh() {
   let material;
   if (meshInfo.has_colors) {
     geometry.setAttribute('color', new THREE.BufferAttribute(stream(3 * V, 1, 3, new Uint8Array(3 * V)), 3, true));
+  }
+  if (meshInfo.has_texcoords) {
+    // The photo texture (glTF convention: v down, so no flip), times the vertex colours as glTF says.
+    const uv = stream(2 * V, 2, 2, new Uint16Array(2 * V));
+    geometry.setAttribute('uv', new THREE.BufferAttribute(uv, 2, true));
+    const map = await new THREE.TextureLoader().loadAsync(meshInfo.texture);
+    map.flipY = false;
+    map.colorSpace = THREE.SRGBColorSpace;
+    map.anisotropy = renderer.capabilities.getMaxAnisotropy();
+    material = new THREE.MeshBasicMaterial({ map, vertexColors: meshInfo.has_colors, side: THREE.DoubleSide });
+  } else if (meshInfo.has_colors) {
     material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide });
   } else {
     material = new THREE.MeshLambertMaterial({ color: 0xb8b4aa, side: THREE.DoubleSide });

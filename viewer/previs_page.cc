@@ -44,6 +44,10 @@ Json MeshJson(const MeshPayload& mesh, const std::string& source) {
           {"vertices", mesh.num_vertices},
           {"triangles", mesh.num_triangles},
           {"has_colors", mesh.has_colors},
+          {"has_texcoords", mesh.has_texcoords},
+          {"texture", mesh.has_texcoords ? "data:" + mesh.texture_mime_type + ";base64," +
+                                               Base64Encode(std::string(mesh.texture.begin(), mesh.texture.end()))
+                                         : std::string()},
           {"index_bytes", mesh.index_bytes},
           {"min_m", mesh.min_three_m},
           {"max_m", mesh.max_three_m},

@@ -32,6 +32,16 @@ for (const entry of manifest) {
   expect(vertices === entry.vertices, `${entry.file}: vertex count`);
   expect(faces === entry.faces, `${entry.file}: face count`);
   expect(!!prim.getAttribute('COLOR_0') === entry.colors, `${entry.file}: COLOR_0 presence`);
+  // Textured GLBs: TEXCOORD_0 in [0, 1], and a baseColorTexture whose image is a JPEG or PNG.
+  const uv = prim.getAttribute('TEXCOORD_0');
+  expect(!!uv === !!entry.texture, `${entry.file}: TEXCOORD_0 presence`);
+  if (entry.texture && uv) {
+    const a = uv.getArray();
+    expect(a.every((x) => x >= 0 && x <= 1), `${entry.file}: TEXCOORD_0 within [0, 1]`);
+    const tex = prim.getMaterial()?.getBaseColorTexture();
+    expect(!!tex && ['image/jpeg', 'image/png'].includes(tex.getMimeType()) && tex.getImage().byteLength > 100,
+           `${entry.file}: baseColorTexture with an embedded image`);
+  }
   const used = root.listExtensionsUsed().map((e) => e.extensionName);
   expect(used.includes('KHR_draco_mesh_compression') === entry.draco, `${entry.file}: Draco extension`);
   // Every index is in range and positions are finite; glTF +Y is up (ENU u), so the terrain's

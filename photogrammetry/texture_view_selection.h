@@ -1,0 +1,61 @@
+// Which photo textures each face (after Waechter, Moehrle & Goesele 2014, "Let There Be Color!
+// Large-Scale Texturing of 3D Reconstructions", ECCV, and Lempitsky & Ivanov 2007, "Seamless Mosaicing
+// of Image-Based Texture Maps", CVPR: a labelling of faces with views, a data term per face and view and
+// a seam penalty between neighbours).
+//
+// A view can texture a face when the face is in front of the camera and turned toward it (cosine of
+// the viewing angle over `min_cosine`), its three corners project into the image (`margin_px` from the
+// border, through the full camera model), and nothing hides it: rays from its centroid and from three
+// points near its corners to the camera centre hit no other face (Embree, scene/ray_caster.h).
+//
+// Quality of a view for a face: its projected area in pixels times the cosine of the viewing angle,
+// i.e. pixels per square metre with an extra weight on frontal views (the projected area alone already
+// holds distance and obliquity once). Data cost D(f, v) = 1 - q(f, v) / max_w q(f, w), in [0, 1).
+// The labelling minimises sum_f D(f, l_f) + seam_penalty * #{edges whose faces differ}, by iterated
+// conditional modes (Besag 1986) from the best-quality labels: faces visited in index order, each
+// taking the label that minimises its own data cost plus the penalty toward its edge neighbours, for
+// `smoothing_iterations` sweeps or until nothing changes. Deterministic; the visibility tests run in
+// parallel but each face writes only its own entry.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "photogrammetry/texture_view.h"
+#include "photogrammetry/triangle_mesh.h"
+
+namespace cinepath::scene {
+class RayCaster;
+}
+
+namespace cinepath::photogrammetry {
+
+struct ViewSelectionOptions {
+  double min_cosine = 0.1;       // views more than ~84 degrees off the face normal do not texture it
+  double margin_px = 2;          // the corners' distance from the image border
+  double seam_penalty = 0.3;     // per edge between faces of different photos (data costs are in [0, 1))
+  int smoothing_iterations = 8;  // ICM sweeps (0: each face its best view)
+};
+
+struct FaceView {
+  int view = -1;
+  float quality = 0;  // projected pixels x cosine
+};
+
+struct ViewSelection {
+  std::vector<int> label;                         // per face: the index of its view, -1 = none sees it
+  std::vector<std::vector<FaceView>> candidates;  // per face: every view that sees it, in view order
+  int64_t faces_seen = 0;                         // faces with at least one candidate
+  int64_t seam_edges_before = 0;                  // edges between faces of different labels, best-quality labels
+  int64_t seam_edges_after = 0;                   // ... after smoothing
+  int iterations_run = 0;
+};
+
+// `caster` holds the same mesh (for occlusion).
+ViewSelection SelectViews(const TriangleMesh& mesh, const std::vector<TextureView>& views,
+                          const scene::RayCaster& caster, const ViewSelectionOptions& options = {});
+
+// Face pairs sharing an edge (each pair once, a < b, sorted): the neighbourhood of the seam penalty.
+std::vector<std::pair<uint32_t, uint32_t>> FaceEdgeNeighbours(const TriangleMesh& mesh);
+
+}  // namespace cinepath::photogrammetry
