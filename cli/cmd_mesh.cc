@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
+#include "core/plan_file.h"
 #include "photogrammetry/build_scene.h"
 
 namespace cinepath::cli {
@@ -91,6 +92,12 @@ class MeshCommand : public Command {
     app.add_option("--remesh-edge-m", options_.surface.remesh_edge_m,
                    "After simplifying, remesh isotropically to edges of about L m")
         ->check(PositiveFinite());
+    app.add_option("--for-plan", for_plan_path_,
+                   "plan.json made on this scene: simplify each region only as far as the plan's closest camera "
+                   "that sees it can tell (its origin must be the scene's; excludes --target-faces, --max-error-m)");
+    app.add_option("--max-error-px", options_.max_error_px,
+                   "With --for-plan: the largest geometric error, projected into that camera, in pixels")
+        ->check(PositiveFinite());
     app.add_flag("--draco", draco_, "Compress the GLB with KHR_draco_mesh_compression");
     app.add_flag("--no-timestamp", no_timestamp_, "Leave wall-clock times out of scene.json (byte-identical runs)");
     app.add_option("-o,--output", output_dir_, "Output folder (scene.glb, scene.json)")->required();
@@ -114,6 +121,10 @@ class MeshCommand : public Command {
     options_.surface.draco = draco_;
     options_.timestamps = !no_timestamp_;
     options_.output_dir = output_dir_;
+    if (!for_plan_path_.empty()) {
+      options_.for_plan = ReadPlanFile(for_plan_path_);  // InputError naming the file
+      options_.for_plan_path = for_plan_path_;
+    }
 
     const bool tty = isatty(STDERR_FILENO) != 0 || common_.progress_mode() == ProgressMode::kAlways;
     SceneBuildLog log;
@@ -147,6 +158,8 @@ class MeshCommand : public Command {
             {"target_faces", "--target-faces"},
             {"max_error_m", "--max-error-m"},
             {"remesh_edge_m", "--remesh-edge-m"},
+            {"for_plan_path", "--for-plan"},
+            {"max_error_px", "--max-error-px"},
             {"max_rmse_m", "--max-rmse-m"},
             {"altitude_datum", "--altitude-datum"},
             {"focal_prior_px", "--focal-prior-px"},
@@ -165,6 +178,7 @@ class MeshCommand : public Command {
   std::string quality_ = "standard", surface_ = "auto";
   bool draco_ = false, no_timestamp_ = false;
   std::string output_dir_;
+  std::string for_plan_path_;
   CommonOptions common_;
 };
 

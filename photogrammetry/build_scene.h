@@ -18,6 +18,7 @@
 
 #include "core/geodesy.h"
 #include "core/json.h"
+#include "core/trajectory.h"
 #include "photogrammetry/georeference_model.h"
 #include "photogrammetry/surface_pipeline.h"
 
@@ -37,6 +38,12 @@ struct SceneBuildOptions {
   std::optional<double> sensor_width_mm;  // EXIF FocalLength -> pixels
   SurfacePipelineOptions surface;
   bool timestamps = true;  // wall-clock times in scene.json
+  // --for-plan: the plan (read by the caller from for_plan_path) whose cameras set the detail of each
+  // region (mesh_decimate_for_plan.h). Its origin must be the scene's (InputError naming the file and
+  // its "origin" otherwise). max_error_px: --max-error-px.
+  std::optional<Trajectory> for_plan;
+  std::string for_plan_path;
+  double max_error_px = 0.5;
 
   // InputError naming the field: neither a model nor photos; both a dense cloud and a mesh.
   void Check() const;
