@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "photogrammetry/mesh_distance.h"
+#include "photogrammetry/surface_pipeline.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -192,6 +193,33 @@ TEST(DecimateForPlan, ATighterBoundKeepsMore) {
   options.max_error_px = 0.25;
   const size_t tight = DecimateForPlan(mesh, options).num_faces();
   EXPECT_LT(loose, tight);
+}
+
+TEST(DecimateForPlan, ThePipelineReportsTheTilesInItsDecimateStep) {
+  SurfacePipelineOptions options;
+  options.report_times = false;
+  ForPlanOptions for_plan;
+  for_plan.cameras = CamerasFromPlan(OrbitPlan(60), "orbit.json");
+  for_plan.measure_samples = 20000;
+  for_plan.max_rounds = 4;
+  options.for_plan = for_plan;
+  const SurfacePipelineResult result = BuildSurfaceFromMesh(BoxOnPlane(), nullptr, options);
+  const Json* decimate = nullptr;
+  for (const Json& step : result.report["steps"]) {
+    if (step["step"] == "decimate") decimate = &step;
+  }
+  ASSERT_NE(decimate, nullptr);
+  EXPECT_EQ((*decimate)["goal"], "for_plan");
+  const Json& report = (*decimate)["for_plan"];
+  EXPECT_EQ(report["faces_out"].get<int64_t>(), (*decimate)["faces_out"].get<int64_t>());
+  EXPECT_LT(report["faces_out"].get<int64_t>(), report["faces_in"].get<int64_t>());
+  ASSERT_TRUE(report["tiles"].is_array());
+  EXPECT_GT(report["tiles"].size(), 100u);
+  EXPECT_EQ(report["grid"]["tiles_per_side"], 16);
+  EXPECT_LE(report["worst_projected_px"].get<double>(), 0.5);
+  // A goal and a plan together are refused.
+  options.target_faces = 1000;
+  EXPECT_THROW(BuildSurfaceFromMesh(BoxOnPlane(), nullptr, options), InputError);
 }
 
 TEST(DecimateForPlan, APlanThatSeesNothingIsRefused) {
