@@ -10,8 +10,11 @@
 #include <Eigen/Geometry>
 
 #include "core/error.h"
+#include "core/plan_file.h"
+#include "photogrammetry/build_scene.h"
 #include "photogrammetry/mesh_distance.h"
 #include "photogrammetry/surface_pipeline.h"
+#include "test_paths.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -220,6 +223,41 @@ TEST(DecimateForPlan, ThePipelineReportsTheTilesInItsDecimateStep) {
   // A goal and a plan together are refused.
   options.target_faces = 1000;
   EXPECT_THROW(BuildSurfaceFromMesh(BoxOnPlane(), nullptr, options), InputError);
+}
+
+// `cinepath mesh --for-plan`: a plan made about another origin is refused naming the file and its
+// origin (exit 2: an InputError), before any surface is built; so is a plan without an origin.
+TEST(DecimateForPlan, APlanAboutAnotherOriginIsRefused) {
+  const auto base = testing::TestDataDir() / "photogrammetry" / "brighton6_colmap";
+  SceneBuildOptions options;
+  options.colmap_dir = (base / "sparse").string();
+  options.refs_path = (base / "refs_gps.txt").string();
+  options.georeference.bundle_adjust = false;
+  options.timestamps = false;
+  Trajectory plan = OrbitPlan(4);
+  plan.origin = Geodetic{46.84265, -91.99445, 153.0};  // about 1 km away from the scene's
+  options.for_plan = plan;
+  options.for_plan_path = "other.json";
+  try {
+    BuildScene(options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("other.json: origin"), std::string::npos) << e.what();
+  }
+  options.for_plan->origin.reset();
+  try {
+    BuildScene(options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("other.json: origin: null"), std::string::npos) << e.what();
+  }
+  // An unreadable plan file is an InputError naming it (cli/cmd_mesh.cc reads it with ReadPlanFile).
+  try {
+    ReadPlanFile(base / "no_such_plan.json");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_plan.json"), std::string::npos) << e.what();
+  }
 }
 
 TEST(DecimateForPlan, APlanThatSeesNothingIsRefused) {
