@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
+#include "core/plan_file.h"
 #include "photogrammetry/build_scene.h"
 
 namespace cinepath::cli {
@@ -103,6 +104,12 @@ class MeshCommand : public Command {
         ->check(CLI::Range(1, 100));
     app.add_option("--texture-exclude", options_.texture_options.excluded_images,
                    "Never texture from this photo (image name as in the model; repeatable)");
+    app.add_option("--for-plan", for_plan_path_,
+                   "plan.json made on this scene: simplify each region only as far as the plan's closest camera "
+                   "that sees it can tell (its origin must be the scene's; excludes --target-faces, --max-error-m)");
+    app.add_option("--max-error-px", options_.max_error_px,
+                   "With --for-plan: the largest geometric error, projected into that camera, in pixels")
+        ->check(PositiveFinite());
     app.add_flag("--draco", draco_, "Compress the GLB with KHR_draco_mesh_compression");
     app.add_flag("--no-timestamp", no_timestamp_, "Leave wall-clock times out of scene.json (byte-identical runs)");
     app.add_option("-o,--output", output_dir_, "Output folder (scene.glb, scene.json)")->required();
@@ -129,6 +136,10 @@ class MeshCommand : public Command {
     options_.texture_px = texture_px_;
     options_.texture_options.format = texture_format_ == "png" ? TextureFormat::kPng : TextureFormat::kJpeg;
     options_.output_dir = output_dir_;
+    if (!for_plan_path_.empty()) {
+      options_.for_plan = ReadPlanFile(for_plan_path_);  // InputError naming the file
+      options_.for_plan_path = for_plan_path_;
+    }
 
     const bool tty = isatty(STDERR_FILENO) != 0 || common_.progress_mode() == ProgressMode::kAlways;
     SceneBuildLog log;
@@ -162,6 +173,8 @@ class MeshCommand : public Command {
             {"target_faces", "--target-faces"},
             {"max_error_m", "--max-error-m"},
             {"remesh_edge_m", "--remesh-edge-m"},
+            {"for_plan_path", "--for-plan"},
+            {"max_error_px", "--max-error-px"},
             {"max_rmse_m", "--max-rmse-m"},
             {"altitude_datum", "--altitude-datum"},
             {"focal_prior_px", "--focal-prior-px"},
@@ -185,6 +198,7 @@ class MeshCommand : public Command {
   std::optional<int> texture_px_;
   std::string texture_format_ = "jpeg";
   std::string output_dir_;
+  std::string for_plan_path_;
   CommonOptions common_;
 };
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 
+#include <cmath>
+#include <sstream>
+
 #include "core/error.h"
 #include "photogrammetry/colmap_reader.h"
 #include "photogrammetry/colmap_runner.h"
@@ -12,6 +15,7 @@
 #include "photogrammetry/ply_reader.h"
 #include "photogrammetry/refs_file.h"
 #include "photogrammetry/scene_cameras.h"
+#include "photogrammetry/view_dependent_budget.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -108,6 +112,33 @@ SurfacePipelineResult BuildSurface(const SceneBuildOptions& options, const Colma
   return BuildSurfaceFromPoints(cloud, surface);
 }
 
+// --for-plan: the plan must be made about the scene's origin (cinepath plan --scene copies it from
+// scene.json, which rounds it to 1e-9 deg and 0.1 mm): within 1 cm, else InputError naming the field.
+void CheckPlanOrigin(const Trajectory& plan, const std::string& path, const Geodetic& scene_origin) {
+  auto text = [](const Geodetic& g) {
+    std::ostringstream os;
+    os.precision(10);
+    os << "(" << g.lat_deg << ", " << g.lon_deg << ", " << g.height_m << " m)";
+    return os.str();
+  };
+  if (!plan.origin) {
+    throw InputError(Located(path + ": origin",
+                             "null: --for-plan needs a plan made on this scene (cinepath plan "
+                             "--scene scene.json), whose origin is the scene's " +
+                                 text(scene_origin)));
+  }
+  const double apart_m = (EcefFromGeodetic(*plan.origin) - EcefFromGeodetic(scene_origin)).norm();
+  if (!(apart_m <= 0.01)) {
+    std::ostringstream os;
+    os.precision(4);
+    os << apart_m;
+    throw InputError(Located(path + ": origin", text(*plan.origin) + " is " + os.str() + " m from the scene's origin " +
+                                                    text(scene_origin) +
+                                                    ": plan the shots on this scene (cinepath plan --scene), or give "
+                                                    "its origin with --origin"));
+  }
+}
+
 }  // namespace
 
 void SceneBuildOptions::Check() const {
@@ -117,6 +148,10 @@ void SceneBuildOptions::Check() const {
   if (!points_path.empty() && !mesh_path.empty()) {
     throw InputError("points_path and mesh_path: give a dense cloud or a mesh, not both");
   }
+  if (for_plan && (surface.target_faces || surface.max_error_m)) {
+    throw InputError("for_plan_path and target_faces / max_error_m: give a plan or a simplification goal, not both");
+  }
+  if (!(max_error_px > 0 && std::isfinite(max_error_px))) throw InputError("max_error_px: must be a finite number > 0");
   surface.Check();
   texture_options.Check();
   if (texture_px && (*texture_px < 64 || *texture_px > 16384)) {
@@ -190,6 +225,15 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
 
   SurfacePipelineOptions surface = options.surface;
   surface.report_times = options.timestamps;
+  if (options.for_plan) {
+    CheckPlanOrigin(*options.for_plan, options.for_plan_path, geo.origin);
+    ForPlanOptions for_plan;
+    for_plan.cameras = CamerasFromPlan(*options.for_plan, options.for_plan_path);
+    for_plan.plan_source = options.for_plan_path;
+    for_plan.max_error_px = options.max_error_px;
+    surface.for_plan = std::move(for_plan);
+    inputs.push_back(options.for_plan_path);
+  }
   Json input_note = Json::object();
   SurfacePipelineResult built = BuildSurface(options, model, geo, surface, &inputs, &input_note);
 
@@ -241,6 +285,7 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
                     {"images", model.images.size()},
                     {"points3d", model.points3d.size()}};
   for (auto it = input_note.begin(); it != input_note.end(); ++it) scene["input"][it.key()] = it.value();
+  if (options.for_plan) scene["input"]["for_plan"] = options.for_plan_path;
   scene["surface"] = built.report;
   scene["texture"] = texture_report;
   scene["cameras"] = SceneCamerasJson(geo.model_enu);

@@ -19,6 +19,7 @@
 
 #include "core/geodesy.h"
 #include "core/json.h"
+#include "core/trajectory.h"
 #include "photogrammetry/georeference_model.h"
 #include "photogrammetry/mesh_texture.h"
 #include "photogrammetry/surface_pipeline.h"
@@ -44,6 +45,12 @@ struct SceneBuildOptions {
   MeshTextureOptions texture_options;
   std::optional<int> texture_px;
   bool timestamps = true;  // wall-clock times in scene.json
+  // --for-plan: the plan (read by the caller from for_plan_path) whose cameras set the detail of each
+  // region (mesh_decimate_for_plan.h). Its origin must be the scene's (InputError naming the file and
+  // its "origin" otherwise). max_error_px: --max-error-px.
+  std::optional<Trajectory> for_plan;
+  std::string for_plan_path;
+  double max_error_px = 0.5;
 
   // InputError naming the field: neither a model nor photos; both a dense cloud and a mesh.
   void Check() const;

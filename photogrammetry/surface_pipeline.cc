@@ -131,7 +131,18 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     DecimateStats stats;
     int attempts = 0;
     Json measured = Json::object();
-    if (options.max_error_m) {
+    if (options.for_plan) {
+      // Detail where the cameras look: each tile to the error its closest camera cannot see.
+      step["goal"] = "for_plan";
+      step["method"] = "meshoptimizer_for_plan";
+      ForPlanReport plan_report;
+      simplified = DecimateForPlan(mesh, *options.for_plan, &plan_report);
+      if (simplified.num_faces() < mesh.num_faces() && simplified.num_faces() > 0) {
+        cleaned = std::move(mesh);
+        hausdorff_m = measure(simplified, measured);
+      }
+      step["for_plan"] = plan_report.ToJson();
+    } else if (options.max_error_m) {
       // Error bound: meshoptimizer's own estimate is not a Hausdorff distance, so tighten it until
       // the measured symmetric Hausdorff distance is within the bound (at most 8 halvings; the
       // undecimated mesh always meets it). Every attempt is measured against the same input tree.
@@ -295,6 +306,10 @@ void SurfacePipelineOptions::Check() const {
   if (target_faces && max_error_m) {
     throw InputError("target_faces and max_error_m: give at most one of them");
   }
+  if (for_plan && (target_faces || max_error_m)) {
+    throw InputError("for_plan: give a plan or a simplification goal (target_faces, max_error_m), not both");
+  }
+  if (for_plan) for_plan->Check();
   if (target_faces && *target_faces <= 0) throw InputError("target_faces: must be > 0");
   if (max_error_m && !(*max_error_m > 0 && std::isfinite(*max_error_m))) {
     throw InputError("max_error_m: must be a finite number > 0");

@@ -15,6 +15,7 @@
 
 #include "core/json.h"
 #include "photogrammetry/mesh_decimate.h"
+#include "photogrammetry/mesh_decimate_for_plan.h"
 #include "photogrammetry/point_cloud.h"
 #include "photogrammetry/triangle_mesh.h"
 
@@ -45,6 +46,9 @@ struct SurfacePipelineOptions {
   std::optional<double> max_error_m;    // --max-error-m E    (> 0, symmetric Hausdorff bound)
   // Simplifier; unset → the quality preset's. An error goal always uses tiled meshoptimizer.
   std::optional<DecimationMethod> decimation_method;
+  // --for-plan: simplify each region only as far as the plan's cameras can tell, within
+  // for_plan->max_error_px (mesh_decimate_for_plan.h). Excludes target_faces and max_error_m.
+  std::optional<ForPlanOptions> for_plan;
 
   // --remesh-edge-m L: after simplification, CGAL isotropic remeshing toward edges of L metres
   // (mesh_remesh.h); the reported Hausdorff error is then the remeshed mesh's. Unset: no remeshing.
@@ -75,6 +79,7 @@ struct SurfacePipelineResult {
   //   {"step": "decimate", "method", "faces_in", "faces_out", "hausdorff_m",
   //    "hausdorff_samples" (face samples per mesh), "hausdorff_vertex_samples", "hausdorff_seed",
   //    "hausdorff_in_to_out_m", "hausdorff_out_to_in_m", "hausdorff_points_measured", "time_s"},
+  //    with for_plan: "goal": "for_plan" and "for_plan": ForPlanReport::ToJson(),
   //   {"step": "remesh", ...} (with --remesh-edge-m), {"step": "colors", ...},
   //   {"step": "glb", "bytes", "draco"}],
   //  "output": {"vertices", "faces", "hausdorff_m", "bbox_min_m", "bbox_max_m"}}

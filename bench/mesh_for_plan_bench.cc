@@ -1,0 +1,268 @@
+// `cinepath mesh --for-plan` against uniform decimation to the same worst projected error: faces kept
+// and time. Prints one JSON document (figures for bench/RESULTS.md).
+//
+//   mesh_for_plan_bench --glb scene.glb --plan plan.json [--max-error-px P] [--tiles N] [--samples S]
+//   mesh_for_plan_bench --synthetic [--cells N] [--no-building] ...  # an orbit around a building on terrain
+//   mesh_for_plan_bench --box ...    # the unit test's box on a plane
+//
+// For-plan: DecimateForPlan (mesh_decimate_for_plan.h), its measurement rounds included in the time.
+// Uniform: tiled meshoptimizer (DecimateMesh, kMeshoptimizerPartitioned) with one error goal for the
+// whole mesh, the smallest allowed error of any seen region (the error the finest-seen region needs),
+// halved until its worst projected error — measured with the same points and the same cameras
+// (ProjectedErrorProbe) — is within the bound, as the pipeline tightens --max-error-m. Its time counts
+// every attempt and measurement; the time of the last attempt alone is printed too.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <tbb/global_control.h>
+#include <Eigen/Geometry>
+
+#include "core/json.h"
+#include "core/plan_file.h"
+#include "photogrammetry/mesh_decimate.h"
+#include "photogrammetry/mesh_decimate_for_plan.h"
+#include "scene/glb_reader.h"
+
+namespace {
+
+using namespace cinepath;
+using namespace cinepath::photogrammetry;
+
+constexpr double kPi = 3.14159265358979323846;
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+void AddGrid(TriangleMesh& mesh, int cols, int rows, const std::function<Eigen::Vector3d(double, double)>& at) {
+  const uint32_t base = static_cast<uint32_t>(mesh.num_vertices());
+  for (int j = 0; j <= rows; ++j) {
+    for (int i = 0; i <= cols; ++i) mesh.vertices_m.push_back(at(double(i) / cols, double(j) / rows));
+  }
+  auto id = [&](int i, int j) { return base + static_cast<uint32_t>(j * (cols + 1) + i); };
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < cols; ++i) {
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+}
+
+// Rolling terrain (800 m square, `cells`² cells, sum of sines with 3 cm ripples) and a 20 m building
+// with ribbed walls (5 cm) and a pitched roof at the centre; an orbit of 600 frames, radius 60 m,
+// 40 m up, 35 mm on Super 35 UHD, looking at the building.
+void Synthetic(int cells, bool building, TriangleMesh* mesh, Trajectory* plan) {
+  auto height = [](double e, double n) {
+    return 2.0 * std::sin(e / 37) * std::cos(n / 53) + 0.7 * std::sin((e + n) / 11) +
+           0.03 * std::sin(e * 1.3) * std::sin(n * 1.7);
+  };
+  AddGrid(*mesh, cells, cells, [&](double u, double v) {
+    const double e = -400 + 800 * u, n = -400 + 800 * v;
+    return Eigen::Vector3d(e, n, height(e, n));
+  });
+  const double half = 10, top = 20;
+  for (int side = 0; side < (building ? 4 : 0); ++side) {
+    const Eigen::Vector2d normal(std::cos(side * kPi / 2), std::sin(side * kPi / 2));
+    const Eigen::Vector2d along(-normal.y(), normal.x());
+    AddGrid(*mesh, 200, 230, [&](double u, double v) {
+      const double a = (u - 0.5) * 2 * half, b = -3 + v * (top + 3);
+      const Eigen::Vector2d xy = normal * (half + 0.05 * std::sin(2 * kPi * a)) + along * a;
+      return Eigen::Vector3d(xy.x(), xy.y(), b);
+    });
+  }
+  if (building)
+    AddGrid(*mesh, 200, 200, [&](double u, double v) {
+      const double e = (u - 0.5) * 2 * half, n = (v - 0.5) * 2 * half;
+      return Eigen::Vector3d(e, n, top + 3 * (1 - std::abs(n) / half));
+    });
+  plan->camera.sensor_width_mm = 24.89;
+  plan->camera.width_px = 3840;
+  plan->camera.height_px = 2160;
+  const Eigen::Vector3d target(0, 0, 10);
+  const int frames = 600;
+  for (int k = 0; k < frames; ++k) {
+    const double a = 2 * kPi * k / frames;
+    TrajectorySample s;
+    s.time_s = k / 30.0;
+    s.position_enu_m = Eigen::Vector3d(60 * std::cos(a), 60 * std::sin(a), 40);
+    const Eigen::Vector3d z = (target - s.position_enu_m).normalized();
+    const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+    Eigen::Matrix3d r;
+    r.col(0) = x;
+    r.col(1) = z.cross(x);
+    r.col(2) = z;
+    s.world_from_camera = Eigen::Quaterniond(r);
+    s.focal_length_mm = 35;
+    plan->samples.push_back(s);
+  }
+}
+
+// The scene of tests/photogrammetry/mesh_decimate_for_plan_test.cc: a 300 m plane (1 m cells, 0.2 m
+// swells 60 m long) and a 10 m box with 5 cm bumps (0.2 m cells); 120 frames orbiting it, radius 30 m,
+// 25 m up, 24 mm.
+void BoxScene(TriangleMesh* mesh, Trajectory* plan) {
+  AddGrid(*mesh, 300, 300, [](double u, double v) {
+    const double e = -150 + 300 * u, n = -150 + 300 * v;
+    return Eigen::Vector3d(e, n, 0.2 * std::sin(2 * kPi * e / 60) * std::cos(2 * kPi * n / 60));
+  });
+  auto bump = [](double a, double b) { return 0.05 * std::sin(2 * kPi * a) * std::sin(2 * kPi * b); };
+  for (int side = 0; side < 4; ++side) {
+    const Eigen::Vector2d normal(std::cos(side * kPi / 2), std::sin(side * kPi / 2));
+    const Eigen::Vector2d along(-normal.y(), normal.x());
+    AddGrid(*mesh, 50, 55, [&](double u, double v) {
+      const double a = (u - 0.5) * 10, b = v * 11;
+      const Eigen::Vector2d xy = normal * (5 + bump(a, b)) + along * a;
+      return Eigen::Vector3d(xy.x(), xy.y(), -1 + b);
+    });
+  }
+  AddGrid(*mesh, 50, 50, [&](double u, double v) {
+    const double e = (u - 0.5) * 10, n = (v - 0.5) * 10;
+    return Eigen::Vector3d(e, n, 10 + bump(e, n));
+  });
+  plan->camera.sensor_width_mm = 24.89;
+  plan->camera.width_px = 3840;
+  plan->camera.height_px = 2160;
+  const Eigen::Vector3d target(0, 0, 5);
+  for (int k = 0; k < 120; ++k) {
+    const double a = 2 * kPi * k / 120;
+    TrajectorySample s;
+    s.time_s = k / 30.0;
+    s.position_enu_m = Eigen::Vector3d(30 * std::cos(a), 30 * std::sin(a), 25);
+    const Eigen::Vector3d z = (target - s.position_enu_m).normalized();
+    const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+    Eigen::Matrix3d r;
+    r.col(0) = x;
+    r.col(1) = z.cross(x);
+    r.col(2) = z;
+    s.world_from_camera = Eigen::Quaterniond(r);
+    s.focal_length_mm = 24;
+    plan->samples.push_back(s);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string glb, plan_path;
+  bool synthetic = false, building = true, box = false;
+  int cells = 1000, tiles = 16, threads = 0;
+  double max_error_px = 0.5;
+  int64_t samples = 200000;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (arg == "--glb")
+      glb = next();
+    else if (arg == "--plan")
+      plan_path = next();
+    else if (arg == "--synthetic")
+      synthetic = true;
+    else if (arg == "--box")
+      box = true;
+    else if (arg == "--no-building")
+      building = false;
+    else if (arg == "--cells")
+      cells = std::stoi(next());
+    else if (arg == "--tiles")
+      tiles = std::stoi(next());
+    else if (arg == "--samples")
+      samples = std::stoll(next());
+    else if (arg == "--max-error-px")
+      max_error_px = std::stod(next());
+    else if (arg == "--threads")
+      threads = std::stoi(next());
+    else {
+      std::fprintf(stderr,
+                   "usage: mesh_for_plan_bench (--glb scene.glb --plan plan.json | --synthetic [--cells N]) "
+                   "[--max-error-px P] [--tiles N] [--samples S] [--threads T]\n");
+      return 2;
+    }
+  }
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+
+  TriangleMesh mesh;
+  Trajectory plan;
+  std::string label;
+  if (box) {
+    BoxScene(&mesh, &plan);
+    label = "box on a plane (the unit test's scene), 120-frame orbit";
+  } else if (synthetic) {
+    Synthetic(cells, building, &mesh, &plan);
+    label = "synthetic orbit, " + std::to_string(cells) + "^2 terrain cells" + (building ? " + building" : "");
+  } else {
+    if (glb.empty() || plan_path.empty()) {
+      std::fprintf(stderr, "give --glb and --plan, or --synthetic\n");
+      return 2;
+    }
+    const scene::SceneMesh scene = scene::ReadGlbFile(glb);
+    mesh.vertices_m = scene.positions_enu_m;
+    mesh.faces = scene.faces;
+    plan = ReadPlanFile(plan_path);
+    label = glb + " + " + plan_path;
+  }
+
+  ForPlanOptions options;
+  options.cameras = CamerasFromPlan(plan, plan_path.empty() ? "synthetic" : plan_path);
+  options.max_error_px = max_error_px;
+  options.tiles_per_side = tiles;
+  options.measure_samples = samples;
+
+  auto start = std::chrono::steady_clock::now();
+  ForPlanReport report;
+  const TriangleMesh for_plan = DecimateForPlan(mesh, options, &report);
+  const double for_plan_s = Seconds(start);
+
+  // Uniform, to the same worst projected error, measured on the same points.
+  start = std::chrono::steady_clock::now();
+  const ProjectedErrorProbe probe(mesh, options.cameras, samples, options.seed);
+  DecimateOptions uniform;
+  uniform.method = DecimationMethod::kMeshoptimizerPartitioned;
+  uniform.max_error_m = report.min_allowed_error_m;
+  TriangleMesh uniform_mesh;
+  double uniform_px = 0, last_s = 0;
+  int attempts = 0;
+  for (; attempts < 12; ++attempts) {
+    const auto attempt_start = std::chrono::steady_clock::now();
+    uniform_mesh = DecimateMesh(mesh, uniform);
+    last_s = Seconds(attempt_start);
+    uniform_px = probe.WorstPx(uniform_mesh);
+    if (uniform_px <= max_error_px) break;
+    uniform.max_error_m *= 0.5;
+  }
+  const double uniform_s = Seconds(start);
+
+  Json out = Json::object();
+  out["case"] = label;
+  out["threads"] = threads > 0 ? Json(threads) : Json("all");
+  out["faces_in"] = static_cast<int64_t>(mesh.num_faces());
+  out["frames"] = static_cast<int64_t>(plan.samples.size());
+  out["max_error_px"] = max_error_px;
+  out["tiles_per_side"] = tiles;
+  out["points_measured"] = report.points_measured;
+  out["points_seen"] = report.points_seen;
+  out["for_plan"] = {{"faces_out", report.faces_out},
+                     {"worst_projected_px", RoundToDecimals(report.worst_projected_px, 4)},
+                     {"rounds", report.rounds},
+                     {"time_s", RoundToDecimals(for_plan_s, 3)},
+                     {"min_allowed_error_m", RoundToDecimals(report.min_allowed_error_m, 6)},
+                     {"max_allowed_error_m", RoundToDecimals(report.max_allowed_error_m, 6)},
+                     {"tiles_seen", report.tiles_seen},
+                     {"tiles_unseen", report.tiles_unseen}};
+  out["uniform"] = {{"faces_out", static_cast<int64_t>(uniform_mesh.num_faces())},
+                    {"worst_projected_px", RoundToDecimals(uniform_px, 4)},
+                    {"goal_error_m", RoundToDecimals(uniform.max_error_m, 6)},
+                    {"attempts", attempts + 1},
+                    {"time_s", RoundToDecimals(uniform_s, 3)},
+                    {"last_attempt_time_s", RoundToDecimals(last_s, 3)}};
+  out["faces_ratio_for_plan_over_uniform"] =
+      RoundToDecimals(static_cast<double>(report.faces_out) / std::max<size_t>(1, uniform_mesh.num_faces()), 4);
+  (void)for_plan;
+  std::printf("%s\n", DumpJson(out).c_str());
+  return 0;
+}

@@ -1,0 +1,476 @@
+#include "photogrammetry/mesh_decimate_for_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+#include <meshoptimizer.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "core/error.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double Uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+// Every vertex plus `count` points on the faces, spread by area (seeded; the same points on any machine).
+std::vector<Eigen::Vector3d> SampleSurface(const TriangleMesh& mesh, int64_t count, uint32_t seed) {
+  std::vector<Eigen::Vector3d> points(mesh.vertices_m.begin(), mesh.vertices_m.end());
+  std::vector<double> cumulative(mesh.num_faces());
+  double total = 0;
+  for (size_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto& t = mesh.faces[f];
+    const Eigen::Vector3d& a = mesh.vertices_m[t[0]];
+    total += 0.5 * (mesh.vertices_m[t[1]] - a).cross(mesh.vertices_m[t[2]] - a).norm();
+    cumulative[f] = total;
+  }
+  if (!(total > 0) || count <= 0) return points;
+  std::mt19937_64 rng(seed);
+  points.reserve(points.size() + static_cast<size_t>(count));
+  for (int64_t k = 0; k < count; ++k) {
+    const double at = Uniform01(rng) * total;
+    const size_t f = std::min<size_t>(mesh.num_faces() - 1,
+                                      std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin());
+    double r1 = Uniform01(rng), r2 = Uniform01(rng);
+    if (r1 + r2 > 1) {
+      r1 = 1 - r1;
+      r2 = 1 - r2;
+    }
+    const auto& t = mesh.faces[f];
+    const Eigen::Vector3d& a = mesh.vertices_m[t[0]];
+    points.push_back(a + r1 * (mesh.vertices_m[t[1]] - a) + r2 * (mesh.vertices_m[t[2]] - a));
+  }
+  return points;
+}
+
+// The region grid over the east/north bounds of the vertices.
+struct TileGrid {
+  int n = 1;
+  Eigen::Vector2d lo = Eigen::Vector2d::Zero();
+  Eigen::Vector2d size = Eigen::Vector2d::Ones();
+
+  int Cell(double x, double lo_x, double size_x, int cells) const {
+    const int i = static_cast<int>(std::floor((x - lo_x) / size_x));
+    return std::clamp(i, 0, cells - 1);
+  }
+  // Tile of a point on the main grid (n × n).
+  int Tile(const Eigen::Vector3d& p) const {
+    return Cell(p.y(), lo.y(), size.y(), n) * n + Cell(p.x(), lo.x(), size.x(), n);
+  }
+  // Tile on the grid shifted by half a tile ((n + 1) × (n + 1)): shifted tile (sx, sy) overlaps main
+  // tiles sx - 1 .. sx and sy - 1 .. sy.
+  int ShiftedTile(const Eigen::Vector3d& p) const {
+    const int sx = std::clamp(static_cast<int>(std::floor((p.x() - lo.x()) / size.x() + 0.5)), 0, n);
+    const int sy = std::clamp(static_cast<int>(std::floor((p.y() - lo.y()) / size.y() + 0.5)), 0, n);
+    return sy * (n + 1) + sx;
+  }
+};
+
+TileGrid MakeGrid(const TriangleMesh& mesh, int tiles_per_side) {
+  TileGrid g;
+  g.n = std::max(1, tiles_per_side);
+  Eigen::Vector2d lo(kInf, kInf), hi(-kInf, -kInf);
+  for (const auto& v : mesh.vertices_m) {
+    lo = lo.cwiseMin(v.head<2>());
+    hi = hi.cwiseMax(v.head<2>());
+  }
+  g.lo = lo;
+  g.size = ((hi - lo) / g.n).cwiseMax(Eigen::Vector2d(1e-6, 1e-6));
+  return g;
+}
+
+Eigen::Vector3d Centroid(const TriangleMesh& mesh, const std::array<uint32_t, 3>& f) {
+  return (mesh.vertices_m[f[0]] + mesh.vertices_m[f[1]] + mesh.vertices_m[f[2]]) / 3.0;
+}
+
+struct Positions {
+  std::vector<float> xyz;  // relative to the bounding-box centre, float for meshoptimizer
+  float scale = 1;         // meshopt_simplifyScale: its errors are relative to this
+};
+
+Positions MakePositions(const TriangleMesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
+  for (const auto& v : mesh.vertices_m) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const Eigen::Vector3d center = 0.5 * (lo + hi);
+  Positions p;
+  p.xyz.reserve(3 * mesh.num_vertices());
+  for (const auto& v : mesh.vertices_m) {
+    const Eigen::Vector3d d = v - center;
+    p.xyz.insert(p.xyz.end(), {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())});
+  }
+  p.scale = std::max(1e-30f, meshopt_simplifyScale(p.xyz.data(), mesh.num_vertices(), 3 * sizeof(float)));
+  return p;
+}
+
+// meshopt_simplify on the faces `indices` (global vertex indices) with a compact vertex buffer (its
+// cost follows the vertex count it is given), border locked, no face goal, the error goal in metres.
+// `scratch` maps global → local indices (one entry per global vertex; never cleared).
+std::vector<uint32_t> SimplifyFaces(const Positions& positions, const std::vector<uint32_t>& indices,
+                                    double goal_error_m, std::vector<uint32_t>& scratch) {
+  if (indices.empty()) return {};
+  std::vector<uint32_t> global(indices);
+  std::sort(global.begin(), global.end());
+  global.erase(std::unique(global.begin(), global.end()), global.end());
+  std::vector<float> local_xyz(3 * global.size());
+  for (size_t k = 0; k < global.size(); ++k) {
+    scratch[global[k]] = static_cast<uint32_t>(k);
+    std::copy_n(positions.xyz.begin() + 3 * static_cast<size_t>(global[k]), 3, local_xyz.begin() + 3 * k);
+  }
+  std::vector<uint32_t> local(indices.size());
+  for (size_t k = 0; k < indices.size(); ++k) local[k] = scratch[indices[k]];
+  std::vector<uint32_t> out(local.size());
+  float result_error = 0;
+  const size_t count =
+      meshopt_simplify(out.data(), local.data(), local.size(), local_xyz.data(), global.size(), 3 * sizeof(float), 0,
+                       static_cast<float>(goal_error_m / positions.scale), meshopt_SimplifyLockBorder, &result_error);
+  out.resize(count);
+  for (uint32_t& i : out) i = global[i];
+  return out;
+}
+
+// Simplifies the faces of each tile to its goal, in parallel; returns the kept faces in tile order.
+std::vector<uint32_t> SimplifyTiles(const Positions& positions, const std::vector<std::vector<uint32_t>>& tiles,
+                                    const std::vector<double>& goal_error_m, size_t num_vertices) {
+  tbb::enumerable_thread_specific<std::vector<uint32_t>> scratch([&] { return std::vector<uint32_t>(num_vertices); });
+  std::vector<std::vector<uint32_t>> kept(tiles.size());
+  tbb::parallel_for(size_t{0}, tiles.size(),
+                    [&](size_t t) { kept[t] = SimplifyFaces(positions, tiles[t], goal_error_m[t], scratch.local()); });
+  std::vector<uint32_t> merged;
+  for (const auto& k : kept) merged.insert(merged.end(), k.begin(), k.end());
+  return merged;
+}
+
+TriangleMesh FromKeptIndices(const TriangleMesh& mesh, const std::vector<uint32_t>& indices) {
+  std::vector<int64_t> remap(mesh.num_vertices(), -1);
+  for (uint32_t i : indices) remap[i] = 0;
+  TriangleMesh out;
+  for (size_t i = 0; i < mesh.num_vertices(); ++i) {
+    if (remap[i] < 0) continue;
+    remap[i] = static_cast<int64_t>(out.vertices_m.size());
+    out.vertices_m.push_back(mesh.vertices_m[i]);
+    if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[i]);
+  }
+  out.faces.reserve(indices.size() / 3);
+  for (size_t k = 0; k + 2 < indices.size(); k += 3) {
+    out.faces.push_back({static_cast<uint32_t>(remap[indices[k]]), static_cast<uint32_t>(remap[indices[k + 1]]),
+                         static_cast<uint32_t>(remap[indices[k + 2]])});
+  }
+  return out;
+}
+
+// Passes 1 and 2 with the main tiles' goals.
+std::vector<uint32_t> SimplifyTwoPasses(const TriangleMesh& mesh, const Positions& positions, const TileGrid& grid,
+                                        const std::vector<double>& goal_error_m) {
+  const int n = grid.n;
+  std::vector<std::vector<uint32_t>> tiles(static_cast<size_t>(n) * n);
+  for (const auto& f : mesh.faces) {
+    auto& tile = tiles[grid.Tile(Centroid(mesh, f))];
+    tile.insert(tile.end(), f.begin(), f.end());
+  }
+  const std::vector<uint32_t> pass1 = SimplifyTiles(positions, tiles, goal_error_m, mesh.num_vertices());
+
+  const int m = n + 1;
+  std::vector<std::vector<uint32_t>> shifted(static_cast<size_t>(m) * m);
+  for (size_t k = 0; k + 2 < pass1.size(); k += 3) {
+    const Eigen::Vector3d c =
+        (mesh.vertices_m[pass1[k]] + mesh.vertices_m[pass1[k + 1]] + mesh.vertices_m[pass1[k + 2]]) / 3.0;
+    auto& tile = shifted[grid.ShiftedTile(c)];
+    tile.insert(tile.end(), pass1.begin() + k, pass1.begin() + k + 3);
+  }
+  std::vector<double> shifted_goal(shifted.size(), kInf);
+  for (int sy = 0; sy < m; ++sy) {
+    for (int sx = 0; sx < m; ++sx) {
+      double& goal = shifted_goal[static_cast<size_t>(sy) * m + sx];
+      for (int iy = std::max(0, sy - 1); iy <= std::min(n - 1, sy); ++iy) {
+        for (int ix = std::max(0, sx - 1); ix <= std::min(n - 1, sx); ++ix) {
+          goal = std::min(goal, goal_error_m[static_cast<size_t>(iy) * n + ix]);
+        }
+      }
+    }
+  }
+  return SimplifyTiles(positions, shifted, shifted_goal, mesh.num_vertices());
+}
+
+}  // namespace
+
+void ForPlanOptions::Check() const {
+  if (cameras.empty()) throw InputError(Located(plan_source.empty() ? "for_plan" : plan_source, "no camera"));
+  if (!(max_error_px > 0 && std::isfinite(max_error_px))) {
+    throw InputError("max_error_px: must be a finite number > 0");
+  }
+  if (tiles_per_side < 1 || tiles_per_side > 1024) throw InputError("tiles_per_side: must be in 1..1024");
+  if (measure_samples < 0) throw InputError("measure_samples: must be >= 0");
+  if (max_rounds < 1) throw InputError("max_rounds: must be >= 1");
+  if (!(aim > 0 && aim <= 1)) throw InputError("aim: must be in (0, 1]");
+}
+
+ProjectedErrorProbe::ProjectedErrorProbe(const TriangleMesh& original, const std::vector<PlanCamera>& cameras,
+                                         int64_t face_samples, uint32_t seed)
+    : points_(SampleSurface(original, face_samples, seed)), views_(FinestViews(points_, cameras)) {
+  for (const PointView& v : views_) points_seen_ += v.seen() ? 1 : 0;
+}
+
+namespace {
+
+// Distances from many points to a mesh: a CGAL AABB tree with its k-d tree of vertices as the hint
+// of every closest-point query (built by the first query, before the parallel ones).
+using CgalKernel = CGAL::Simple_cartesian<double>;
+using CgalTriangles = std::vector<CgalKernel::Triangle_3>;
+using CgalTree = CGAL::AABB_tree<
+    CGAL::AABB_traits<CgalKernel, CGAL::AABB_triangle_primitive<CgalKernel, CgalTriangles::const_iterator>>>;
+
+std::vector<double> DistancesToMesh(const std::vector<Eigen::Vector3d>& points, const TriangleMesh& mesh) {
+  std::vector<double> distance(points.size(), 0.0);
+  CgalTriangles triangles;
+  triangles.reserve(mesh.num_faces());
+  auto point = [](const Eigen::Vector3d& v) { return CgalKernel::Point_3(v.x(), v.y(), v.z()); };
+  for (const auto& f : mesh.faces) {
+    const CgalKernel::Triangle_3 t(point(mesh.vertices_m[f[0]]), point(mesh.vertices_m[f[1]]),
+                                   point(mesh.vertices_m[f[2]]));
+    if (!t.is_degenerate()) triangles.push_back(t);
+  }
+  if (triangles.empty() || points.empty()) return distance;
+  CgalTree tree(triangles.cbegin(), triangles.cend());
+  tree.accelerate_distance_queries();
+  distance[0] = std::sqrt(tree.squared_distance(point(points[0])));
+  tbb::parallel_for(size_t{1}, points.size(),
+                    [&](size_t i) { distance[i] = std::sqrt(tree.squared_distance(point(points[i]))); });
+  return distance;
+}
+
+}  // namespace
+
+std::vector<double> ProjectedErrorProbe::DistancesM(const TriangleMesh& simplified) const {
+  return DistancesToMesh(points_, simplified);
+}
+
+double ProjectedErrorProbe::WorstPx(const TriangleMesh& simplified, int* worst_point) const {
+  const std::vector<double> distance = DistancesM(simplified);
+  double worst = 0;
+  int at = -1;
+  for (size_t i = 0; i < distance.size(); ++i) {
+    if (!views_[i].seen()) continue;
+    const double px = distance[i] / views_[i].metres_per_px;
+    if (px > worst) {
+      worst = px;
+      at = static_cast<int>(i);
+    }
+  }
+  if (worst_point) *worst_point = at;
+  return worst;
+}
+
+TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& options, ForPlanReport* report) {
+  options.Check();
+  for (const auto& f : mesh.faces) {
+    for (uint32_t i : f) {
+      if (i >= mesh.num_vertices()) throw InputError("decimate: vertex index out of range");
+    }
+  }
+  if (mesh.has_colors() && mesh.colors_rgb.size() != mesh.num_vertices()) {
+    throw InputError("decimate: colours: one per vertex expected");
+  }
+  ForPlanReport r;
+  r.max_error_px = options.max_error_px;
+  r.aim = options.aim;
+  r.faces_in = static_cast<int64_t>(mesh.num_faces());
+  const TileGrid grid = MakeGrid(mesh, options.tiles_per_side);
+  const int n = grid.n;
+  const size_t num_tiles = static_cast<size_t>(n) * n;
+  r.tiles_per_side = n;
+  r.grid_min_m = grid.lo;
+  r.tile_size_m = grid.size;
+
+  // The budgets: the finest seen point of each tile.
+  const ProjectedErrorProbe probe(mesh, options.cameras, options.measure_samples, options.seed);
+  const std::vector<Eigen::Vector3d>& points = probe.points();
+  const std::vector<PointView>& views = probe.views();
+  r.points_measured = static_cast<int64_t>(points.size());
+  r.points_seen = probe.points_seen();
+  if (r.points_seen == 0) {
+    throw InputError(Located(options.plan_source.empty() ? "for_plan" : options.plan_source,
+                             "no frame of the plan sees the mesh (is the plan made on this scene?)"));
+  }
+  std::vector<ForPlanTile> tiles(num_tiles);
+  for (size_t t = 0; t < num_tiles; ++t) {
+    tiles[t].ix = static_cast<int>(t % n);
+    tiles[t].iy = static_cast<int>(t / n);
+    tiles[t].allowed_error_m = kInf;
+  }
+  std::vector<int> point_tile(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const int t = grid.Tile(points[i]);
+    point_tile[i] = t;
+    const PointView& v = views[i];
+    if (!v.seen()) continue;
+    const double allowed = options.max_error_px * v.metres_per_px;
+    if (allowed < tiles[t].allowed_error_m) {
+      ForPlanTile& tile = tiles[t];
+      tile.seen = true;
+      tile.allowed_error_m = allowed;
+      tile.camera_sample = options.cameras[v.camera].sample_index;
+      tile.camera_time_s = options.cameras[v.camera].time_s;
+      tile.depth_m = v.depth_m;
+    }
+  }
+  for (const auto& f : mesh.faces) ++tiles[grid.Tile(Centroid(mesh, f))].faces_in;
+  r.min_allowed_error_m = kInf;
+  r.max_allowed_error_m = 0;
+  for (const ForPlanTile& t : tiles) {
+    if (!t.seen) continue;
+    r.min_allowed_error_m = std::min(r.min_allowed_error_m, t.allowed_error_m);
+    r.max_allowed_error_m = std::max(r.max_allowed_error_m, t.allowed_error_m);
+  }
+  // Regions no frame sees: the coarsest budget a seen region gets, in metres (measured as such).
+  r.unseen_allowed_error_m = r.max_allowed_error_m;
+  for (ForPlanTile& t : tiles) {
+    if (!t.seen) t.allowed_error_m = r.unseen_allowed_error_m;
+  }
+  // Each point's share of its budget: distance / (aim × allowed), within when <= 1. The search aims
+  // under the bound (aim < 1): the measured points are samples, and the error between them can be
+  // a little larger.
+  std::vector<double> point_allowed_m(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    point_allowed_m[i] =
+        options.aim * (views[i].seen() ? options.max_error_px * views[i].metres_per_px : r.unseen_allowed_error_m);
+  }
+
+  // The search, per tile, for the largest goal (allowed error × factor) whose points stay within
+  // their budget: factors grow ×4 while a tile stays within, shrink ×1/4 while over, then bisect
+  // (geometrically) between the largest factor seen within and the smallest seen over. The last 3
+  // rounds settle: each tile takes its largest factor seen within (0 where none was), and a tile still
+  // over has its factor halved (0 in the last round) until every tile is within.
+  const Positions positions = MakePositions(mesh);
+  std::vector<double> factor(num_tiles, 1.0), within(num_tiles, 0.0), over(num_tiles, kInf);
+  std::vector<uint32_t> kept;
+  std::vector<double> share(num_tiles);
+  bool settling = false;
+  for (int round = 0; round < options.max_rounds; ++round) {
+    std::vector<double> goal(num_tiles);
+    for (size_t t = 0; t < num_tiles; ++t) goal[t] = tiles[t].allowed_error_m * factor[t];
+    kept = SimplifyTwoPasses(mesh, positions, grid, goal);
+    r.rounds = round + 1;
+    const std::vector<double> distance = probe.DistancesM(FromKeptIndices(mesh, kept));
+    std::fill(share.begin(), share.end(), 0.0);
+    for (size_t i = 0; i < points.size(); ++i) {
+      share[point_tile[i]] = std::max(share[point_tile[i]], distance[i] / point_allowed_m[i]);
+    }
+    r.worst_projected_px = 0;
+    r.worst_unseen_error_m = 0;
+    int worst_point = -1;
+    for (size_t t = 0; t < num_tiles; ++t) {
+      tiles[t].goal_error_m = goal[t];
+      tiles[t].worst_projected_px = 0;
+    }
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (!views[i].seen()) {
+        r.worst_unseen_error_m = std::max(r.worst_unseen_error_m, distance[i]);
+        continue;
+      }
+      const double px = distance[i] / views[i].metres_per_px;
+      tiles[point_tile[i]].worst_projected_px = std::max(tiles[point_tile[i]].worst_projected_px, px);
+      if (px > r.worst_projected_px) {
+        r.worst_projected_px = px;
+        worst_point = static_cast<int>(i);
+      }
+    }
+    r.worst_camera_sample = worst_point >= 0 ? options.cameras[views[worst_point].camera].sample_index : -1;
+    const bool all_within = *std::max_element(share.begin(), share.end()) <= 1.0;
+    if (settling && all_within) break;
+    if (round + 1 == options.max_rounds) break;
+    const bool settle_now = !settling && round + 1 >= options.max_rounds - 3;
+    for (size_t t = 0; t < num_tiles; ++t) {
+      const bool ok = share[t] <= 1.0;
+      if (settling) {
+        if (!ok) factor[t] = round + 2 >= options.max_rounds ? 0.0 : factor[t] * 0.5;
+        continue;
+      }
+      if (ok) {
+        within[t] = std::max(within[t], factor[t]);
+      } else {
+        over[t] = std::min(over[t], factor[t]);
+      }
+      if (settle_now) {
+        factor[t] = within[t];
+      } else if (std::isinf(over[t])) {
+        factor[t] = std::min(factor[t] * 4, 1024.0);
+      } else if (within[t] == 0) {
+        factor[t] = factor[t] / 4;
+      } else {
+        factor[t] = std::sqrt(within[t] * over[t]);
+      }
+    }
+    if (settle_now) settling = true;
+  }
+  r.bound_met = r.worst_projected_px <= options.max_error_px && r.worst_unseen_error_m <= r.unseen_allowed_error_m;
+  TriangleMesh out = FromKeptIndices(mesh, kept);
+  for (const auto& f : out.faces) ++tiles[grid.Tile(Centroid(out, f))].faces_out;
+  r.faces_out = static_cast<int64_t>(out.num_faces());
+  for (const ForPlanTile& t : tiles) {
+    if (t.faces_in == 0 && t.faces_out == 0) continue;
+    (t.seen ? r.tiles_seen : r.tiles_unseen) += 1;
+    r.tiles.push_back(t);
+  }
+  if (report) *report = std::move(r);
+  return out;
+}
+
+Json ForPlanReport::ToJson() const {
+  auto round = [](double v, int d) { return std::isfinite(v) ? Json(RoundToDecimals(v, d)) : Json(nullptr); };
+  Json j = Json::object();
+  j["max_error_px"] = max_error_px;
+  j["aim"] = aim;
+  j["occlusion"] = "none: a point inside a frame's frustum counts as seen";
+  j["unseen_budget"] = "the coarsest budget of a seen tile";
+  j["faces_in"] = faces_in;
+  j["faces_out"] = faces_out;
+  j["worst_projected_px"] = round(worst_projected_px, 4);
+  j["worst_camera_sample"] = worst_camera_sample;
+  j["worst_unseen_error_m"] = round(worst_unseen_error_m, 6);
+  j["bound_met"] = bound_met;
+  j["rounds"] = rounds;
+  j["points_measured"] = points_measured;
+  j["points_seen"] = points_seen;
+  j["min_allowed_error_m"] = round(min_allowed_error_m, 6);
+  j["max_allowed_error_m"] = round(max_allowed_error_m, 6);
+  j["unseen_allowed_error_m"] = round(unseen_allowed_error_m, 6);
+  Json grid = Json::object();
+  grid["tiles_per_side"] = tiles_per_side;
+  grid["min_m"] = Json::array({round(grid_min_m.x(), 4), round(grid_min_m.y(), 4)});
+  grid["tile_size_m"] = Json::array({round(tile_size_m.x(), 4), round(tile_size_m.y(), 4)});
+  grid["tiles_seen"] = tiles_seen;
+  grid["tiles_unseen"] = tiles_unseen;
+  j["grid"] = std::move(grid);
+  Json list = Json::array();
+  for (const ForPlanTile& t : tiles) {
+    Json e = Json::object();
+    e["ix"] = t.ix;
+    e["iy"] = t.iy;
+    e["faces_in"] = t.faces_in;
+    e["faces_out"] = t.faces_out;
+    e["seen"] = t.seen;
+    e["camera_sample"] = t.seen ? Json(t.camera_sample) : Json(nullptr);
+    e["camera_time_s"] = t.seen ? round(t.camera_time_s, 6) : Json(nullptr);
+    e["depth_m"] = t.seen ? round(t.depth_m, 4) : Json(nullptr);
+    e["allowed_error_m"] = round(t.allowed_error_m, 6);
+    e["goal_error_m"] = round(t.goal_error_m, 6);
+    e["worst_projected_px"] = round(t.worst_projected_px, 4);
+    list.push_back(std::move(e));
+  }
+  j["tiles"] = std::move(list);
+  return j;
+}
+
+}  // namespace cinepath::photogrammetry

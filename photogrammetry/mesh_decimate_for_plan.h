@@ -1,0 +1,106 @@
+// `cinepath mesh --for-plan plan.json`: simplify each part of the surface only as far as the plan's
+// cameras can tell (docs/mesh.md, "Detail where the cameras look").
+//
+// Regions are a fixed grid of tiles over the mesh's east/north bounding box (tiles_per_side², the same
+// tiles on any machine). Each tile's allowed error is max_error_px × the finest metres-per-pixel over
+// the points of the tile that a plan frame sees (view_dependent_budget.h: the closest frame, with its
+// focal length and resolution); a tile no frame sees gets the coarsest budget any seen tile gets, in
+// metres.
+//
+// Simplification (meshoptimizer, meshopt_simplify with an error goal and no face goal):
+//   1. every tile on its own, in parallel, its cut edges and the mesh's outer border locked, to its goal;
+//   2. a second grid shifted by half a tile, so that the cuts of pass 1 lie inside its tiles, each tile
+//      to the smallest goal of the (up to 4) pass-1 tiles it overlaps;
+//   3. measure: points on the original surface (every vertex plus `measure_samples` random points on
+//      the faces, spread by area, seeded), each one's distance to the simplified mesh divided by its
+//      metres-per-pixel = its worst projected error in pixels over every frame that sees it (unseen
+//      points: the distance against the unseen budget).
+// meshoptimizer's error is its own estimate and passes 1 and 2 add up, so each tile's goal (allowed ×
+// a factor) is searched over the rounds: ×4 while its points stay within aim × the bound, ×1/4 while
+// over, then bisected; the last 3 rounds settle on the largest factor found within (halved, then 0, for
+// a tile still over). The outer border of an open mesh stays in place. Deterministic at any thread count.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/json.h"
+#include "photogrammetry/triangle_mesh.h"
+#include "photogrammetry/view_dependent_budget.h"
+
+namespace cinepath::photogrammetry {
+
+struct ForPlanOptions {
+  std::vector<PlanCamera> cameras;   // CamerasFromPlan
+  std::string plan_source;           // the plan file, for the report
+  double max_error_px = 0.5;         // --max-error-px
+  int tiles_per_side = 16;           // the region grid
+  int64_t measure_samples = 200000;  // random points on the original faces (every vertex is measured too)
+  uint32_t seed = 1;
+  // The search aims at aim × the bound on the measured points: the error between them can be a little
+  // larger (an independent sampling of the test mesh found 2 % more than the measured points).
+  double aim = 0.9;
+  int max_rounds = 10;  // search rounds + up to 3 settling rounds
+
+  void Check() const;  // InputError naming the field
+};
+
+struct ForPlanTile {
+  int ix = 0, iy = 0;                   // column (east) and row (north)
+  int64_t faces_in = 0, faces_out = 0;  // faces whose centroid lies in the tile
+  bool seen = false;
+  int camera_sample = -1;  // the plan sample whose camera sees the tile the finest
+  double camera_time_s = 0;
+  double depth_m = 0;             // that camera's depth of the finest-seen point
+  double allowed_error_m = 0;     // max_error_px × its metres per pixel (unseen: the coarsest budget)
+  double goal_error_m = 0;        // the error goal meshoptimizer got in the last round (allowed × 2^-k)
+  double worst_projected_px = 0;  // over the measured points of the tile
+};
+
+struct ForPlanReport {
+  int tiles_per_side = 0;
+  Eigen::Vector2d grid_min_m = Eigen::Vector2d::Zero();  // east/north of the grid's corner
+  Eigen::Vector2d tile_size_m = Eigen::Vector2d::Zero();
+  std::vector<ForPlanTile> tiles;  // row-major (iy, ix), only tiles holding faces
+  double max_error_px = 0;
+  double aim = 0;
+  double min_allowed_error_m = 0;  // over seen tiles: the error a uniform simplification must keep
+  double max_allowed_error_m = 0;  // over seen tiles
+  double unseen_allowed_error_m = 0;
+  int64_t tiles_seen = 0, tiles_unseen = 0;
+  int64_t faces_in = 0, faces_out = 0;
+  int64_t points_measured = 0;  // vertices + face samples of the original mesh
+  int64_t points_seen = 0;      // of those, seen by some frame
+  double worst_projected_px = 0;
+  int worst_camera_sample = -1;
+  double worst_unseen_error_m = 0;  // over the points no frame sees (their budget: unseen_allowed_error_m)
+  int rounds = 0;
+  bool bound_met = false;
+  Json ToJson() const;
+};
+
+TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& options, ForPlanReport* report = nullptr);
+
+// The measurement of step 3, on its own (the benchmark measures a uniform simplification with it):
+// every vertex of `original` and `face_samples` points on its faces, each with its finest view, built once.
+class ProjectedErrorProbe {
+ public:
+  ProjectedErrorProbe(const TriangleMesh& original, const std::vector<PlanCamera>& cameras, int64_t face_samples,
+                      uint32_t seed);
+  // Each point's distance (m) to `simplified` (exact closest-point queries, CGAL AABB tree).
+  std::vector<double> DistancesM(const TriangleMesh& simplified) const;
+  // The worst projected error (px) of `simplified` over the seen points (and which point).
+  double WorstPx(const TriangleMesh& simplified, int* worst_point = nullptr) const;
+
+  const std::vector<Eigen::Vector3d>& points() const { return points_; }  // vertices, then face samples
+  const std::vector<PointView>& views() const { return views_; }          // one per point
+  int64_t points_seen() const { return points_seen_; }
+
+ private:
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<PointView> views_;
+  int64_t points_seen_ = 0;
+};
+
+}  // namespace cinepath::photogrammetry

@@ -1,0 +1,281 @@
+#include "photogrammetry/mesh_decimate_for_plan.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "core/error.h"
+#include "core/plan_file.h"
+#include "photogrammetry/build_scene.h"
+#include "photogrammetry/mesh_distance.h"
+#include "photogrammetry/surface_pipeline.h"
+#include "test_paths.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A gently rolling plane (300 m square, 1 m cells: 180,000 faces; 0.2 m swells 60 m long) and, at its centre, a 10 m
+// box (four walls and a roof, 0.2 m cells, bumps of 5 cm: 25,000 faces), a separate component standing from 1 m under
+// the plane to 10 m.
+constexpr double kHalfPlaneM = 150, kBoxHalfM = 5, kBoxTopM = 10;
+
+double PlaneHeightM(double e, double n) { return 0.2 * std::sin(2 * kPi * e / 60) * std::cos(2 * kPi * n / 60); }
+
+void AddGrid(TriangleMesh& mesh, int cols, int rows, const std::function<Eigen::Vector3d(double, double)>& at) {
+  const uint32_t base = static_cast<uint32_t>(mesh.num_vertices());
+  for (int j = 0; j <= rows; ++j) {
+    for (int i = 0; i <= cols; ++i)
+      mesh.vertices_m.push_back(at(static_cast<double>(i) / cols, static_cast<double>(j) / rows));
+  }
+  auto id = [&](int i, int j) { return base + static_cast<uint32_t>(j * (cols + 1) + i); };
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < cols; ++i) {
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+}
+
+TriangleMesh BoxOnPlane() {
+  TriangleMesh mesh;
+  AddGrid(mesh, 300, 300, [](double u, double v) {
+    const double e = -kHalfPlaneM + 2 * kHalfPlaneM * u, n = -kHalfPlaneM + 2 * kHalfPlaneM * v;
+    return Eigen::Vector3d(e, n, PlaneHeightM(e, n));
+  });
+  auto bump = [](double a, double b) { return 0.05 * std::sin(2 * kPi * a) * std::sin(2 * kPi * b); };
+  const double h = kBoxTopM + 1;  // walls from -1 m
+  // Walls: outward normal (cos, sin) of each side; a runs along the wall, b up.
+  for (int side = 0; side < 4; ++side) {
+    const Eigen::Vector2d normal(std::cos(side * kPi / 2), std::sin(side * kPi / 2));
+    const Eigen::Vector2d along(-normal.y(), normal.x());
+    AddGrid(mesh, 50, 55, [&](double u, double v) {
+      const double a = (u - 0.5) * 2 * kBoxHalfM, b = v * h;
+      const Eigen::Vector2d xy = normal * (kBoxHalfM + bump(a, b)) + along * a;
+      return Eigen::Vector3d(xy.x(), xy.y(), -1 + b);
+    });
+  }
+  AddGrid(mesh, 50, 50, [&](double u, double v) {
+    const double e = (u - 0.5) * 2 * kBoxHalfM, n = (v - 0.5) * 2 * kBoxHalfM;
+    return Eigen::Vector3d(e, n, kBoxTopM + bump(e, n));
+  });
+  return mesh;
+}
+
+bool OnBox(const Eigen::Vector3d& p) {
+  return std::abs(p.x()) < kBoxHalfM + 0.2 && std::abs(p.y()) < kBoxHalfM + 0.2 && p.z() > 0.6;
+}
+
+// An orbit of `frames` frames, radius 30 m, 25 m up, looking at the box's centre; Super 35, 24 mm, UHD.
+Trajectory OrbitPlan(int frames) {
+  Trajectory plan;
+  plan.camera.sensor_width_mm = 24.89;
+  plan.camera.width_px = 3840;
+  plan.camera.height_px = 2160;
+  const Eigen::Vector3d target(0, 0, 5);
+  for (int k = 0; k < frames; ++k) {
+    const double a = 2 * kPi * k / frames;
+    TrajectorySample s;
+    s.time_s = k / 30.0;
+    s.position_enu_m = Eigen::Vector3d(30 * std::cos(a), 30 * std::sin(a), 25);
+    const Eigen::Vector3d z = (target - s.position_enu_m).normalized();
+    const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+    Eigen::Matrix3d r;
+    r.col(0) = x;
+    r.col(1) = z.cross(x);
+    r.col(2) = z;
+    s.world_from_camera = Eigen::Quaterniond(r);
+    s.focal_length_mm = 24;
+    plan.samples.push_back(s);
+  }
+  return plan;
+}
+
+struct Counts {
+  int64_t box = 0, far_plane = 0;
+};
+Counts CountFaces(const TriangleMesh& mesh) {
+  Counts c;
+  for (const auto& f : mesh.faces) {
+    const Eigen::Vector3d p = (mesh.vertices_m[f[0]] + mesh.vertices_m[f[1]] + mesh.vertices_m[f[2]]) / 3.0;
+    if (OnBox(p)) ++c.box;
+    if (p.head<2>().norm() > 100) ++c.far_plane;
+  }
+  return c;
+}
+
+// Our own check, independent of the library's sampling: points on the original faces (another
+// seed, another sampler), each projected into every frame whose image holds it; the error is its
+// distance to the simplified mesh / its depth × focal_px. Returns the worst over all points and frames.
+double WorstProjectedPx(const TriangleMesh& original, const TriangleMesh& simplified,
+                        const std::vector<PlanCamera>& cameras, int samples) {
+  const MeshDistanceIndex index(simplified);
+  std::mt19937 rng(12345);
+  std::uniform_int_distribution<size_t> face(0, original.num_faces() - 1);
+  std::uniform_real_distribution<double> unit(0, 1);
+  double worst = 0;
+  for (int k = 0; k < samples; ++k) {
+    const auto& f = original.faces[face(rng)];
+    double a = unit(rng), b = unit(rng);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    const Eigen::Vector3d& p0 = original.vertices_m[f[0]];
+    const Eigen::Vector3d p = p0 + a * (original.vertices_m[f[1]] - p0) + b * (original.vertices_m[f[2]] - p0);
+    double distance = -1;
+    for (const PlanCamera& c : cameras) {
+      const Eigen::Vector3d q = c.camera_from_world * (p - c.center_enu_m);
+      if (q.z() <= 0) continue;
+      const double u = c.focal_px * q.x() / q.z() + c.width_px / 2, v = c.focal_px * q.y() / q.z() + c.height_px / 2;
+      if (u < 0 || u > c.width_px || v < 0 || v > c.height_px) continue;
+      if (distance < 0) distance = index.DistanceM(p);
+      worst = std::max(worst, distance / q.z() * c.focal_px);
+    }
+  }
+  return worst;
+}
+
+TEST(DecimateForPlan, AnOrbitKeepsTheBoxDenseAndThinsTheFarPlaneWithinTheBound) {
+  const TriangleMesh mesh = BoxOnPlane();
+  ForPlanOptions options;
+  options.cameras = CamerasFromPlan(OrbitPlan(120), "orbit.json");
+  options.plan_source = "orbit.json";
+  options.measure_samples = 100000;
+  ForPlanReport report;
+  const TriangleMesh out = DecimateForPlan(mesh, options, &report);
+  const Counts in = CountFaces(mesh), kept = CountFaces(out);
+  std::printf(
+      "faces %zu -> %zu, box %lld -> %lld, far plane %lld -> %lld, rounds %d, worst %.3f px, "
+      "allowed %.4f..%.4f m\n",
+      mesh.num_faces(), out.num_faces(), static_cast<long long>(in.box), static_cast<long long>(kept.box),
+      static_cast<long long>(in.far_plane), static_cast<long long>(kept.far_plane), report.rounds,
+      report.worst_projected_px, report.min_allowed_error_m, report.max_allowed_error_m);
+  ASSERT_GT(in.box, 20000);                     // the walls under 0.6 m count as plane
+  EXPECT_GE(kept.box, in.box * 9 / 10);         // the box keeps its faces
+  EXPECT_LE(kept.far_plane, in.far_plane / 5);  // the far plane is reduced
+  EXPECT_LT(out.num_faces(), mesh.num_faces() / 2);
+  EXPECT_TRUE(report.bound_met);
+  EXPECT_LE(report.worst_projected_px, 0.5);
+  EXPECT_EQ(report.faces_out, static_cast<int64_t>(out.num_faces()));
+  EXPECT_GT(report.tiles_seen, 0);
+  EXPECT_GT(report.tiles_unseen, 0);
+  EXPECT_LT(report.min_allowed_error_m, report.max_allowed_error_m);
+  // Our own sampling over the plan's frames.
+  const double worst = WorstProjectedPx(mesh, out, options.cameras, 20000);
+  std::printf("own check: worst %.3f px\n", worst);
+  EXPECT_LE(worst, 0.5);
+  EXPECT_GT(worst, 0.0);  // the measurement sees the simplification
+  // The tiles add up, and the box's tiles are seen from the orbit's distance.
+  int64_t faces_in = 0, faces_out = 0;
+  for (const ForPlanTile& t : report.tiles) {
+    faces_in += t.faces_in;
+    faces_out += t.faces_out;
+    const double e = report.grid_min_m.x() + (t.ix + 0.5) * report.tile_size_m.x();
+    const double n = report.grid_min_m.y() + (t.iy + 0.5) * report.tile_size_m.y();
+    if (std::hypot(e, n) < 10) {
+      EXPECT_TRUE(t.seen);
+      EXPECT_LT(t.depth_m, 40);
+    }
+  }
+  EXPECT_EQ(faces_in, report.faces_in);
+  EXPECT_EQ(faces_out, report.faces_out);
+}
+
+TEST(DecimateForPlan, ATighterBoundKeepsMore) {
+  const TriangleMesh mesh = BoxOnPlane();
+  ForPlanOptions options;
+  options.cameras = CamerasFromPlan(OrbitPlan(60), "orbit.json");
+  options.measure_samples = 20000;
+  options.max_rounds = 4;
+  options.max_error_px = 2.0;
+  const size_t loose = DecimateForPlan(mesh, options).num_faces();
+  options.max_error_px = 0.25;
+  const size_t tight = DecimateForPlan(mesh, options).num_faces();
+  EXPECT_LT(loose, tight);
+}
+
+TEST(DecimateForPlan, ThePipelineReportsTheTilesInItsDecimateStep) {
+  SurfacePipelineOptions options;
+  options.report_times = false;
+  ForPlanOptions for_plan;
+  for_plan.cameras = CamerasFromPlan(OrbitPlan(60), "orbit.json");
+  for_plan.measure_samples = 20000;
+  for_plan.max_rounds = 4;
+  options.for_plan = for_plan;
+  const SurfacePipelineResult result = BuildSurfaceFromMesh(BoxOnPlane(), nullptr, options);
+  const Json* decimate = nullptr;
+  for (const Json& step : result.report["steps"]) {
+    if (step["step"] == "decimate") decimate = &step;
+  }
+  ASSERT_NE(decimate, nullptr);
+  EXPECT_EQ((*decimate)["goal"], "for_plan");
+  const Json& report = (*decimate)["for_plan"];
+  EXPECT_EQ(report["faces_out"].get<int64_t>(), (*decimate)["faces_out"].get<int64_t>());
+  EXPECT_LT(report["faces_out"].get<int64_t>(), report["faces_in"].get<int64_t>());
+  ASSERT_TRUE(report["tiles"].is_array());
+  EXPECT_GT(report["tiles"].size(), 100u);
+  EXPECT_EQ(report["grid"]["tiles_per_side"], 16);
+  EXPECT_LE(report["worst_projected_px"].get<double>(), 0.5);
+  // A goal and a plan together are refused.
+  options.target_faces = 1000;
+  EXPECT_THROW(BuildSurfaceFromMesh(BoxOnPlane(), nullptr, options), InputError);
+}
+
+// `cinepath mesh --for-plan`: a plan made about another origin is refused naming the file and its
+// origin (exit 2: an InputError), before any surface is built; so is a plan without an origin.
+TEST(DecimateForPlan, APlanAboutAnotherOriginIsRefused) {
+  const auto base = testing::TestDataDir() / "photogrammetry" / "brighton6_colmap";
+  SceneBuildOptions options;
+  options.colmap_dir = (base / "sparse").string();
+  options.refs_path = (base / "refs_gps.txt").string();
+  options.georeference.bundle_adjust = false;
+  options.timestamps = false;
+  Trajectory plan = OrbitPlan(4);
+  plan.origin = Geodetic{46.84265, -91.99445, 153.0};  // about 1 km away from the scene's
+  options.for_plan = plan;
+  options.for_plan_path = "other.json";
+  try {
+    BuildScene(options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("other.json: origin"), std::string::npos) << e.what();
+  }
+  options.for_plan->origin.reset();
+  try {
+    BuildScene(options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("other.json: origin: null"), std::string::npos) << e.what();
+  }
+  // An unreadable plan file is an InputError naming it (cli/cmd_mesh.cc reads it with ReadPlanFile).
+  try {
+    ReadPlanFile(base / "no_such_plan.json");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_plan.json"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DecimateForPlan, APlanThatSeesNothingIsRefused) {
+  TriangleMesh mesh = BoxOnPlane();
+  Trajectory plan = OrbitPlan(4);
+  for (auto& s : plan.samples) s.position_enu_m.z() = -500;  // far under the ground, looking down
+  ForPlanOptions options;
+  options.cameras = CamerasFromPlan(plan, "under.json");
+  options.plan_source = "under.json";
+  try {
+    DecimateForPlan(mesh, options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("under.json"), std::string::npos) << e.what();
+  }
+  options.max_error_px = 0;
+  EXPECT_THROW(DecimateForPlan(mesh, options), InputError);
+}
+
+}  // namespace
+}  // namespace cinepath::photogrammetry
