@@ -5,7 +5,9 @@
 // --quality presets of the whole surface pipeline. Prints one JSON document (figures for
 // bench/RESULTS.md).
 //
-//   mesh_decimate_bench [--faces N] [--ratio R] [--samples S] [--methods a,b,...]
+//   mesh_decimate_bench --list-methods      (the names --methods takes, one per line)
+//   mesh_decimate_bench [--faces N] [--ratio R | --ratios R1,R2,...] [--samples S] [--methods a,b,...]
+//                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C]
 //                       [--presets] [--export-raw FILE] [--import-raw FILE --label NAME]
 //                       [--end-to-end] [--defects] [--threads T]
 //
@@ -261,14 +263,38 @@ int main(int argc, char** argv) {
   std::string methods =
       "meshoptimizer,meshoptimizer_partitioned,cgal_garland_heckbert_probabilistic,"
       "cgal_garland_heckbert,openmesh_quadric";
+  std::string ratios;  // --ratios a,b,...: the decimation table at each budget (overrides --ratio)
   bool presets = false, end_to_end = false, defects = false;
+  pg::internal::QemOptions qem;
+  int partitions = 0;         // > 0: tiles of both tiled methods (default: each method's own)
+  bool bound = false;         // --bound: also bound the true Hausdorff distance (both directions)
+  std::string sample_counts;  // --sample-counts a,b,...: the sampled estimate at each count (convergence)
   int threads = 0;
   std::string export_raw, import_raw, label = "external";
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-    if (arg == "--faces")
+    if (arg == "--list-methods") {
+      for (pg::DecimationMethod m : pg::AllDecimationMethods()) std::printf("%s\n", pg::DecimationMethodName(m));
+      return 0;
+    } else if (arg == "--faces")
       faces = std::stoll(next());
+    else if (arg == "--ratios")
+      ratios = next();
+    else if (arg == "--bound")
+      bound = true;
+    else if (arg == "--sample-counts")
+      sample_counts = next();
+    else if (arg == "--partitions")
+      partitions = std::stoi(next());
+    else if (arg == "--qem-endpoints")
+      qem.optimal_placement = false;
+    else if (arg == "--qem-unweighted")
+      qem.area_weighted = false;
+    else if (arg == "--qem-reach")
+      qem.placement_reach = std::stod(next());
+    else if (arg == "--qem-normal-cos")
+      qem.min_normal_cos = std::stod(next());
     else if (arg == "--ratio")
       ratio = std::stod(next());
     else if (arg == "--samples")
@@ -341,6 +367,8 @@ int main(int argc, char** argv) {
     options.method = pg::ParseDecimationMethod(names.empty() ? std::string("meshoptimizer_partitioned") : names.front(),
                                                "--methods");
     options.target_faces = target;
+    options.qem = qem;
+    if (partitions > 0) options.partitions = options.qem.tiles = partitions;
     Json e2e;
     start = std::chrono::steady_clock::now();
     double cpu0 = CpuSeconds();
@@ -424,32 +452,85 @@ int main(int argc, char** argv) {
 
   Json rows = Json::array();
   std::unique_ptr<pg::MeshDistanceIndex> input_index;  // built once, for every method
-  for (const std::string& name : Split(methods)) {
-    pg::DecimateOptions options;
-    options.method = pg::ParseDecimationMethod(name, "--methods");
-    options.target_faces = target;
-    start = std::chrono::steady_clock::now();
-    const double cpu0 = CpuSeconds();
-    const pg::TriangleMesh out = pg::DecimateMesh(input, options);
-    const double s = Seconds(start);
-    const double cpu = CpuSeconds() - cpu0;
-    start = std::chrono::steady_clock::now();
-    if (!input_index) input_index = std::make_unique<pg::MeshDistanceIndex>(input, "input");
-    const pg::HausdorffDistance d =
-        pg::ApproximateHausdorff(*input_index, pg::MeshDistanceIndex(out, "output"), hausdorff);
-    const double hs = Seconds(start);
-    std::fprintf(stderr, "%-36s %8.2f s (cpu %.2f s) %9zu faces  hausdorff %.4f m (%.1f s)\n", name.c_str(), s, cpu,
-                 out.num_faces(), d.symmetric_m, hs);
-    rows.push_back({{"method", name},
-                    {"seconds", s},
-                    {"cpu_seconds", cpu},
-                    {"input_faces_per_s", input.num_faces() / s},
-                    {"faces_out", out.num_faces()},
-                    {"hausdorff_m", d.symmetric_m},
-                    {"hausdorff_in_to_out_m", d.a_to_b_m},
-                    {"hausdorff_out_to_in_m", d.b_to_a_m},
-                    {"hausdorff_s", hs}});
-  }
+  std::vector<double> budgets;
+  for (const std::string& r : Split(ratios)) budgets.push_back(std::stod(r));
+  if (budgets.empty()) budgets.push_back(ratio);
+  for (double budget : budgets)
+    for (const std::string& name : Split(methods)) {
+      pg::DecimateOptions options;
+      options.method = pg::ParseDecimationMethod(name, "--methods");
+      options.target_faces = static_cast<int64_t>(std::llround(budget * input.num_faces()));
+      options.qem = qem;
+      if (partitions > 0) options.partitions = options.qem.tiles = partitions;
+      start = std::chrono::steady_clock::now();
+      const double cpu0 = CpuSeconds();
+      const pg::TriangleMesh out = pg::DecimateMesh(input, options);
+      const double s = Seconds(start);
+      const double cpu = CpuSeconds() - cpu0;
+      start = std::chrono::steady_clock::now();
+      if (!input_index) input_index = std::make_unique<pg::MeshDistanceIndex>(input, "input");
+      const pg::MeshDistanceIndex out_index(out, "output");
+      const pg::HausdorffDistance d = pg::ApproximateHausdorff(*input_index, out_index, hausdorff);
+      const double hs = Seconds(start);
+      Json extra = Json::object();
+      if (bound) {
+        start = std::chrono::steady_clock::now();
+        const pg::HausdorffBoundOptions bound_options;
+        const pg::HausdorffInterval in_out = input_index->BoundDistanceTo(out_index, d.a_to_b_m, bound_options);
+        const pg::HausdorffInterval out_in = out_index.BoundDistanceTo(*input_index, d.b_to_a_m, bound_options);
+        const double bs = Seconds(start);
+        std::fprintf(stderr,
+                     "      bound: in->out [%.4f, %.4f] (%lld unresolved), out->in [%.4f, %.4f] (%lld unresolved); "
+                     "symmetric [%.4f, %.4f], %lld points, %.1f s\n",
+                     in_out.lower_m, in_out.upper_m, static_cast<long long>(in_out.unresolved_triangles),
+                     out_in.lower_m, out_in.upper_m, static_cast<long long>(out_in.unresolved_triangles),
+                     std::max(in_out.lower_m, out_in.lower_m), std::max(in_out.upper_m, out_in.upper_m),
+                     static_cast<long long>(in_out.points_measured + out_in.points_measured), bs);
+        extra["bound"] = {
+            {"lower_m", std::max(in_out.lower_m, out_in.lower_m)},
+            {"upper_m", std::max(in_out.upper_m, out_in.upper_m)},
+            {"in_to_out",
+             {{"lower_m", in_out.lower_m}, {"upper_m", in_out.upper_m}, {"unresolved", in_out.unresolved_triangles}}},
+            {"out_to_in",
+             {{"lower_m", out_in.lower_m}, {"upper_m", out_in.upper_m}, {"unresolved", out_in.unresolved_triangles}}},
+            {"points_measured", in_out.points_measured + out_in.points_measured},
+            {"seconds", bs}};
+      }
+      if (!sample_counts.empty()) {
+        Json table = Json::array();
+        for (const std::string& count : Split(sample_counts)) {
+          for (bool vertices : {false, true}) {
+            pg::HausdorffOptions h = hausdorff;
+            h.samples_per_mesh = std::stoll(count);
+            h.sample_vertices = vertices;
+            start = std::chrono::steady_clock::now();
+            const pg::HausdorffDistance e = pg::ApproximateHausdorff(*input_index, out_index, h);
+            std::fprintf(stderr, "      %9lld samples%s: %.4f m (%.1f s)\n", static_cast<long long>(h.samples_per_mesh),
+                         vertices ? " + vertices" : "           ", e.symmetric_m, Seconds(start));
+            table.push_back(
+                {{"samples_per_mesh", h.samples_per_mesh}, {"vertices", vertices}, {"hausdorff_m", e.symmetric_m}});
+          }
+        }
+        extra["convergence"] = table;
+      }
+      std::fprintf(
+          stderr,
+          "%4.0f%% %-36s %8.2f s (cpu %.2f s) %9zu faces  hausdorff %.4f m (in->out %.4f, out->in %.4f; %.1f s)\n",
+          100 * budget, name.c_str(), s, cpu, out.num_faces(), d.symmetric_m, d.a_to_b_m, d.b_to_a_m, hs);
+      rows.push_back({{"method", name},
+                      {"ratio", budget},
+                      {"target_faces", options.target_faces},
+                      {"digest", Digest(out)},
+                      {"seconds", s},
+                      {"cpu_seconds", cpu},
+                      {"input_faces_per_s", input.num_faces() / s},
+                      {"faces_out", out.num_faces()},
+                      {"hausdorff_m", d.symmetric_m},
+                      {"hausdorff_in_to_out_m", d.a_to_b_m},
+                      {"hausdorff_out_to_in_m", d.b_to_a_m},
+                      {"hausdorff_s", hs}});
+      for (auto it = extra.begin(); it != extra.end(); ++it) rows.back()[it.key()] = it.value();
+    }
   result["decimation"] = rows;
 
   if (presets) {

@@ -215,14 +215,22 @@ const char* DecimationMethodName(DecimationMethod method) {
     case DecimationMethod::kCgalGarlandHeckbert: return "cgal_garland_heckbert";
     case DecimationMethod::kCgalGarlandHeckbertProbabilistic: return "cgal_garland_heckbert_probabilistic";
     case DecimationMethod::kOpenMeshQuadric: return "openmesh_quadric";
+    case DecimationMethod::kQemTiled: return "qem_tiled";
   }
   return "?";
 }
 
+std::vector<DecimationMethod> AllDecimationMethods() {
+  return {DecimationMethod::kMeshoptimizer,
+          DecimationMethod::kMeshoptimizerPartitioned,
+          DecimationMethod::kQemTiled,
+          DecimationMethod::kCgalGarlandHeckbert,
+          DecimationMethod::kCgalGarlandHeckbertProbabilistic,
+          DecimationMethod::kOpenMeshQuadric};
+}
+
 DecimationMethod ParseDecimationMethod(const std::string& text, const std::string& where) {
-  for (DecimationMethod m : {DecimationMethod::kMeshoptimizer, DecimationMethod::kMeshoptimizerPartitioned,
-                             DecimationMethod::kCgalGarlandHeckbert,
-                             DecimationMethod::kCgalGarlandHeckbertProbabilistic, DecimationMethod::kOpenMeshQuadric}) {
+  for (DecimationMethod m : AllDecimationMethods()) {
     if (text == DecimationMethodName(m)) return m;
   }
   throw InputError(Located(where, "unknown decimation method '" + text + "'"));
@@ -264,6 +272,12 @@ TriangleMesh DecimateMesh(const TriangleMesh& mesh, const DecimateOptions& optio
           throw InputError("decimate: the OpenMesh method needs a face budget");
         }
         out = DecimateOpenMesh(mesh, options.target_faces);
+        break;
+      case DecimationMethod::kQemTiled:
+        if (options.target_faces <= 0) {
+          throw InputError("decimate: the qem_tiled method needs a face budget");
+        }
+        out = internal::DecimateQemTiled(mesh, options.target_faces, options.qem.tiles, options.qem);
         break;
     }
   }

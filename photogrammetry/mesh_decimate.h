@@ -2,11 +2,15 @@
 // bench/mesh_decimate_bench.cc: meshoptimizer, a partitioned parallel meshoptimizer (draft and
 // standard presets: the fastest, ~30× faster than CGAL), CGAL Garland–Heckbert (plane — the final
 // preset: the most accurate at moderate budgets — and probabilistic plane policies) and OpenMesh's
-// quadric Decimater. The outer border of an open (terrain) mesh is kept in place by every method.
+// quadric Decimater, and qem_tiled: quadric collapse with optimal placement in parallel tiles
+// (mesh_decimate_qem.cc; more accurate than OpenMesh with 16 tiles, ~13× faster with 256 — not yet
+// both at once, bench/RESULTS.md). The outer border of an open (terrain) mesh is kept in place by
+// every method.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "photogrammetry/triangle_mesh.h"
 
@@ -18,10 +22,24 @@ enum class DecimationMethod {
   kCgalGarlandHeckbert,               // CGAL SMS edge_collapse, GarlandHeckbert_plane_policies
   kCgalGarlandHeckbertProbabilistic,  // GarlandHeckbert_probabilistic_plane_policies
   kOpenMeshQuadric,                   // OpenMesh DecimaterT + ModQuadricT
+  kQemTiled,  // quadric collapse with optimal placement, tiles in parallel then a pass over the whole
 };
 const char* DecimationMethodName(DecimationMethod method);
+// Every method, in a fixed order (mesh_decimate_bench --list-methods prints their names).
+std::vector<DecimationMethod> AllDecimationMethods();
 // Parses the names DecimationMethodName gives; throws InputError naming `where`.
 DecimationMethod ParseDecimationMethod(const std::string& text, const std::string& where);
+
+namespace internal {
+// kQemTiled's settings (mesh_decimate_qem.cc); the defaults are the measured best.
+struct QemOptions {
+  bool optimal_placement = true;  // false: the endpoint with the lower error (a half-edge collapse)
+  bool area_weighted = true;      // plane quadrics weighted by face area (else one per face)
+  double placement_reach = 2.0;   // the quadric minimum is used within this many edge lengths of the edge
+  double min_normal_cos = 0.5;    // a collapse may turn no remaining face's normal further than this
+  int tiles = 256;                // fixed grid of tiles (same mesh on any machine); small tiles fit the cache
+};
+}  // namespace internal
 
 struct DecimateOptions {
   DecimationMethod method = DecimationMethod::kMeshoptimizerPartitioned;
@@ -30,6 +48,7 @@ struct DecimateOptions {
   // exceeds this distance in metres. The pipeline checks the result with a Hausdorff measurement.
   double max_error_m = 0;
   int partitions = 16;  // kMeshoptimizerPartitioned: tiles (fixed: same mesh on any machine)
+  internal::QemOptions qem;
 };
 
 struct DecimateStats {
@@ -44,6 +63,9 @@ TriangleMesh DecimateMesh(const TriangleMesh& mesh, const DecimateOptions& optio
 namespace internal {
 // In mesh_decimate_cgal.cc (the CGAL translation unit).
 TriangleMesh DecimateCgal(const TriangleMesh& mesh, int64_t target_faces, bool probabilistic);
+// In mesh_decimate_qem.cc.
+TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions,
+                              const QemOptions& options);
 }  // namespace internal
 
 }  // namespace cinepath::photogrammetry

@@ -25,6 +25,20 @@ struct HausdorffOptions {
   uint32_t seed = 1;
 };
 
+// The one-sided distance sup_{x on A} d(x, B) between two bounds (MeshDistanceIndex::BoundDistanceTo).
+struct HausdorffBoundOptions {
+  double tolerance_m = 0.001;        // stop refining a triangle once its bound is within this of the lower bound
+  double relative_tolerance = 0.02;  // ... or within this fraction of the lower bound
+  int max_depth = 6;                 // at most this many 1-to-4 subdivisions of a face
+};
+
+struct HausdorffInterval {
+  double lower_m = 0;  // a distance actually reached (at a vertex or a subdivision point of A)
+  double upper_m = 0;  // no point of A is farther than this from B
+  int64_t points_measured = 0;
+  int64_t unresolved_triangles = 0;  // pieces left at max_depth with their bound above the tolerance
+};
+
 struct HausdorffDistance {
   double a_to_b_m = 0;  // max over the samples of A of the distance to B
   double b_to_a_m = 0;
@@ -47,6 +61,18 @@ class MeshDistanceIndex {
   // Max over the samples of `this` mesh of the distance to `other` (one-sided).
   double MaxDistanceTo(const MeshDistanceIndex& other, const HausdorffOptions& options,
                        int64_t* samples = nullptr) const;
+  // Bounds the one-sided distance from every point of `this` mesh (not only samples) to `other`.
+  // Each face is checked whole: the distance to one triangle of `other` is a convex function, so
+  // its maximum over a (sub-)triangle is at a corner, and max over the corners of the distance to
+  // any single triangle of `other` bounds the distance from the whole piece to `other`; so does
+  // max over the corners of their distance to `other` plus the largest distance from a point of
+  // the piece to its nearest corner (the distance to a set is 1-Lipschitz). Pieces whose bound is
+  // above the running lower bound (+ tolerance) are cut in four, to max_depth. `known_lower_m`: a
+  // distance already found (e.g. by MaxDistanceTo). Deterministic at any thread count.
+  HausdorffInterval BoundDistanceTo(const MeshDistanceIndex& other, double known_lower_m,
+                                    const HausdorffBoundOptions& options) const;
+  // Total area of the valid faces (m²).
+  double AreaM2() const;
   // Distance from a point to the mesh.
   double DistanceM(const Eigen::Vector3d& point) const;
 

@@ -111,6 +111,12 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     step["hausdorff_in_to_out_m"] = d.a_to_b_m;
     step["hausdorff_out_to_in_m"] = d.b_to_a_m;
     step["hausdorff_points_measured"] = d.samples_a + d.samples_b;
+    // A distance reached at sampled points: at most the true distance. The mean spacing of the
+    // face samples on the input says how coarse the search was (docs/mesh.md, "The error figure";
+    // bench/RESULTS.md measures the gap to a proven upper bound at each preset's sample count).
+    step["hausdorff_is_lower_bound"] = true;
+    step["hausdorff_sample_spacing_m"] =
+        RoundToDecimals(std::sqrt(input_index->AreaM2() / std::max<double>(1.0, hausdorff.samples_per_mesh)), 4);
     return d.symmetric_m;
   };
   auto record_sampling = [&](Json& step) {

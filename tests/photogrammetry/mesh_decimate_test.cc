@@ -1,5 +1,9 @@
 #include "photogrammetry/mesh_decimate.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <Eigen/Geometry>
@@ -52,7 +56,7 @@ INSTANTIATE_TEST_SUITE_P(Methods, DecimateEveryMethod,
                                            DecimationMethod::kMeshoptimizerPartitioned,
                                            DecimationMethod::kCgalGarlandHeckbert,
                                            DecimationMethod::kCgalGarlandHeckbertProbabilistic,
-                                           DecimationMethod::kOpenMeshQuadric),
+                                           DecimationMethod::kOpenMeshQuadric, DecimationMethod::kQemTiled),
                          [](const auto& info) { return std::string(DecimationMethodName(info.param)); });
 
 TEST(DecimateMesh, ErrorBoundStopsEarlier) {
@@ -78,13 +82,18 @@ TEST(DecimateMesh, NoGoalOrABudgetAboveTheInputKeepsEveryFace) {
 
 TEST(DecimationMethod, NamesRoundTrip) {
   EXPECT_EQ(ParseDecimationMethod("openmesh_quadric", "--decimator"), DecimationMethod::kOpenMeshQuadric);
+  EXPECT_EQ(ParseDecimationMethod("qem_tiled", "--decimator"), DecimationMethod::kQemTiled);
+  for (DecimationMethod m : AllDecimationMethods()) EXPECT_EQ(ParseDecimationMethod(DecimationMethodName(m), "x"), m);
+  EXPECT_EQ(AllDecimationMethods().size(), 6u);
   EXPECT_THROW(ParseDecimationMethod("qslim", "--decimator"), InputError);
 }
 
-TEST(DecimateMesh, TiledResultDoesNotDependOnTheThreadCount) {
+class TiledMethod : public ::testing::TestWithParam<DecimationMethod> {};
+
+TEST_P(TiledMethod, ResultDoesNotDependOnTheThreadCount) {
   const TriangleMesh grid = testing::TerrainGrid(121, 121, 0.5);  // 28,800 faces
   DecimateOptions options;
-  options.method = DecimationMethod::kMeshoptimizerPartitioned;
+  options.method = GetParam();
   options.target_faces = 3000;
   const TriangleMesh parallel = DecimateMesh(grid, options);
   TriangleMesh serial;
@@ -96,6 +105,107 @@ TEST(DecimateMesh, TiledResultDoesNotDependOnTheThreadCount) {
   EXPECT_EQ(serial.vertices_m, parallel.vertices_m);
   EXPECT_LE(parallel.num_faces(), 3300u);
   EXPECT_GE(parallel.num_faces(), 2500u);
+  {
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 2);
+    const TriangleMesh two = DecimateMesh(grid, options);
+    EXPECT_EQ(two.faces, parallel.faces);
+    EXPECT_EQ(two.vertices_m, parallel.vertices_m);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Tiled, TiledMethod,
+                         ::testing::Values(DecimationMethod::kMeshoptimizerPartitioned, DecimationMethod::kQemTiled),
+                         [](const auto& info) { return std::string(DecimationMethodName(info.param)); });
+
+// Rolling ground with 6 m box "buildings" on a jittered 0.5 m grid: sharp walls, as the bench
+// terrain has (bench/mesh_decimate_bench.cc), small enough for a unit test.
+TriangleMesh TerrainWithBuildings(int side) {
+  TriangleMesh mesh;
+  auto height = [](double e, double n) {
+    double z = testing::TerrainHeightM(e, n);
+    const double u = std::fmod(e, 20.0), v = std::fmod(n, 20.0);
+    if (u > 5 && u < 15 && v > 6 && v < 14) z += 6.0;
+    return z;
+  };
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      const double jitter_e = (i > 0 && i + 1 < side) ? 0.15 * std::sin(12.9898 * i + 78.233 * j) : 0.0;
+      const double jitter_n = (j > 0 && j + 1 < side) ? 0.15 * std::cos(4.1414 * i + 31.337 * j) : 0.0;
+      const double e = 0.5 * i + jitter_e, n = 0.5 * j + jitter_n;
+      mesh.vertices_m.emplace_back(e, n, height(e, n));
+    }
+  }
+  auto id = [side](int i, int j) { return static_cast<uint32_t>(j * side + i); };
+  for (int j = 0; j + 1 < side; ++j) {
+    for (int i = 0; i + 1 < side; ++i) {
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  return mesh;
+}
+
+// The vertices on the outer border of a grid mesh built by TerrainWithBuildings / TerrainGrid.
+std::vector<Eigen::Vector3d> GridBorder(const TriangleMesh& mesh, int side) {
+  std::vector<Eigen::Vector3d> border;
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      if (i == 0 || j == 0 || i + 1 == side || j + 1 == side) border.push_back(mesh.vertices_m[j * side + i]);
+    }
+  }
+  return border;
+}
+
+TEST(QemTiled, HonoursTheBudgetAndKeepsEveryOuterBorderVertex) {
+  const int side = 161;
+  const TriangleMesh terrain = TerrainWithBuildings(side);  // 51,200 faces
+  for (double ratio : {0.1, 0.5}) {
+    DecimateOptions options;
+    options.method = DecimationMethod::kQemTiled;
+    options.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
+    const TriangleMesh out = DecimateMesh(terrain, options);
+    EXPECT_LE(static_cast<int64_t>(out.num_faces()), options.target_faces) << ratio;
+    EXPECT_GE(static_cast<int64_t>(out.num_faces()), options.target_faces - 2) << ratio;
+    // Every border vertex of the input is still a vertex of the output, at the same place, and the
+    // output has no border vertex the input did not have (its boundary edges lie on the input's).
+    std::vector<Eigen::Vector3d> out_vertices = out.vertices_m;
+    auto less = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    };
+    std::sort(out_vertices.begin(), out_vertices.end(), less);
+    for (const Eigen::Vector3d& b : GridBorder(terrain, side)) {
+      ASSERT_TRUE(std::binary_search(out_vertices.begin(), out_vertices.end(), b, less)) << b.transpose();
+    }
+    std::map<std::pair<uint32_t, uint32_t>, int> edge_uses;
+    for (const auto& f : out.faces) {
+      for (int k = 0; k < 3; ++k) ++edge_uses[std::minmax(f[k], f[(k + 1) % 3])];
+    }
+    int border_edges = 0;
+    for (const auto& [edge, uses] : edge_uses) {
+      ASSERT_LE(uses, 2);  // manifold
+      if (uses == 1) ++border_edges;
+    }
+    EXPECT_EQ(border_edges, 4 * (side - 1));  // no edge of the outer border was collapsed, no hole opened
+  }
+}
+
+TEST(QemTiled, IsAtLeastAsAccurateAsTheTiledMeshoptimizerAtTheSameBudget) {
+  const TriangleMesh terrain = TerrainWithBuildings(161);
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = 400000;
+  for (double ratio : {0.1, 0.3, 0.8}) {
+    DecimateOptions qem, meshopt;
+    qem.method = DecimationMethod::kQemTiled;
+    meshopt.method = DecimationMethod::kMeshoptimizerPartitioned;
+    qem.target_faces = meshopt.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
+    const TriangleMesh a = DecimateMesh(terrain, qem), b = DecimateMesh(terrain, meshopt);
+    EXPECT_LE(a.num_faces(), b.num_faces() + 2) << ratio;
+    const double qem_m = ApproximateHausdorff(terrain, a, hausdorff).symmetric_m;
+    const double meshopt_m = ApproximateHausdorff(terrain, b, hausdorff).symmetric_m;
+    std::printf("ratio %.1f: qem_tiled %.4f m (%zu faces), meshoptimizer_partitioned %.4f m (%zu faces)\n", ratio,
+                qem_m, a.num_faces(), meshopt_m, b.num_faces());
+    EXPECT_LE(qem_m, meshopt_m) << ratio;
+  }
 }
 
 }  // namespace

@@ -1,5 +1,9 @@
 #include "photogrammetry/mesh_distance.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <utility>
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -108,6 +112,61 @@ TEST(ApproximateHausdorff, WithoutVertexSamplesTheBumpApexIsApproached) {
   const HausdorffDistance d = ApproximateHausdorff(a, b, options);
   EXPECT_LT(d.b_to_a_m, 2.0);
   EXPECT_GT(d.b_to_a_m, 1.5);
+}
+
+TEST(BoundDistanceTo, ParallelPlanesGiveTheOffsetWithinTheTolerance) {
+  TriangleMesh a = testing::TerrainGrid(11, 11, 1.0);
+  for (auto& v : a.vertices_m) v.z() = 0;
+  TriangleMesh b = testing::TerrainGrid(4, 4, 10.0 / 3.0);  // coarser triangles over the same square
+  for (auto& v : b.vertices_m) v.z() = 0.25;
+  const MeshDistanceIndex ia(a, "A"), ib(b, "B");
+  for (const auto& [from, to] : {std::pair{&ia, &ib}, std::pair{&ib, &ia}}) {
+    const HausdorffInterval bound = from->BoundDistanceTo(*to, 0.0, HausdorffBoundOptions{});
+    EXPECT_NEAR(bound.lower_m, 0.25, 1e-9);
+    // Refinement stops once the bound is within the tolerance (here 2 % of 0.25 m).
+    EXPECT_GE(bound.upper_m, 0.25 - 1e-9);
+    EXPECT_LE(bound.upper_m, 0.25 + 0.02 * 0.25 + 1e-9);
+    EXPECT_EQ(bound.unresolved_triangles, 0);
+  }
+}
+
+TEST(BoundDistanceTo, BracketsTheTrueDistanceWhereSamplingFallsShort) {
+  // A: a plane of two large triangles. B: a fine grid of the same plane with one vertex lifted by
+  // 2 m. A's farthest point from B lies under the bump, inside a face of A (not at a vertex of A):
+  // few samples miss it, the bound must not.
+  TriangleMesh a;
+  a.vertices_m = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}};
+  a.faces = {{0, 1, 2}, {0, 2, 3}};
+  TriangleMesh b = testing::TerrainGrid(11, 11, 1.0);
+  for (auto& v : b.vertices_m) v.z() = 0;
+  b.vertices_m[4 * 11 + 6].z() = 2.0;  // the bump at (6, 4), inside face {0, 1, 2} of A
+  const MeshDistanceIndex ia(a, "A"), ib(b, "B");
+  HausdorffOptions few;
+  few.samples_per_mesh = 20;
+  const double sampled = ia.MaxDistanceTo(ib, few);
+  HausdorffBoundOptions deep;
+  deep.max_depth = 10;  // A's triangles are 10 m across: pieces down to 1 cm near the bump
+  const HausdorffInterval bound = ia.BoundDistanceTo(ib, sampled, deep);
+  HausdorffOptions dense;
+  dense.samples_per_mesh = 400000;
+  const double dense_estimate = ia.MaxDistanceTo(ib, dense);
+  std::printf("A->B: 20 samples %.4f m, 400 k samples %.4f m, bound [%.4f, %.4f] m\n", sampled, dense_estimate,
+              bound.lower_m, bound.upper_m);
+  EXPECT_GE(bound.lower_m, sampled);
+  EXPECT_LE(bound.lower_m, bound.upper_m);
+  EXPECT_LE(dense_estimate, bound.upper_m + 1e-12);  // no point of A is beyond the upper bound
+  EXPECT_EQ(bound.unresolved_triangles, 0);
+  EXPECT_LE(bound.upper_m - bound.lower_m, std::max(0.001, 0.02 * bound.lower_m) + 1e-12);
+  EXPECT_GT(bound.lower_m, sampled + 0.05);  // the bound found what 20 samples missed
+  // B -> A: the bump's apex is a vertex of B, 2 m above A.
+  const HausdorffInterval back = ib.BoundDistanceTo(ia, 0.0, HausdorffBoundOptions{});
+  EXPECT_NEAR(back.lower_m, 2.0, 1e-9);
+  EXPECT_NEAR(back.upper_m, 2.0, 1e-9);
+  // The same at one thread.
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const HausdorffInterval serial = ia.BoundDistanceTo(ib, sampled, deep);
+  EXPECT_EQ(serial.lower_m, bound.lower_m);
+  EXPECT_EQ(serial.upper_m, bound.upper_m);
 }
 
 }  // namespace
