@@ -338,7 +338,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
   {
     StepTimer timer;
     PointFilterReport filter_report;
-    filtered = FilterPoints(points, PointFilterOptions{}, &filter_report);
+    filtered = FilterPoints(points, options.point_filter, &filter_report);
     Json step;
     step["step"] = "filter_points";
     step.update(filter_report.ToJson());
@@ -355,6 +355,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
     method = LooksLikeNadirCapture(filtered) ? SurfaceMethod::kHeightField : SurfaceMethod::kPoisson;
   }
   TriangleMesh mesh;
+  double poisson_resolution_m = 0;
   {
     StepTimer timer;
     Json step;
@@ -368,8 +369,11 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
     } else {
       PoissonOptions poisson;
       poisson.spacing_factor = defaults.poisson_spacing_factor;
+      if (options.trim) poisson.trim_factor = 0;  // the trim step below trims, against the local spacing
       PoissonReport surface_report;
       mesh = PoissonSurface(filtered, poisson, &surface_report);
+      // The mesher's facets are about this large: the trim cannot ask the surface to be closer.
+      poisson_resolution_m = surface_report.average_spacing_m * poisson.spacing_factor * poisson.radius_factor;
       step["step"] = "poisson";
       step.update(surface_report.ToJson());
     }
@@ -379,6 +383,29 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
   }
   if (mesh.num_faces() == 0) {
     throw InfeasibleError("mesh: the surface reconstruction produced no face");
+  }
+  if (options.trim) {
+    StepTimer timer;
+    SurfaceTrimReport trim_report;
+    SurfaceTrimOptions trim = *options.trim;
+    trim.min_spacing_m = std::max(trim.min_spacing_m, poisson_resolution_m);
+    if (method == SurfaceMethod::kHeightField) {
+      // The height field's vertices are the points themselves and its faces span only the hull: the
+      // distance tests would cut the sparse, clumped areas of a sparse SfM cloud into islands (measured
+      // on the Brighton Beach sample: 1,012 faces cut, 19 islands dropped). Stretched border triangles
+      // and spikes are still trimmed.
+      trim.far_factor = 0;
+      trim.border_factor = 0;
+    }
+    mesh = TrimSurfaceToData(mesh, filtered, trim, &trim_report);
+    Json step;
+    step["step"] = "trim";
+    step.update(trim_report.ToJson());
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
+  }
+  if (mesh.num_faces() == 0) {
+    throw InfeasibleError("mesh: no surface is left after trimming it to the points (see the report's steps)");
   }
   return FinishSurface(std::move(mesh), &filtered, options, std::move(report));
 }

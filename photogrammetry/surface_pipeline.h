@@ -1,7 +1,7 @@
 // The output half of `cinepath mesh`: points (or a given mesh) in local ENU metres → a cleaned,
 // simplified, coloured mesh + a JSON report of every step + the GLB bytes of scene.glb.
 //
-//   points ──► surface (2.5D height field | Poisson) ──► clean ──► decimate ──► colours ──► GLB
+//   points ──► filter ──► surface (2.5D height field | Poisson) ──► trim ──► clean ──► decimate ──► colours ──► GLB
 //   mesh   ───────────────────────────────────────────►  clean ──► decimate ──► colours ──► GLB
 //
 // Everything stays double precision in ENU until the GLB, which stores ENU (e, n, u) as glTF
@@ -17,6 +17,8 @@
 #include "photogrammetry/mesh_decimate.h"
 #include "photogrammetry/mesh_decimate_for_plan.h"
 #include "photogrammetry/point_cloud.h"
+#include "photogrammetry/surface_points.h"
+#include "photogrammetry/surface_trim.h"
 #include "photogrammetry/triangle_mesh.h"
 
 namespace cinepath::photogrammetry {
@@ -54,6 +56,11 @@ struct SurfacePipelineOptions {
   // (mesh_remesh.h); the reported Hausdorff error is then the remeshed mesh's. Unset: no remeshing.
   std::optional<double> remesh_edge_m;
 
+  // Point selection before surfacing (surface_points.h) and trimming after it (surface_trim.h).
+  // Unset trim: no trim step (the Poisson surface then keeps its own centroid-distance trim).
+  PointFilterOptions point_filter;
+  std::optional<SurfaceTrimOptions> trim = SurfaceTrimOptions{};
+
   bool draco = false;  // --draco: KHR_draco_mesh_compression in the GLB
 
   // Written verbatim into the glTF asset.extras and scene.extras (e.g. the geo origin
@@ -72,7 +79,10 @@ struct SurfacePipelineResult {
   TriangleMesh mesh;  // final mesh, ENU metres, colours when the input had them
   // One object per step, in order, e.g.
   // {"input": {...}, "steps": [{"step": "filter_points", "points_in", "points_out",
-  //   "removed_reprojection", "removed_short_track", "time_s"}, {"step": "height_field", ...},
+  //   "removed_reprojection", "removed_short_track", "removed_isolated", "removed_off_plane",
+  //   "criteria", "median_spacing_m", "max_off_plane_removed_m", "time_s"}, {"step": "height_field", ...},
+  //   {"step": "trim", "faces_far_from_data", "border_faces_unsupported", "border_faces_stretched",
+  //    "spike_vertices_flattened", "max_spike_height_m", "median_spacing_m", "criteria", ...},
   //   {"step": "clean", "degenerate_faces_removed", "duplicate_faces_removed",
   //    "non_manifold_vertices_split", "small_components_removed", "faces_in_small_components",
   //    "holes_filled", "isolated_vertices_removed", "faces_in", "faces_out", "time_s"},

@@ -1,0 +1,342 @@
+#include "photogrammetry/surface_trim.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <Eigen/Eigenvalues>
+
+#include "photogrammetry/cgal_point_search_internal.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+constexpr int kSmoothingNeighbours = 16;
+
+template <typename F>
+void ForEachIndex(size_t n, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 512), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) f(i);
+  });
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  return values[mid];
+}
+
+uint64_t EdgeKey(uint32_t a, uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(a) << 32) | b;
+}
+
+// The faces' edges, each with an id, and for every edge the faces around it.
+struct EdgeTable {
+  std::vector<std::array<uint32_t, 3>> face_edges;  // edge ids of face f (edge c: corners c, c + 1)
+  std::vector<uint32_t> offsets;                    // faces of edge e: faces[offsets[e] .. offsets[e + 1])
+  std::vector<uint32_t> faces;
+
+  explicit EdgeTable(const std::vector<std::array<uint32_t, 3>>& mesh_faces) {
+    std::vector<std::pair<uint64_t, uint32_t>> entries;
+    entries.reserve(3 * mesh_faces.size());
+    for (uint32_t f = 0; f < mesh_faces.size(); ++f) {
+      for (int c = 0; c < 3; ++c) entries.emplace_back(EdgeKey(mesh_faces[f][c], mesh_faces[f][(c + 1) % 3]), f);
+    }
+    std::sort(entries.begin(), entries.end());
+    face_edges.resize(mesh_faces.size());
+    faces.reserve(entries.size());
+    for (size_t i = 0; i < entries.size();) {
+      const uint32_t id = static_cast<uint32_t>(offsets.size());
+      offsets.push_back(static_cast<uint32_t>(faces.size()));
+      size_t j = i;
+      for (; j < entries.size() && entries[j].first == entries[i].first; ++j) {
+        const uint32_t f = entries[j].second;
+        faces.push_back(f);
+        for (int c = 0; c < 3; ++c) {
+          if (EdgeKey(mesh_faces[f][c], mesh_faces[f][(c + 1) % 3]) == entries[i].first) face_edges[f][c] = id;
+        }
+      }
+      i = j;
+    }
+    offsets.push_back(static_cast<uint32_t>(faces.size()));
+  }
+  size_t num_edges() const { return offsets.size() - 1; }
+};
+
+// The least-squares plane of `points`: centroid, unit normal, and whether the points span a plane.
+struct Plane {
+  Eigen::Vector3d centroid, normal;
+  bool valid = false;
+};
+Plane FitPlane(const std::vector<Eigen::Vector3d>& points) {
+  Plane plane;
+  if (points.size() < 3) return plane;
+  plane.centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : points) plane.centroid += p;
+  plane.centroid /= static_cast<double>(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) covariance += (p - plane.centroid) * (p - plane.centroid).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  plane.normal = solver.eigenvectors().col(0);
+  // Collinear neighbours (a strip one triangle wide) define no plane.
+  plane.valid = solver.eigenvalues()(1) > 1e-6 * std::max(solver.eigenvalues()(2), 1e-30);
+  return plane;
+}
+
+}  // namespace
+
+Json SurfaceTrimReport::ToJson() const {
+  Json j;
+  j["faces_in"] = faces_in;
+  j["faces_far_from_data"] = faces_far_from_data;
+  j["border_faces_unsupported"] = border_faces_unsupported;
+  j["border_faces_stretched"] = border_faces_stretched;
+  j["border_passes"] = border_passes;
+  j["spike_vertices_flattened"] = spike_vertices_flattened;
+  j["max_spike_height_m"] = RoundToDecimals(max_spike_height_m, 4);
+  j["faces_out"] = faces_out;
+  j["median_spacing_m"] = RoundToDecimals(median_spacing_m, 4);
+  Json criteria;
+  criteria["spacing_neighbours"] = options.spacing_neighbours;
+  criteria["min_spacing_m"] = RoundToDecimals(options.min_spacing_m, 4);
+  criteria["far_factor"] = options.far_factor;
+  criteria["border_factor"] = options.border_factor;
+  criteria["border_edge_factor"] = options.border_edge_factor;
+  criteria["spike_factor"] = options.spike_factor;
+  criteria["spike_min_m"] = options.spike_min_m;
+  criteria["spike_passes"] = options.spike_passes;
+  j["criteria"] = std::move(criteria);
+  return j;
+}
+
+TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& points, const SurfaceTrimOptions& options,
+                               SurfaceTrimReport* report_out) {
+  SurfaceTrimReport report;
+  report.options = options;
+  report.faces_in = static_cast<int64_t>(mesh.num_faces());
+  const size_t num_faces = mesh.num_faces();
+  const auto& v = mesh.vertices_m;
+
+  // Local spacing of every data point.
+  const internal::PointSearch search(points.positions_m);
+  std::vector<double> spacing(points.size(), 0.0);
+  const int k = std::max(1, options.spacing_neighbours);
+  if (search.size() > 1) {
+    ForEachIndex(points.size(), [&](size_t i) {
+      if (!points.positions_m[i].allFinite()) return;
+      double sum = 0;
+      int count = 0;
+      for (const auto& [d2, j] : search.Nearest(points.positions_m[i], k + 1)) {
+        if (j == i || count == k) continue;
+        sum += std::sqrt(d2);
+        ++count;
+      }
+      spacing[i] = count > 0 ? sum / count : 0.0;
+    });
+  }
+  // Smoothed: the median over each point's 16 nearest points (a clump of near-duplicate points or a
+  // lone stray point does not set the scale of its area), floored by the surface's own resolution.
+  {
+    std::vector<double> smoothed(points.size(), 0.0);
+    ForEachIndex(points.size(), [&](size_t i) {
+      if (!points.positions_m[i].allFinite()) return;
+      std::vector<double> around;
+      for (const auto& hit : search.Nearest(points.positions_m[i], kSmoothingNeighbours)) {
+        around.push_back(spacing[hit.second]);
+      }
+      smoothed[i] = std::max(Median(around), options.min_spacing_m);
+    });
+    spacing.swap(smoothed);
+  }
+  {
+    std::vector<double> finite;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (points.positions_m[i].allFinite()) finite.push_back(spacing[i]);
+    }
+    report.median_spacing_m = Median(finite);
+  }
+
+  // How far each vertex and each face centroid is from the data, in local spacings; each face's
+  // longest edge in local spacings.
+  std::vector<char> alive(num_faces, 1);
+  std::vector<double> support_ratio(num_faces, 0.0), edge_ratio(num_faces, 0.0);
+  if (search.size() > 0) {
+    auto ratio_at = [&](const Eigen::Vector3d& q, double* s_out) {
+      const auto nearest = search.Nearest(q, 1).front();
+      const double s = std::max(spacing[nearest.second], 1e-9);
+      if (s_out) *s_out = s;
+      return std::sqrt(nearest.first) / s;
+    };
+    std::vector<double> vertex_ratio(v.size(), 0.0), vertex_spacing(v.size(), 0.0);
+    ForEachIndex(v.size(), [&](size_t i) { vertex_ratio[i] = ratio_at(v[i], &vertex_spacing[i]); });
+    ForEachIndex(num_faces, [&](size_t f) {
+      const auto& t = mesh.faces[f];
+      const Eigen::Vector3d centroid = (v[t[0]] + v[t[1]] + v[t[2]]) / 3.0;
+      double ratio = ratio_at(centroid, nullptr), s = 0, longest = 0;
+      for (int c = 0; c < 3; ++c) {
+        ratio = std::max(ratio, vertex_ratio[t[c]]);
+        s = std::max(s, vertex_spacing[t[c]]);
+        longest = std::max(longest, (v[t[c]] - v[t[(c + 1) % 3]]).norm());
+      }
+      support_ratio[f] = ratio;
+      edge_ratio[f] = longest / s;
+    });
+  }
+
+  // 1. Far from the data, anywhere.
+  if (options.far_factor > 0) {
+    for (size_t f = 0; f < num_faces; ++f) {
+      if (support_ratio[f] > options.far_factor) {
+        alive[f] = 0;
+        ++report.faces_far_from_data;
+      }
+    }
+  }
+
+  // 2. Border peeling, one ring of border faces per pass.
+  if (options.border_factor > 0 || options.border_edge_factor > 0) {
+    const EdgeTable edges(mesh.faces);
+    std::vector<uint32_t> alive_around(edges.num_edges(), 0);
+    for (size_t f = 0; f < num_faces; ++f) {
+      if (!alive[f]) continue;
+      for (uint32_t e : edges.face_edges[f]) ++alive_around[e];
+    }
+    auto on_border = [&](uint32_t f) {
+      for (uint32_t e : edges.face_edges[f]) {
+        if (alive_around[e] == 1) return true;
+      }
+      return false;
+    };
+    auto unsupported = [&](uint32_t f) {
+      return options.border_factor > 0 && support_ratio[f] > options.border_factor;
+    };
+    auto stretched = [&](uint32_t f) {
+      return options.border_edge_factor > 0 && edge_ratio[f] > options.border_edge_factor;
+    };
+    std::vector<uint32_t> candidates;
+    for (uint32_t f = 0; f < num_faces; ++f) {
+      if (alive[f] && on_border(f)) candidates.push_back(f);
+    }
+    while (!candidates.empty() && report.border_passes < options.max_border_passes) {
+      std::vector<uint32_t> removed;
+      for (uint32_t f : candidates) {
+        if (!alive[f] || !on_border(f)) continue;
+        if (unsupported(f)) {
+          ++report.border_faces_unsupported;
+        } else if (stretched(f)) {
+          ++report.border_faces_stretched;
+        } else {
+          continue;
+        }
+        removed.push_back(f);
+      }
+      if (removed.empty()) break;
+      ++report.border_passes;
+      for (uint32_t f : removed) {
+        alive[f] = 0;
+        for (uint32_t e : edges.face_edges[f]) --alive_around[e];
+      }
+      // The next candidates: the faces that shared an edge with a removed face.
+      candidates.clear();
+      for (uint32_t f : removed) {
+        for (uint32_t e : edges.face_edges[f]) {
+          for (uint32_t i = edges.offsets[e]; i < edges.offsets[e + 1]; ++i) {
+            if (alive[edges.faces[i]]) candidates.push_back(edges.faces[i]);
+          }
+        }
+      }
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    }
+  }
+
+  // The kept faces, with the vertices they use (in their original order).
+  TriangleMesh out;
+  {
+    std::vector<int64_t> remap(v.size(), -1);
+    for (size_t f = 0; f < num_faces; ++f) {
+      if (!alive[f]) continue;
+      for (uint32_t i : mesh.faces[f]) remap[i] = 0;
+    }
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (remap[i] < 0) continue;
+      remap[i] = static_cast<int64_t>(out.vertices_m.size());
+      out.vertices_m.push_back(v[i]);
+      if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[i]);
+    }
+    for (size_t f = 0; f < num_faces; ++f) {
+      if (!alive[f]) continue;
+      const auto& t = mesh.faces[f];
+      out.faces.push_back(
+          {static_cast<uint32_t>(remap[t[0]]), static_cast<uint32_t>(remap[t[1]]), static_cast<uint32_t>(remap[t[2]])});
+    }
+  }
+
+  // 3. Spikes: every vertex against the plane of its ring (the 2-ring when the ring is too small to
+  // span a plane, as at a border corner), all measured on the same positions in each pass.
+  if (options.spike_factor > 0 && options.spike_passes > 0 && !out.faces.empty()) {
+    const size_t n = out.vertices_m.size();
+    std::vector<std::vector<uint32_t>> ring(n);
+    for (const auto& t : out.faces) {
+      for (int c = 0; c < 3; ++c) {
+        ring[t[c]].push_back(t[(c + 1) % 3]);
+        ring[t[c]].push_back(t[(c + 2) % 3]);
+      }
+    }
+    for (auto& r : ring) {
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+    }
+    for (int pass = 0; pass < options.spike_passes; ++pass) {
+      std::vector<Eigen::Vector3d> moved = out.vertices_m;
+      std::vector<double> height(n, 0.0);
+      ForEachIndex(n, [&](size_t i) {
+        std::vector<uint32_t> around = ring[i];
+        if (around.size() < 4) {
+          for (uint32_t j : ring[i]) around.insert(around.end(), ring[j].begin(), ring[j].end());
+          std::sort(around.begin(), around.end());
+          around.erase(std::unique(around.begin(), around.end()), around.end());
+          around.erase(std::remove(around.begin(), around.end(), static_cast<uint32_t>(i)), around.end());
+        }
+        std::vector<Eigen::Vector3d> q;
+        q.reserve(around.size());
+        for (uint32_t j : around) q.push_back(out.vertices_m[j]);
+        const Plane plane = FitPlane(q);
+        if (!plane.valid) return;
+        const Eigen::Vector3d& p = out.vertices_m[i];
+        const double h = (p - plane.centroid).dot(plane.normal);
+        const Eigen::Vector3d foot = p - h * plane.normal;
+        double radius = 0;  // mean distance, in the plane, from the foot to the ring
+        for (const auto& x : q) {
+          const Eigen::Vector3d d = x - foot;
+          radius += (d - d.dot(plane.normal) * plane.normal).norm();
+        }
+        radius /= static_cast<double>(q.size());
+        if (std::abs(h) > std::max(options.spike_min_m, options.spike_factor * radius)) {
+          moved[i] = foot;
+          height[i] = std::abs(h);
+        }
+      });
+      int64_t flattened = 0;
+      for (size_t i = 0; i < n; ++i) {
+        if (height[i] > 0) {
+          ++flattened;
+          report.max_spike_height_m = std::max(report.max_spike_height_m, height[i]);
+        }
+      }
+      if (flattened == 0) break;
+      report.spike_vertices_flattened += flattened;
+      out.vertices_m = std::move(moved);
+    }
+  }
+  report.faces_out = static_cast<int64_t>(out.num_faces());
+  if (report_out) *report_out = report;
+  return out;
+}
+
+}  // namespace cinepath::photogrammetry

@@ -1,0 +1,65 @@
+// Trimming a reconstructed surface to the support of its data, and flattening spikes.
+//
+// Poisson closes every surface and a Delaunay height field spans the convex hull, so both invent
+// surface where no point was measured: a skirt past every open border, and border triangles stretched
+// between stray points. This step removes what the points do not support and flattens what stands out
+// of the local surface, and reports every count with the criterion that caused it.
+//
+// Local spacing: at each data point, the mean distance to its `spacing_neighbours` nearest points
+// (a k-NN spacing: about 1.1 × the grid pitch of a regular grid for k = 6), then the median of that over
+// its 16 nearest points (so a clump of near-duplicates or a lone stray point does not set the scale),
+// and at least min_spacing_m (the surface's own resolution: a Poisson mesh's facets are about the
+// mesher's radius, its vertices that far from the points). Every criterion below is a multiple of the
+// local spacing of the data point nearest to where it is measured, so a sparse area is judged against
+// its own density.
+//
+// 1. Far from the data: a face whose centroid or a corner is farther from the nearest data point than
+//    far_factor × that point's spacing is removed, wherever it is.
+// 2. Border peeling: repeatedly, a face with an edge on the border is removed when its centroid or a
+//    corner is farther than border_factor × spacing from the data, or when its longest edge exceeds
+//    border_edge_factor × spacing (the largest spacing at its corners; a border triangle stretched between scattered
+//    points). Interior faces are left alone: a gap in the middle of the data is bridged, as the height field does.
+// 3. Spikes: a vertex whose distance to the least-squares plane of its one-ring neighbours exceeds
+//    max(spike_min_m, spike_factor × the mean length of its edges) is moved onto that plane (smoothed,
+//    not cut); up to spike_passes passes. The report keeps the largest such height found.
+#pragma once
+
+#include <cstdint>
+
+#include "core/json.h"
+#include "photogrammetry/point_cloud.h"
+#include "photogrammetry/triangle_mesh.h"
+
+namespace cinepath::photogrammetry {
+
+struct SurfaceTrimOptions {
+  int spacing_neighbours = 6;
+  double min_spacing_m = 0;
+  double far_factor = 3.0;          // 0 = skip step 1
+  double border_factor = 1.0;       // 0 = skip the distance test of step 2
+  double border_edge_factor = 4.0;  // 0 = skip the edge test of step 2
+  int max_border_passes = 1000;     // a bound on the peeling (each pass removes one ring of faces)
+  double spike_factor = 1.0;        // 0 = skip step 3
+  double spike_min_m = 0.25;
+  int spike_passes = 3;
+};
+
+struct SurfaceTrimReport {
+  int64_t faces_in = 0, faces_out = 0;
+  int64_t faces_far_from_data = 0;       // step 1
+  int64_t border_faces_unsupported = 0;  // step 2, distance test
+  int64_t border_faces_stretched = 0;    // step 2, edge test
+  int64_t border_passes = 0;
+  int64_t spike_vertices_flattened = 0;  // step 3 (a vertex flattened in two passes counts twice)
+  double max_spike_height_m = 0;         // largest distance to the ring plane among flattened vertices
+  double median_spacing_m = 0;           // median local spacing over the data points
+  SurfaceTrimOptions options;            // the criteria, as run
+  Json ToJson() const;
+};
+
+// `points` are the data the surface was built from (ENU metres). Vertices no face uses any more are
+// dropped; colours follow their vertices. Deterministic at any thread count.
+TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& points, const SurfaceTrimOptions& options,
+                               SurfaceTrimReport* report);
+
+}  // namespace cinepath::photogrammetry
