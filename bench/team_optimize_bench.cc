@@ -5,9 +5,9 @@
 // after. Times are the process's CPU seconds (std::clock): the solver runs on one thread, so they equal
 // the wall time on an idle machine and stay meaningful on a busy one.
 //   team_optimize_bench [--drones N]   (N = 1..4, default 4)
-#include <ctime>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <string>
 
 #include "core/json.h"

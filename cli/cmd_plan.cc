@@ -89,10 +89,11 @@ class PlanCommand : public Command {
     }
     for (const auto& c : plan.team.conflicts) {
       const bool separation = c.limit == "separation";
-      msg += "\n  " + range(c.start_time_s, c.end_time_s) + c.limit + ": drone \"" + c.other + "\" " +
-             (separation ? FormatSignificant(c.worst_value, 4) + " m from \"" + c.drone + "\" (< " +
-                               FormatSignificant(c.limit_value, 4) + " m)"
-                         : "in the shot of \"" + c.drone + "\" (" + FormatSignificant(c.worst_value, 4) + " px across)");
+      msg +=
+          "\n  " + range(c.start_time_s, c.end_time_s) + c.limit + ": drone \"" + c.other + "\" " +
+          (separation ? FormatSignificant(c.worst_value, 4) + " m from \"" + c.drone + "\" (< " +
+                            FormatSignificant(c.limit_value, 4) + " m)"
+                      : "in the shot of \"" + c.drone + "\" (" + FormatSignificant(c.worst_value, 4) + " px across)");
     }
     throw InfeasibleError(msg);
   }

@@ -119,8 +119,8 @@ std::vector<DroneProfile> MakeProfiles() {
       .dji_drone_enum = 68,                // [WPML]
       .dji_drone_sub_enum = 0,
       .dji_payload_enum = 0,
-      .body_radius_m = 0.24,  // [MINI4] 298 x 373 mm unfolded with propellers: half its diagonal
-      .min_separation_m = 5,  // assumed
+      .body_radius_m = 0.24,                         // [MINI4] 298 x 373 mm unfolded with propellers: half its diagonal
+      .min_separation_m = 5,                         // assumed
       .lens = FixedLens{.min_focal_length_mm = 6.7,  // [MINI4] 24 mm equivalent
                         .max_focal_length_mm = 6.7,
                         .min_f_number = 1.7,  // [MINI4] fixed aperture

@@ -393,8 +393,8 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
   if (!root.IsObject()) root.Fail("expected a cinepath plan (a JSON object)");
   const std::string schema = root["schema"].AsString();
   if (schema == kTeamPlanSchema) {
-    root["schema"].Fail("this plan holds several drones (\"" + schema +
-                        "\"); this step reads one flight (\"" + kPlanSchema + "\")");
+    root["schema"].Fail("this plan holds several drones (\"" + schema + "\"); this step reads one flight (\"" +
+                        kPlanSchema + "\")");
   }
   if (schema != kPlanSchema) {
     root["schema"].Fail("unsupported plan version \"" + schema + "\" (this cinepath reads \"" + kPlanSchema +

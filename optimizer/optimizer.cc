@@ -392,9 +392,10 @@ void PlanOptimizer::AddTeamTerms(size_t k, double max_deviation_m) {
     const TrajectorySample& o = other.samples[k];
     const double separation = other.separation_m[k];
     if (separation > 0 && (position - o.position_enu_m).norm() < separation + max_deviation_m + 1.0) {
-      AddSampleTerm("separation",
-                    new KeepOutCost{base, o.position_enu_m, 0.0, separation, options_.limit_margin, options_.weights.team},
-                    base, 1);
+      AddSampleTerm(
+          "separation",
+          new KeepOutCost{base, o.position_enu_m, 0.0, separation, options_.limit_margin, options_.weights.team}, base,
+          1);
     }
     // This drone in the other's live frame (the other's camera held), and the other in this drone's.
     for (const bool this_views : {false, true}) {
@@ -416,11 +417,11 @@ void PlanOptimizer::AddTeamTerms(size_t k, double max_deviation_m) {
           std::fabs(c.y()) > half_h * c.z() + reach) {
         continue;
       }
-      AddSampleTerm("out_of_shot",
-                    new OutOfShotCost{base, this_views, this_views ? body : viewer, camera_from_world, focal_mm,
-                                      image.width_mm, image.height_mm, body_radius, options_.limit_margin,
-                                      options_.weights.team},
-                    base, 1);
+      AddSampleTerm(
+          "out_of_shot",
+          new OutOfShotCost{base, this_views, this_views ? body : viewer, camera_from_world, focal_mm, image.width_mm,
+                            image.height_mm, body_radius, options_.limit_margin, options_.weights.team},
+          base, 1);
     }
   }
 }

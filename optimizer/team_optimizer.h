@@ -32,8 +32,8 @@ struct TeamOptimizeInput {
 };
 
 struct TeamOptimizeResult {
-  TeamPlan plan;  // optimized; team report and each flight's feasibility recomputed
-  Json report;    // one-drone plans: OptimizePlan's report; teams: {"team": {...}, "drones": [{name, ...}]}
+  TeamPlan plan;        // optimized; team report and each flight's feasibility recomputed
+  Json report;          // one-drone plans: OptimizePlan's report; teams: {"team": {...}, "drones": [{name, ...}]}
   std::string failure;  // empty when every limit holds, no team conflict remains and every subject is seen
 };
 

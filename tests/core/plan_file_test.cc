@@ -66,12 +66,20 @@ TEST(PlanFile, RoundTripsToTheSameBytes) {
 
 TEST(PlanFile, RefusesOtherVersionsAndNamesTheField) {
   Json j = PlanToJson(SmallPlan());
+  j["schema"] = "cinepath.plan/9";
+  try {
+    PlanFromJson(j, "plan.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("plan.json: schema: unsupported plan version \"cinepath.plan/9\"", 0), 0u);
+  }
+  // Version 2 (several drones) is known, but a one-flight reader says what it got.
   j["schema"] = "cinepath.plan/2";
   try {
     PlanFromJson(j, "plan.json");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("plan.json: schema: unsupported plan version \"cinepath.plan/2\"", 0), 0u);
+    EXPECT_EQ(std::string(e.what()).rfind("plan.json: schema: this plan holds several drones", 0), 0u) << e.what();
   }
   j = PlanToJson(SmallPlan());
   j["samples"][1]["time_s"] = 0.0;

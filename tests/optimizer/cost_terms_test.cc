@@ -149,12 +149,12 @@ TEST(CostTerms, OutOfShotGradient) {
   const Eigen::Vector3d c = camera_from_world * (b.position_enu_m - viewer);
   ASSERT_GT(c.z(), 30);
   // 25 x 14 mm at 50 mm: tan of the half angles 0.25 and 0.14.
-  std::unique_ptr<ceres::CostFunction> cost(Auto<OutOfShotCost, 1>(
-      new OutOfShotCost{b, false, viewer, camera_from_world, 50, 25, 14, 0.4, 0.02, 100}));
+  std::unique_ptr<ceres::CostFunction> cost(
+      Auto<OutOfShotCost, 1>(new OutOfShotCost{b, false, viewer, camera_from_world, 50, 25, 14, 0.4, 0.02, 100}));
   ExpectGradientsMatch(cost.get(), RandomKnots(11, 0.2));
   // Outside a narrow frame (1250 mm): no cost.
-  std::unique_ptr<ceres::CostFunction> away(Auto<OutOfShotCost, 1>(
-      new OutOfShotCost{b, false, viewer, camera_from_world, 1250, 25, 14, 0.4, 0.02, 100}));
+  std::unique_ptr<ceres::CostFunction> away(
+      Auto<OutOfShotCost, 1>(new OutOfShotCost{b, false, viewer, camera_from_world, 1250, 25, 14, 0.4, 0.02, 100}));
   ExpectGradientsMatch(away.get(), RandomKnots(12, 0.01), false);
   // This drone's camera (50 mm, its yaw, tilt and zoom free) sees a body held 30 m ahead.
   const Eigen::Vector3d ahead = b.position_enu_m + 30 * (b.world_from_camera * Eigen::Vector3d(0.1, 0.05, 1));

@@ -98,8 +98,8 @@ TEST(TeamOptimizer, ADroneInTheLiveShotIsMovedOutOfIt) {
   ASSERT_EQ(seen_before, 2u);  // b in a's shot for 0-5 s, a in b's for 5-10 s
   const TeamOptimizeResult out = OptimizeTeam(in, OptimizeOptions::ForQuality(OptimizeQuality::kStandard));
   for (const auto& c : out.plan.team.conflicts) {
-    ADD_FAILURE() << c.limit << " " << c.drone << " sees " << c.other << " " << c.start_time_s << "-"
-                  << c.end_time_s << " s, " << c.worst_value << " " << c.unit;
+    ADD_FAILURE() << c.limit << " " << c.drone << " sees " << c.other << " " << c.start_time_s << "-" << c.end_time_s
+                  << " s, " << c.worst_value << " " << c.unit;
   }
 }
 

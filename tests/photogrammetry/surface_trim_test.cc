@@ -102,7 +102,7 @@ PointCloud LCloud() {
   return cloud;
 }
 
-// Issue 14, part 1: the Poisson surface of an L of two bounded planes ends where the points end.
+// The Poisson surface of an L of two bounded planes ends where the points end.
 TEST(TrimSurfaceToData, PoissonSurfaceOfBoundedPlanesEndsWithinOneSpacingOfTheirBorder) {
   const PointCloud cloud = LCloud();
   SurfacePipelineOptions options;
@@ -144,7 +144,7 @@ TEST(TrimSurfaceToData, PoissonSurfaceOfBoundedPlanesEndsWithinOneSpacingOfTheir
             << " m, worst cover " << worst_cover_m << " m; " << DumpJson(*trim) << "\n";
 }
 
-// Issue 15: a height field with outliers injected (in the middle and along the border); no output
+// A height field with outliers injected (in the middle and along the border); no output
 // vertex strays from the true surface, on either surface path.
 TEST(TrimSurfaceToData, OutliersInAHeightFieldLeaveNoSpike) {
   PointCloud cloud = testing::TerrainCloud(50, 40, 1.0);
@@ -239,7 +239,7 @@ TEST(FilterPoints, KeepsAnOutlierFreeTerrainAndSaysWhyItDropsPoints) {
   EXPECT_EQ(report.ToJson()["criteria"]["neighbours"], 16);
 }
 
-// Issue 14: the same border check on the bundled Brighton Beach sample (the fixture copy of its
+// The same border check on the bundled Brighton Beach sample (the fixture copy of its
 // default COLMAP model): every vertex of the output's border lies within 1.25 local point spacings
 // of the data's border. A point is on the data's border when the directions (east, north) to its
 // neighbours within three median spacings leave an empty sector wider than 90° (the angle criterion

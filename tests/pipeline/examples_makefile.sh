@@ -10,7 +10,7 @@ trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 cp "$SRC/examples/Makefile" "$work/Makefile"
 cp "$SRC/data/brighton_beach/shots.json" "$work/shots.json"
-run() { make -C "$work" --no-print-directory ROOT="$SRC" CINEPATH="$CINEPATH" SHOTS="$work/shots.json" OUT=out "$@"; }
+run() { make -C "$work" --no-print-directory ROOT="$SRC" CINEPATH="$CINEPATH" SHOTS="$work/shots.json" TEAM_SHOTS="$SRC/examples/brighton_beach_team.json" OUT=out "$@"; }
 
 run -j2 > "$work/first.log" 2>&1 || { cat "$work/first.log"; fail "make -j2"; }
 for f in scene/scene.json scene/scene.glb plan.json optimized.json contact_sheet.png missions/mission.plan \

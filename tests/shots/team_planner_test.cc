@@ -145,8 +145,7 @@ TEST(PlanTeam, MatchedFocusSharesTheOutgoingSubjectAtTheCut) {
   EXPECT_LT(m.to_focus_error_dioptres, 1e-9);
 
   // Without match_focus, b stays on its own subject: a large error on hero.
-  const TeamPlan plain =
-      PlanDoc(TeamDoc(shots, R"([{"at_s": 0, "drone": "a"}, {"at_s": 10, "drone": "b"}])", actors));
+  const TeamPlan plain = PlanDoc(TeamDoc(shots, R"([{"at_s": 0, "drone": "a"}, {"at_s": 10, "drone": "b"}])", actors));
   EXPECT_TRUE(plain.team.focus_matches.empty());
   const auto& b_plain = plain.flights[1].plan.samples[300];
   const auto& b_matched = matched.flights[1].plan.samples[300];
@@ -193,8 +192,9 @@ TEST(PlanTeam, BadInputNamesTheJsonPath) {
 
   doc = TeamDoc(OrbitPair(50));
   doc["shots"][0].erase("drone");
-  ExpectInputError(doc, "shots.json: shots[0]: missing \"drone\": with \"drones\", every shot names the drone that "
-                        "flies it");
+  ExpectInputError(doc,
+                   "shots.json: shots[0]: missing \"drone\": with \"drones\", every shot names the drone that "
+                   "flies it");
 
   doc = TeamDoc(OrbitPair(50), R"([{"at_s": 0, "drone": "a"}, {"at_s": 25, "drone": "b"}])");
   ExpectInputError(doc, "shots.json: edit[1].at_s: cuts after the plan ends (20 s)");
