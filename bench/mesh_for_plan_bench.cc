@@ -253,8 +253,12 @@ int main(int argc, char** argv) {
                      {"min_allowed_error_m", RoundToDecimals(report.min_allowed_error_m, 6)},
                      {"max_allowed_error_m", RoundToDecimals(report.max_allowed_error_m, 6)},
                      {"tiles_seen", report.tiles_seen},
-                     {"tiles_unseen", report.tiles_unseen}};
+                     {"tiles_unseen", report.tiles_unseen},
+                     {"tiles_frozen", report.tiles_frozen},
+                     {"freeze_rounds", report.freeze_rounds},
+                     {"bound_met", report.bound_met}};
   out["uniform"] = {{"faces_out", static_cast<int64_t>(uniform_mesh.num_faces())},
+                    {"bound_met", uniform_px <= max_error_px},
                     {"worst_projected_px", RoundToDecimals(uniform_px, 4)},
                     {"goal_error_m", RoundToDecimals(uniform.max_error_m, 6)},
                     {"attempts", attempts + 1},

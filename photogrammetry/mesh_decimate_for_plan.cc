@@ -23,8 +23,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 double Uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
 // Every vertex plus `count` points on the faces, spread by area (seeded; the same points on any machine).
-std::vector<Eigen::Vector3d> SampleSurface(const TriangleMesh& mesh, int64_t count, uint32_t seed) {
+// `faces` gets the face each point lies on (a vertex: the first face using it, -1 for none).
+std::vector<Eigen::Vector3d> SampleSurface(const TriangleMesh& mesh, int64_t count, uint32_t seed,
+                                           std::vector<int64_t>* faces) {
   std::vector<Eigen::Vector3d> points(mesh.vertices_m.begin(), mesh.vertices_m.end());
+  faces->assign(mesh.num_vertices(), -1);
+  for (size_t f = mesh.num_faces(); f-- > 0;) {
+    for (uint32_t i : mesh.faces[f]) (*faces)[i] = static_cast<int64_t>(f);
+  }
   std::vector<double> cumulative(mesh.num_faces());
   double total = 0;
   for (size_t f = 0; f < mesh.num_faces(); ++f) {
@@ -36,6 +42,7 @@ std::vector<Eigen::Vector3d> SampleSurface(const TriangleMesh& mesh, int64_t cou
   if (!(total > 0) || count <= 0) return points;
   std::mt19937_64 rng(seed);
   points.reserve(points.size() + static_cast<size_t>(count));
+  faces->reserve(points.size() + static_cast<size_t>(count));
   for (int64_t k = 0; k < count; ++k) {
     const double at = Uniform01(rng) * total;
     const size_t f = std::min<size_t>(mesh.num_faces() - 1,
@@ -48,6 +55,7 @@ std::vector<Eigen::Vector3d> SampleSurface(const TriangleMesh& mesh, int64_t cou
     const auto& t = mesh.faces[f];
     const Eigen::Vector3d& a = mesh.vertices_m[t[0]];
     points.push_back(a + r1 * (mesh.vertices_m[t[1]] - a) + r2 * (mesh.vertices_m[t[2]] - a));
+    faces->push_back(static_cast<int64_t>(f));
   }
   return points;
 }
@@ -170,14 +178,22 @@ TriangleMesh FromKeptIndices(const TriangleMesh& mesh, const std::vector<uint32_
   return out;
 }
 
-// Passes 1 and 2 with the main tiles' goals.
+// Passes 1 and 2 with the main tiles' goals. A frozen tile's faces go through both passes untouched:
+// left out of pass 1, and out of pass 2's input (its edge with them is then an open border, which
+// meshopt_SimplifyLockBorder keeps in place); they come last in the output, in tile order.
 std::vector<uint32_t> SimplifyTwoPasses(const TriangleMesh& mesh, const Positions& positions, const TileGrid& grid,
-                                        const std::vector<double>& goal_error_m) {
+                                        const std::vector<double>& goal_error_m, const std::vector<char>& frozen) {
   const int n = grid.n;
   std::vector<std::vector<uint32_t>> tiles(static_cast<size_t>(n) * n);
   for (const auto& f : mesh.faces) {
     auto& tile = tiles[grid.Tile(Centroid(mesh, f))];
     tile.insert(tile.end(), f.begin(), f.end());
+  }
+  std::vector<uint32_t> untouched;
+  for (size_t t = 0; t < tiles.size(); ++t) {
+    if (!frozen[t]) continue;
+    untouched.insert(untouched.end(), tiles[t].begin(), tiles[t].end());
+    tiles[t].clear();
   }
   const std::vector<uint32_t> pass1 = SimplifyTiles(positions, tiles, goal_error_m, mesh.num_vertices());
 
@@ -189,18 +205,23 @@ std::vector<uint32_t> SimplifyTwoPasses(const TriangleMesh& mesh, const Position
     auto& tile = shifted[grid.ShiftedTile(c)];
     tile.insert(tile.end(), pass1.begin() + k, pass1.begin() + k + 3);
   }
+  // Each shifted tile to the smallest goal of the main tiles it overlaps that are not frozen.
   std::vector<double> shifted_goal(shifted.size(), kInf);
   for (int sy = 0; sy < m; ++sy) {
     for (int sx = 0; sx < m; ++sx) {
       double& goal = shifted_goal[static_cast<size_t>(sy) * m + sx];
       for (int iy = std::max(0, sy - 1); iy <= std::min(n - 1, sy); ++iy) {
         for (int ix = std::max(0, sx - 1); ix <= std::min(n - 1, sx); ++ix) {
-          goal = std::min(goal, goal_error_m[static_cast<size_t>(iy) * n + ix]);
+          const size_t t = static_cast<size_t>(iy) * n + ix;
+          if (!frozen[t]) goal = std::min(goal, goal_error_m[t]);
         }
       }
+      if (std::isinf(goal)) goal = 0;  // no faces come from a frozen tile; no goal needed
     }
   }
-  return SimplifyTiles(positions, shifted, shifted_goal, mesh.num_vertices());
+  std::vector<uint32_t> out = SimplifyTiles(positions, shifted, shifted_goal, mesh.num_vertices());
+  out.insert(out.end(), untouched.begin(), untouched.end());
+  return out;
 }
 
 }  // namespace
@@ -218,7 +239,7 @@ void ForPlanOptions::Check() const {
 
 ProjectedErrorProbe::ProjectedErrorProbe(const TriangleMesh& original, const std::vector<PlanCamera>& cameras,
                                          int64_t face_samples, uint32_t seed)
-    : points_(SampleSurface(original, face_samples, seed)), views_(FinestViews(points_, cameras)) {
+    : points_(SampleSurface(original, face_samples, seed, &faces_)), views_(FinestViews(points_, cameras)) {
   for (const PointView& v : views_) points_seen_ += v.seen() ? 1 : 0;
 }
 
@@ -309,9 +330,11 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
     tiles[t].iy = static_cast<int>(t / n);
     tiles[t].allowed_error_m = kInf;
   }
+  // A point is the tile's of the face it lies on (its faces go through that tile's simplification).
   std::vector<int> point_tile(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
-    const int t = grid.Tile(points[i]);
+    const int64_t face = probe.faces()[i];
+    const int t = face >= 0 ? grid.Tile(Centroid(mesh, mesh.faces[static_cast<size_t>(face)])) : grid.Tile(points[i]);
     point_tile[i] = t;
     const PointView& v = views[i];
     if (!v.seen()) continue;
@@ -349,19 +372,23 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
 
   // The search, per tile, for the largest goal (allowed error × factor) whose points stay within
   // their budget: factors grow ×4 while a tile stays within, shrink ×1/4 while over, then bisect
-  // (geometrically) between the largest factor seen within and the smallest seen over. The last 3
-  // rounds settle: each tile takes its largest factor seen within (0 where none was), and a tile still
-  // over has its factor halved (0 in the last round) until every tile is within.
+  // (geometrically) between the largest factor seen within and the smallest seen over. Then each tile
+  // takes its largest factor seen within (0 where none was), and the rounds go on: a tile still over
+  // has its factor halved, then zeroed, then is frozen (its faces are the original ones, so its points
+  // are on the output), until every tile is within or frozen. Steps only go forward, so this ends.
   const Positions positions = MakePositions(mesh);
   std::vector<double> factor(num_tiles, 1.0), within(num_tiles, 0.0), over(num_tiles, kInf);
+  std::vector<char> frozen(num_tiles, 0);
+  std::vector<int> stage(num_tiles, 0);  // settling steps taken: halved, zeroed
   std::vector<uint32_t> kept;
   std::vector<double> share(num_tiles);
   bool settling = false;
-  for (int round = 0; round < options.max_rounds; ++round) {
+  for (int round = 0;; ++round) {
     std::vector<double> goal(num_tiles);
     for (size_t t = 0; t < num_tiles; ++t) goal[t] = tiles[t].allowed_error_m * factor[t];
-    kept = SimplifyTwoPasses(mesh, positions, grid, goal);
+    kept = SimplifyTwoPasses(mesh, positions, grid, goal, frozen);
     r.rounds = round + 1;
+    if (std::find(frozen.begin(), frozen.end(), 1) != frozen.end()) ++r.freeze_rounds;
     const std::vector<double> distance = probe.DistancesM(FromKeptIndices(mesh, kept));
     std::fill(share.begin(), share.end(), 0.0);
     for (size_t i = 0; i < points.size(); ++i) {
@@ -371,7 +398,7 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
     r.worst_unseen_error_m = 0;
     int worst_point = -1;
     for (size_t t = 0; t < num_tiles; ++t) {
-      tiles[t].goal_error_m = goal[t];
+      tiles[t].goal_error_m = frozen[t] ? 0.0 : goal[t];
       tiles[t].worst_projected_px = 0;
     }
     for (size_t i = 0; i < points.size(); ++i) {
@@ -387,17 +414,27 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
       }
     }
     r.worst_camera_sample = worst_point >= 0 ? options.cameras[views[worst_point].camera].sample_index : -1;
-    const bool all_within = *std::max_element(share.begin(), share.end()) <= 1.0;
-    if (settling && all_within) break;
-    if (round + 1 == options.max_rounds) break;
-    const bool settle_now = !settling && round + 1 >= options.max_rounds - 3;
-    for (size_t t = 0; t < num_tiles; ++t) {
-      const bool ok = share[t] <= 1.0;
-      if (settling) {
-        if (!ok) factor[t] = round + 2 >= options.max_rounds ? 0.0 : factor[t] * 0.5;
-        continue;
+    if (settling) {
+      // A tile still over has its factor halved, then zeroed, then is frozen (a goal of 0 is no bound
+      // with meshoptimizer 0.18); stop when no tile is over (or none has a step left).
+      bool changed = false;
+      for (size_t t = 0; t < num_tiles; ++t) {
+        if (share[t] <= 1.0 || frozen[t]) continue;
+        if (stage[t] < 2 && factor[t] > 0) {
+          factor[t] = stage[t] == 0 ? factor[t] * 0.5 : 0.0;
+          ++stage[t];
+          changed = true;
+        } else if (options.freeze) {
+          frozen[t] = 1;
+          changed = true;
+        }
       }
-      if (ok) {
+      if (!changed) break;
+      continue;
+    }
+    const bool settle_now = round + 1 >= options.max_rounds - 3;
+    for (size_t t = 0; t < num_tiles; ++t) {
+      if (share[t] <= 1.0) {
         within[t] = std::max(within[t], factor[t]);
       } else {
         over[t] = std::min(over[t], factor[t]);
@@ -418,9 +455,11 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   TriangleMesh out = FromKeptIndices(mesh, kept);
   for (const auto& f : out.faces) ++tiles[grid.Tile(Centroid(out, f))].faces_out;
   r.faces_out = static_cast<int64_t>(out.num_faces());
+  for (size_t t = 0; t < num_tiles; ++t) tiles[t].frozen = frozen[t] != 0;
   for (const ForPlanTile& t : tiles) {
     if (t.faces_in == 0 && t.faces_out == 0) continue;
     (t.seen ? r.tiles_seen : r.tiles_unseen) += 1;
+    r.tiles_frozen += t.frozen ? 1 : 0;
     r.tiles.push_back(t);
   }
   if (report) *report = std::move(r);
@@ -440,7 +479,10 @@ Json ForPlanReport::ToJson() const {
   j["worst_camera_sample"] = worst_camera_sample;
   j["worst_unseen_error_m"] = round(worst_unseen_error_m, 6);
   j["bound_met"] = bound_met;
+  j["tiles_frozen"] = tiles_frozen;
   j["rounds"] = rounds;
+  j["freeze_rounds"] = freeze_rounds;
+  j["frozen"] = "a tile over the bound after the search keeps its original faces";
   j["points_measured"] = points_measured;
   j["points_seen"] = points_seen;
   j["min_allowed_error_m"] = round(min_allowed_error_m, 6);
@@ -467,6 +509,7 @@ Json ForPlanReport::ToJson() const {
     e["allowed_error_m"] = round(t.allowed_error_m, 6);
     e["goal_error_m"] = round(t.goal_error_m, 6);
     e["worst_projected_px"] = round(t.worst_projected_px, 4);
+    e["frozen"] = t.frozen;
     list.push_back(std::move(e));
   }
   j["tiles"] = std::move(list);
