@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# `cinepath mesh --for-plan` through the binary on the bundled sample: mesh, plan on it, mesh again for
+# the plan. The for-plan run exits 0 and its scene.json's decimate step carries the for-plan report with
+# the bound met (worst projected error <= --max-error-px), fewer faces than the plain run's mesh, and the
+# frozen-tile count matching the tiles marked frozen. Then bad input: a plan about another origin and a
+# missing plan file each exit 2 with an error naming the file, and write nothing.
+#   mesh_for_plan.sh CINEPATH SOURCE_DIR
+set -euo pipefail
+CINEPATH=$1
+SRC=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+sample=$SRC/data/brighton_beach
+mesh() {  # mesh OUT [ARGS...]
+  local out=$1
+  shift
+  "$CINEPATH" mesh --colmap "$sample/colmap/sparse_default" --refs "$sample/refs_gps.txt" \
+    --images "$sample/images" --quality draft --draco --no-timestamp -o "$out" "$@"
+}
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+
+mesh "$work/scene" 2> /dev/null
+"$CINEPATH" plan "$sample/shots.json" --scene "$work/scene/scene.json" -o "$work/plan.json"
+mesh "$work/for_plan" --for-plan "$work/plan.json" --max-error-px 0.5 2> "$work/for_plan.err" ||
+  fail "mesh --for-plan exited $?: $(cat "$work/for_plan.err")"
+[[ -f "$work/for_plan/scene.glb" ]] || fail "no scene.glb"
+
+python3 - "$work/scene/scene.json" "$work/for_plan/scene.json" << 'PY'
+import json, sys
+
+def decimate(path):
+    steps = json.load(open(path))["surface"]["steps"]
+    found = [s for s in steps if s.get("step") == "decimate"]
+    assert len(found) == 1, f"{path}: {len(found)} decimate steps"
+    return found[0]
+
+plain, for_plan = decimate(sys.argv[1]), decimate(sys.argv[2])
+assert for_plan["goal"] == "for_plan", for_plan["goal"]
+report = for_plan["for_plan"]
+print(f"faces {plain['faces_out']} -> {report['faces_out']}, worst {report['worst_projected_px']} px, "
+      f"bound_met {report['bound_met']}, frozen tiles {report['tiles_frozen']}, rounds {report['rounds']}")
+assert report["max_error_px"] == 0.5, report["max_error_px"]
+assert report["bound_met"] is True, report["bound_met"]
+assert 0 < report["worst_projected_px"] <= report["max_error_px"], report["worst_projected_px"]
+assert report["worst_unseen_error_m"] <= report["unseen_allowed_error_m"]
+assert report["faces_in"] == plain["faces_out"], (report["faces_in"], plain["faces_out"])
+assert report["faces_out"] == for_plan["faces_out"] < plain["faces_out"], (for_plan["faces_out"], plain["faces_out"])
+tiles = report["tiles"]
+assert sum(t["faces_out"] for t in tiles) == report["faces_out"]
+assert sum(1 for t in tiles if t["frozen"]) == report["tiles_frozen"]
+assert all(t["faces_out"] == t["faces_in"] for t in tiles if t["frozen"]), "a frozen tile lost faces"
+assert all(t["worst_projected_px"] <= report["max_error_px"] for t in tiles)
+PY
+
+# A plan about another origin (1.1 km north) and a missing plan file: exit 2, the file named, no output.
+python3 -c 'import json, sys; p = json.load(open(sys.argv[1])); p["origin"]["lat_deg"] += 0.01; json.dump(p, open(sys.argv[2], "w"))' \
+  "$work/plan.json" "$work/other_origin.json"
+for case in "other_origin.json:origin: " "no_such_plan.json:cannot read"; do
+  plan=$work/${case%%:*}
+  expected=${case#*:}
+  status=0
+  mesh "$work/bad" --for-plan "$plan" 2> "$work/bad.err" || status=$?
+  [[ $status -eq 2 ]] || fail "$plan: exit $status, expected 2"
+  grep -qF "$plan: $expected" "$work/bad.err" || fail "$plan: expected \"$plan: $expected\" in: $(cat "$work/bad.err")"
+  [[ ! -e "$work/bad" ]] || fail "$plan: output written: $(ls -R "$work/bad")"
+done
+echo "mesh_for_plan: ok"
