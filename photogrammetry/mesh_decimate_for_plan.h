@@ -18,14 +18,14 @@
 // meshoptimizer's error is its own estimate and passes 1 and 2 add up, so each tile's goal (allowed ×
 // a factor) is searched over the rounds: ×4 while its points stay within aim × the bound, ×1/4 while
 // over, then bisected; then each tile takes the largest factor found within. A tile still over after
-// that is frozen: its original faces pass through both passes untouched (in pass 2 they are left out of
-// the simplifier's input, so that its edge with them is an open border that meshopt_SimplifyLockBorder
-// keeps in place), and the rounds go on, freezing, until every tile is within or frozen. meshoptimizer
-// 0.18 makes collapses it rates at ~zero error that move the surface by centimetres, so a goal of 0 is
-// no bound; a frozen tile is (its points lie on faces of the output). A point is the tile's of the face
-// it lies on (a vertex: of its first face), so that freezing the tile of a point over the bound puts
-// the point back on the output. The outer border of an open mesh stays in place. Deterministic at any
-// thread count.
+// that (its factor halved, then zeroed, a round each) is frozen: its original faces pass through both
+// passes untouched (in pass 2 they are left out of the simplifier's input, so that its edge with them
+// is an open border that meshopt_SimplifyLockBorder keeps in place), and the rounds go on, freezing,
+// until every tile is within or frozen. meshoptimizer 0.18 makes collapses it rates at ~zero error that
+// move the surface by centimetres, so a goal of 0 is no bound; a frozen tile is (its points lie on
+// faces of the output). A point is the tile's of the face it lies on (a vertex: of its first face), so
+// that freezing the tile of a point over the bound puts the point back on the output. The outer border
+// of an open mesh stays in place. Deterministic at any thread count.
 #pragma once
 
 #include <cstdint>
