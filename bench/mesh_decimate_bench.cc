@@ -7,7 +7,7 @@
 //
 //   mesh_decimate_bench --list-methods      (the names --methods takes, one per line)
 //   mesh_decimate_bench [--faces N] [--ratio R | --ratios R1,R2,...] [--samples S] [--methods a,b,...]
-//                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C]
+//                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C] [--qem-rcond R]
 //                       [--presets] [--export-raw FILE] [--import-raw FILE --label NAME]
 //                       [--end-to-end] [--defects] [--threads T]
 //
@@ -295,6 +295,8 @@ int main(int argc, char** argv) {
       qem.placement_reach = std::stod(next());
     else if (arg == "--qem-normal-cos")
       qem.min_normal_cos = std::stod(next());
+    else if (arg == "--qem-rcond")
+      qem.placement_rcond = std::stod(next());
     else if (arg == "--ratio")
       ratio = std::stod(next());
     else if (arg == "--samples")

@@ -1,11 +1,11 @@
 // Mesh decimation to a face budget (or an error bound), with the simplifiers measured in
-// bench/mesh_decimate_bench.cc: meshoptimizer, a partitioned parallel meshoptimizer (draft and
-// standard presets: the fastest, ~30× faster than CGAL), CGAL Garland–Heckbert (plane — the final
-// preset: the most accurate at moderate budgets — and probabilistic plane policies) and OpenMesh's
-// quadric Decimater, and qem_tiled: quadric collapse with optimal placement in parallel tiles
-// (mesh_decimate_qem.cc; more accurate than OpenMesh with 16 tiles, ~13× faster with 256 — not yet
-// both at once, bench/RESULTS.md). The outer border of an open (terrain) mesh is kept in place by
-// every method.
+// bench/mesh_decimate_bench.cc: meshoptimizer, a partitioned parallel meshoptimizer (the fastest,
+// ~30× faster than CGAL; used for error goals), CGAL Garland–Heckbert (plane — the final preset: the
+// most accurate at light budgets — and probabilistic plane policies), OpenMesh's quadric Decimater,
+// and qem_tiled (draft and standard presets): quadric collapse with optimal placement in parallel
+// tiles (mesh_decimate_qem.cc; below OpenMesh's error from 10 % to 80 % of the bench terrain, 3–15×
+// faster, bench/RESULTS.md). The outer border of an open (terrain) mesh is kept in place by every
+// method.
 #pragma once
 
 #include <cstdint>
@@ -38,6 +38,9 @@ struct QemOptions {
   double placement_reach = 2.0;   // the quadric minimum is used within this many edge lengths of the edge
   double min_normal_cos = 0.5;    // a collapse may turn no remaining face's normal further than this
   int tiles = 256;                // fixed grid of tiles (same mesh on any machine); small tiles fit the cache
+  // Eigenvalues of the quadric at most this fraction of its largest leave their direction at the edge's
+  // midpoint (the quadric does not pin it down); bench/RESULTS.md has the measured choice.
+  double placement_rcond = 1e-3;
 };
 }  // namespace internal
 

@@ -68,21 +68,37 @@ Eigen::Vector3d BestOnSegment(const Quadric& q, const Eigen::Vector3d& a, const 
   return a + t * (b - a);
 }
 
-// Where an edge (a, b) collapses to: the quadric's minimum when the 3×3 system is well conditioned
-// and the minimum lies near the edge (within `reach` edge lengths of its midpoint); otherwise the
-// best point on the edge.
-Eigen::Vector3d Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double reach) {
+// Where an edge (a, b) collapses to. The quadric's minimum is solved in the eigenbasis of its 3×3
+// part, and the directions the quadric does not pin down (eigenvalue at most rcond × the largest) are
+// held at the edge's midpoint, as in Lindstrom's out-of-core simplification (P. Lindstrom, "Out-of-Core
+// Simplification of Large Polygonal Models", SIGGRAPH 2000). On a near-flat patch the quadric fixes
+// only the height; a plain inverse slides the point far along the plane on rounding noise. The point
+// is used when it lies within `reach` edge lengths of the midpoint and beats the best point on the
+// edge; otherwise the best point on the edge.
+Eigen::Vector3d Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double reach,
+                          double rcond) {
   Eigen::Matrix3d m;
   m << q.q[0], q.q[1], q.q[2], q.q[1], q.q[4], q.q[5], q.q[2], q.q[5], q.q[7];
   const Eigen::Vector3d rhs(-q.q[3], -q.q[6], -q.q[8]);
-  const double det = m.determinant();
-  const double scale = m.trace();
-  if (scale > 0 && std::abs(det) > 1e-9 * scale * scale * scale) {
-    const Eigen::Vector3d p = m.inverse() * rhs;
-    const Eigen::Vector3d mid = 0.5 * (a + b);
-    if (p.allFinite() && (p - mid).squaredNorm() <= reach * reach * (b - a).squaredNorm()) return p;
+  const Eigen::Vector3d mid = 0.5 * (a + b);
+  const Eigen::Vector3d on_edge = BestOnSegment(q, a, b);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(m);
+  const Eigen::Vector3d& lambda = eigen.eigenvalues();  // ascending
+  if (!(lambda(2) > 0)) return on_edge;
+  const Eigen::Vector3d residual = rhs - m * mid;
+  Eigen::Vector3d p = mid;
+  for (int k = 0; k < 3; ++k) {
+    if (lambda(k) > rcond * lambda(2)) {
+      const Eigen::Vector3d axis = eigen.eigenvectors().col(k);
+      p += axis * (axis.dot(residual) / lambda(k));
+    }
   }
-  return BestOnSegment(q, a, b);
+  if (p.allFinite() && (p - mid).squaredNorm() <= reach * reach * (b - a).squaredNorm() &&
+      q.Error(p) < q.Error(on_edge)) {
+    return p;
+  }
+  return on_edge;
 }
 
 struct HeapEntry {
@@ -200,7 +216,7 @@ class QemSimplifier {
     } else if (locked_[b]) {
       *p = pos_[b];
     } else if (options_.optimal_placement) {
-      *p = Placement(q, pos_[a], pos_[b], options_.placement_reach);
+      *p = Placement(q, pos_[a], pos_[b], options_.placement_reach, options_.placement_rcond);
     } else {
       *p = q.Error(pos_[a]) <= q.Error(pos_[b]) ? pos_[a] : pos_[b];
     }
