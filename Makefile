@@ -49,8 +49,9 @@ bench: build
 # make test; the mesh and render paths they drive run in the golden and preview tests), and two
 # scene-sized for-plan unit tests (the smaller for-plan tests run the same code).
 SANITIZE_ENV = UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:suppressions=$(CURDIR)/tests/sanitizers/ubsan.supp
-SANITIZE_SKIP = interop\.|colmap_runner|repo\.|pipeline\.examples_makefile|viewer\.browser|pipeline\.killed\.|\
-  pipeline\.determinism|pipeline\.texture_determinism|DecimateForPlan\.AnOrbit|DecimateForPlan\.ATileOverTheBound
+SANITIZE_SLOW = viewer\.browser|pipeline\.killed\.|pipeline\.determinism|pipeline\.texture_determinism
+SANITIZE_SLOW_UNITS = DecimateForPlan\.AnOrbit|DecimateForPlan\.ATileOverTheBound
+SANITIZE_SKIP = interop\.|colmap_runner|repo\.|pipeline\.examples_makefile|$(SANITIZE_SLOW)|$(SANITIZE_SLOW_UNITS)
 BINARY_TESTS = golden\.|pipeline\.|preview\.|optimizer\.|viewer\.|extremes\.
 sanitize: deps
 	@cmake --preset sanitize > build-sanitize.configure.log 2>&1 || (cat build-sanitize.configure.log; exit 1)
