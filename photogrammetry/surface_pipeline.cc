@@ -394,11 +394,11 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
     if (method == SurfaceMethod::kHeightField) {
       // The height field's vertices are the points themselves and its faces span only the hull: the
       // distance tests would cut the sparse, clumped areas of a sparse SfM cloud into islands (measured
-      // on the Brighton Beach sample: 1,012 faces cut, 19 islands dropped). Stretched border triangles
-      // and spikes are not: the height field trims its own long-edge triangles, and peeling its border
-      // by edge length ate 31 rings (389 faces) into the sample's sparse rocks, where the shot list's
-      // keeper stands, and took the ground from under the plan's first sample. Spikes are still
-      // flattened.
+      // on the Brighton Beach sample: 1,012 faces cut, 19 islands dropped). Nor is its border peeled
+      // ring by ring: the height field trims its own long-edge triangles, and peeling its border by
+      // edge length ate 31 rings (389 faces) into the sample's sparse rocks, where the shot list's
+      // keeper stands, and took the ground from under the plan's first sample. Stretched ears and
+      // strays (a few passes at most) are still cut and spikes still flattened.
       trim.far_factor = 0;
       trim.border_factor = 0;
       trim.border_edge_factor = 0;

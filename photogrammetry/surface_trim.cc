@@ -97,6 +97,8 @@ Json SurfaceTrimReport::ToJson() const {
   j["border_faces_unsupported"] = border_faces_unsupported;
   j["border_faces_stretched"] = border_faces_stretched;
   j["border_passes"] = border_passes;
+  j["border_ears_cut"] = border_ears_cut;
+  j["ear_passes"] = ear_passes;
   j["spike_vertices_flattened"] = spike_vertices_flattened;
   j["max_spike_height_m"] = RoundToDecimals(max_spike_height_m, 4);
   j["faces_out"] = faces_out;
@@ -107,6 +109,8 @@ Json SurfaceTrimReport::ToJson() const {
   criteria["far_factor"] = options.far_factor;
   criteria["border_factor"] = options.border_factor;
   criteria["border_edge_factor"] = options.border_edge_factor;
+  criteria["ear_edge_factor"] = options.ear_edge_factor;
+  criteria["max_ear_passes"] = options.max_ear_passes;
   criteria["spike_factor"] = options.spike_factor;
   criteria["spike_min_m"] = options.spike_min_m;
   criteria["spike_passes"] = options.spike_passes;
@@ -198,19 +202,25 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
     }
   }
 
-  // 2. Border peeling, one ring of border faces per pass.
-  if (options.border_factor > 0 || options.border_edge_factor > 0) {
+  // 2. Border peeling, one ring of border faces per pass; then 2b, stretched ears.
+  const bool peel = options.border_factor > 0 || options.border_edge_factor > 0;
+  const bool cut_ears = options.ear_edge_factor > 0 && options.max_ear_passes > 0;
+  if (peel || cut_ears) {
     const EdgeTable edges(mesh.faces);
     std::vector<uint32_t> alive_around(edges.num_edges(), 0);
     for (size_t f = 0; f < num_faces; ++f) {
       if (!alive[f]) continue;
       for (uint32_t e : edges.face_edges[f]) ++alive_around[e];
     }
-    auto on_border = [&](uint32_t f) {
-      for (uint32_t e : edges.face_edges[f]) {
-        if (alive_around[e] == 1) return true;
-      }
-      return false;
+    auto border_edges = [&](uint32_t f) {
+      int count = 0;
+      for (uint32_t e : edges.face_edges[f]) count += alive_around[e] == 1;
+      return count;
+    };
+    auto on_border = [&](uint32_t f) { return border_edges(f) > 0; };
+    auto remove = [&](uint32_t f) {
+      alive[f] = 0;
+      for (uint32_t e : edges.face_edges[f]) --alive_around[e];
     };
     auto unsupported = [&](uint32_t f) {
       return options.border_factor > 0 && support_ratio[f] > options.border_factor;
@@ -219,8 +229,10 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
       return options.border_edge_factor > 0 && edge_ratio[f] > options.border_edge_factor;
     };
     std::vector<uint32_t> candidates;
-    for (uint32_t f = 0; f < num_faces; ++f) {
-      if (alive[f] && on_border(f)) candidates.push_back(f);
+    if (peel) {
+      for (uint32_t f = 0; f < num_faces; ++f) {
+        if (alive[f] && on_border(f)) candidates.push_back(f);
+      }
     }
     while (!candidates.empty() && report.border_passes < options.max_border_passes) {
       std::vector<uint32_t> removed;
@@ -237,10 +249,7 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
       }
       if (removed.empty()) break;
       ++report.border_passes;
-      for (uint32_t f : removed) {
-        alive[f] = 0;
-        for (uint32_t e : edges.face_edges[f]) --alive_around[e];
-      }
+      for (uint32_t f : removed) remove(f);
       // The next candidates: the faces that shared an edge with a removed face.
       candidates.clear();
       for (uint32_t f : removed) {
@@ -252,6 +261,50 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
       }
       std::sort(candidates.begin(), candidates.end());
       candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    }
+    // 2b. Stretched ears and stray border vertices, all measured on the same border in each pass.
+    if (cut_ears) {
+      std::vector<uint32_t> vertex_offsets(v.size() + 1, 0), vertex_faces(3 * num_faces);
+      for (const auto& t : mesh.faces) {
+        for (uint32_t i : t) ++vertex_offsets[i + 1];
+      }
+      for (size_t i = 0; i < v.size(); ++i) vertex_offsets[i + 1] += vertex_offsets[i];
+      {
+        std::vector<uint32_t> next(vertex_offsets.begin(), vertex_offsets.end() - 1);
+        for (uint32_t f = 0; f < num_faces; ++f) {
+          for (uint32_t i : mesh.faces[f]) vertex_faces[next[i]++] = f;
+        }
+      }
+      auto stretched_ear = [&](uint32_t f) { return edge_ratio[f] > options.ear_edge_factor; };
+      // A border vertex with one or two faces, both stretched: a stray point the surface reached out to.
+      // (Not more faces: in an arm of stretched triangles every vertex would be a stray, and the cut would
+      // run its whole length in one pass.)
+      auto stray = [&](uint32_t i) {
+        int count = 0;
+        bool border = false;
+        for (uint32_t k = vertex_offsets[i]; k < vertex_offsets[i + 1]; ++k) {
+          const uint32_t f = vertex_faces[k];
+          if (!alive[f]) continue;
+          if (!stretched_ear(f) || ++count > 2) return false;
+          border = border || on_border(f);
+        }
+        return count > 0 && border;
+      };
+      while (report.ear_passes < options.max_ear_passes) {
+        std::vector<char> cut(num_faces, 0);
+        for (uint32_t f = 0; f < num_faces; ++f) {
+          if (!alive[f] || !stretched_ear(f)) continue;
+          const auto& t = mesh.faces[f];
+          cut[f] = border_edges(f) >= 2 || stray(t[0]) || stray(t[1]) || stray(t[2]);
+        }
+        const int64_t count = std::count(cut.begin(), cut.end(), 1);
+        if (count == 0) break;
+        ++report.ear_passes;
+        report.border_ears_cut += count;
+        for (uint32_t f = 0; f < num_faces; ++f) {
+          if (cut[f]) remove(f);
+        }
+      }
     }
   }
 

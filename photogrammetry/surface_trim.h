@@ -19,6 +19,12 @@
 //    corner is farther than border_factor × spacing from the data, or when its longest edge exceeds
 //    border_edge_factor × spacing (the largest spacing at its corners; a border triangle stretched between scattered
 //    points). Interior faces are left alone: a gap in the middle of the data is bridged, as the height field does.
+//    2b. Ears and strays: a face whose longest edge exceeds ear_edge_factor × spacing is removed when
+//    two or more of its edges are on the border (an ear: it hangs from the surface by one edge or
+//    none), or when one of its corners is a stray, a border vertex with one or two faces, both that
+//    stretched (a lone point the surface reached out to). Up to max_ear_passes passes, so the cut
+//    reaches a few triangles in and never peels ring after ring: the part of step 2 that stays safe on
+//    a sparse cloud's clumpy border, where peeling eats into the data.
 // 3. Spikes: a vertex whose distance to the least-squares plane of its one-ring neighbours exceeds
 //    max(spike_min_m, spike_factor × the mean length of its edges) is moved onto that plane (smoothed,
 //    not cut); up to spike_passes passes. The report keeps the largest such height found.
@@ -39,6 +45,8 @@ struct SurfaceTrimOptions {
   double border_factor = 1.0;       // 0 = skip the distance test of step 2
   double border_edge_factor = 4.0;  // 0 = skip the edge test of step 2
   int max_border_passes = 1000;     // a bound on the peeling (each pass removes one ring of faces)
+  double ear_edge_factor = 4.0;     // 0 = skip step 2b
+  int max_ear_passes = 3;           // a bound on step 2b (each pass cuts what is an ear or stray then)
   double spike_factor = 1.0;        // 0 = skip step 3
   double spike_min_m = 0.25;
   int spike_passes = 3;
@@ -50,6 +58,8 @@ struct SurfaceTrimReport {
   int64_t border_faces_unsupported = 0;  // step 2, distance test
   int64_t border_faces_stretched = 0;    // step 2, edge test
   int64_t border_passes = 0;
+  int64_t border_ears_cut = 0;  // step 2b
+  int64_t ear_passes = 0;
   int64_t spike_vertices_flattened = 0;  // step 3 (a vertex flattened in two passes counts twice)
   double max_spike_height_m = 0;         // largest distance to the ring plane among flattened vertices
   double median_spacing_m = 0;           // median local spacing over the data points

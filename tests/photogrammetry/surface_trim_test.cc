@@ -217,6 +217,68 @@ TEST(TrimSurfaceToData, StretchedBorderTrianglesArePeeledAndSpikesFlattened) {
   EXPECT_EQ(out.colors_rgb.size(), out.num_vertices());
 }
 
+// The height-field path's trim: no distance test and no peeling, only ears and strays, a bounded number
+// of passes. A flat 20 × 20 grid (1 m) with an ear (one triangle out to a lone point 8 m east), a fan
+// (two triangles out to another lone point) and an arm of five stretched quads (12 m long, 1 m wide) out
+// to the west, each of its corners a clump of points 0.3 m across, so that the arm is stretched against
+// its own data: the ear and the fan go, the arm loses its tip, a few triangles a pass, and not more.
+TEST(TrimSurfaceToData, StretchedEarsAndStraysGoInABoundedNumberOfPasses) {
+  TriangleMesh mesh = testing::TerrainGrid(20, 20, 1.0);
+  PointCloud points;
+  for (auto& v : mesh.vertices_m) {
+    v.z() = 0;
+    points.positions_m.push_back(v);
+  }
+  const size_t grid_faces = mesh.num_faces();
+  auto add_vertex = [&](const Eigen::Vector3d& p, bool clump) {
+    mesh.vertices_m.push_back(p);
+    mesh.colors_rgb.push_back({0, 0, 0});
+    points.positions_m.push_back(p);
+    for (int k = 0; clump && k < 8; ++k) {
+      const double angle = k * M_PI / 4;
+      points.positions_m.push_back(p + 0.15 * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0));
+    }
+    return static_cast<uint32_t>(mesh.vertices_m.size() - 1);
+  };
+  auto grid = [](uint32_t i, uint32_t j) { return i + 20 * j; };
+  const uint32_t ear = add_vertex({27.0, 2.5, -3.0}, false);
+  mesh.faces.push_back({grid(19, 2), ear, grid(19, 3)});
+  const uint32_t fan = add_vertex({26.0, 9.5, 0.0}, false);
+  mesh.faces.push_back({grid(19, 9), fan, grid(19, 10)});
+  mesh.faces.push_back({grid(19, 8), fan, grid(19, 9)});
+  uint32_t south = grid(0, 14), north = grid(0, 15);
+  constexpr int kArmQuads = 5;
+  for (int q = 1; q <= kArmQuads; ++q) {
+    const uint32_t s = add_vertex({-12.0 * q, 14.0, 0.0}, true), n = add_vertex({-12.0 * q, 15.0, 0.0}, true);
+    mesh.faces.push_back({south, n, north});
+    mesh.faces.push_back({south, s, n});
+    south = s;
+    north = n;
+  }
+  SurfaceTrimOptions options;
+  options.far_factor = 0;  // as on the height-field path
+  options.border_factor = 0;
+  options.border_edge_factor = 0;
+  options.spike_factor = 0;
+  SurfaceTrimReport report;
+  TriangleMesh out = TrimSurfaceToData(mesh, points, options, &report);
+  EXPECT_EQ(report.ear_passes, options.max_ear_passes);
+  const int64_t arm_cut = report.border_ears_cut - 3;  // the ear and the fan's two triangles go in the first pass
+  EXPECT_GE(arm_cut, options.max_ear_passes);          // at least the tip triangle in every pass
+  EXPECT_LE(arm_cut, 2 * options.max_ear_passes);      // at most the tip quad in every pass
+  EXPECT_EQ(report.faces_out, static_cast<int64_t>(grid_faces + 2 * kArmQuads) - arm_cut);
+  for (const auto& v : out.vertices_m) {
+    EXPECT_LT(v.x(), 19.5) << "the ear or the fan is left: " << v.transpose();
+    EXPECT_GT(v.x(), -12.0 * kArmQuads + 0.5) << "the arm's tip is left: " << v.transpose();
+  }
+  EXPECT_EQ(out.colors_rgb.size(), out.num_vertices());
+  // Switched off, nothing is cut.
+  options.max_ear_passes = 0;
+  out = TrimSurfaceToData(mesh, points, options, &report);
+  EXPECT_EQ(report.faces_out, static_cast<int64_t>(mesh.num_faces()));
+  EXPECT_EQ(report.border_ears_cut, 0);
+}
+
 TEST(FilterPoints, KeepsAnOutlierFreeTerrainAndSaysWhyItDropsPoints) {
   PointCloud cloud = testing::TerrainCloud(40, 40, 1.0);
   PointFilterReport report;
@@ -309,6 +371,34 @@ TEST(TrimSurfaceToData, BrightonBeachBorderStaysWithinOneSpacingOfThePointsBorde
             << " farther than 1.25 local spacings from the points' border (worst " << worst_ratio
             << " spacings); median spacing " << median_spacing_m << " m\n";
   EXPECT_EQ(beyond, 0u);
+
+  // No stretched ear is left: a face with two edges on the border whose longest edge exceeds 4 local
+  // spacings (the spacing of the point nearest each corner; the largest of the three). The sample had
+  // one, 10.4 m long, hanging from the arm of points over the water.
+  std::map<std::pair<uint32_t, uint32_t>, int> edge_uses;
+  for (const auto& f : result.mesh.faces) {
+    for (int k = 0; k < 3; ++k) ++edge_uses[std::minmax(f[k], f[(k + 1) % 3])];
+  }
+  auto corner_spacing = [&](const Eigen::Vector3d& q) {
+    size_t best = 0;
+    for (size_t i = 1; i < n; ++i) {
+      if ((points.positions_m[i] - q).squaredNorm() < (points.positions_m[best] - q).squaredNorm()) best = i;
+    }
+    return spacing[best];
+  };
+  double worst_ear_ratio = 0;
+  for (const auto& f : result.mesh.faces) {
+    int open = 0;
+    double longest = 0, s = 0;
+    for (int k = 0; k < 3; ++k) {
+      open += edge_uses[std::minmax(f[k], f[(k + 1) % 3])] == 1;
+      longest = std::max(longest, (result.mesh.vertices_m[f[k]] - result.mesh.vertices_m[f[(k + 1) % 3]]).norm());
+      s = std::max(s, corner_spacing(result.mesh.vertices_m[f[k]]));
+    }
+    if (open >= 2) worst_ear_ratio = std::max(worst_ear_ratio, longest / s);
+  }
+  std::cerr << "Brighton: the most stretched ear left is " << worst_ear_ratio << " local spacings long\n";
+  EXPECT_LT(worst_ear_ratio, 4.0);
 }
 
 }  // namespace
