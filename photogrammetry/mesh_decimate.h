@@ -41,6 +41,11 @@ struct QemOptions {
   // Eigenvalues of the quadric at most this fraction of its largest leave their direction at the edge's
   // midpoint (the quadric does not pin it down); bench/RESULTS.md has the measured choice.
   double placement_rcond = 1e-3;
+  // The pass after the tiles works on the faces within ceil(final_band_rings / √keep) rings of the
+  // tiles' cuts (its outer border locked), where the tiles left the full density; keep is the budget's
+  // share of the faces (the lighter the budget, the coarser the tiles' faces next to the band, and the
+  // wider it must be to take their share). 0 = on every merged face.
+  double final_band_rings = 4;
 };
 }  // namespace internal
 

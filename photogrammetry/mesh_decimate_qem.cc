@@ -1,7 +1,7 @@
 // Quadric edge collapse with optimal vertex placement (Garland & Heckbert, "Surface Simplification
 // Using Quadric Error Metrics", SIGGRAPH 1997), run on fixed tiles in parallel with the tiles' cut
-// edges locked, then one pass over the merged tiles that carries every vertex's accumulated
-// quadric: internal::DecimateQemTiled in mesh_decimate.h.
+// edges locked, then one pass over the band around the cuts (where the tiles kept every face) that
+// carries every vertex's accumulated quadric: internal::DecimateQemTiled in mesh_decimate.h.
 //
 // Why hand-written: the installed meshoptimizer (0.18) only collapses a vertex onto a neighbour (no
 // placement option: meshopt_SimplifyPrune, meshopt_SimplifyPermissive and position updates came in
@@ -459,6 +459,43 @@ Piece Simplify(const std::vector<Eigen::Vector3d>& positions, const std::vector<
   return piece;
 }
 
+// Splits the tiles' merged faces into those within `rings` rings of a cut vertex (one in the faces of
+// two or more tiles) and the rest, each in the tiles' order.
+void SplitCutBand(const std::vector<Piece>& pieces, size_t n, int rings, std::vector<std::array<uint32_t, 3>>* band,
+                  std::vector<std::array<uint32_t, 3>>* rest) {
+  constexpr uint32_t kNoTile = 0xffffffffu;
+  std::vector<uint32_t> tile_of(n, kNoTile);
+  std::vector<char> near(n, 0);  // a cut vertex, then a vertex of a band face
+  for (uint32_t p = 0; p < pieces.size(); ++p) {
+    for (const auto& t : pieces[p].faces) {
+      for (uint32_t v : t) {
+        if (tile_of[v] == kNoTile) {
+          tile_of[v] = p;
+        } else if (tile_of[v] != p) {
+          near[v] = 1;
+        }
+      }
+    }
+  }
+  std::vector<const std::array<uint32_t, 3>*> faces;
+  for (const Piece& piece : pieces) {
+    for (const auto& t : piece.faces) faces.push_back(&t);
+  }
+  std::vector<char> in_band(faces.size(), 0);
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<size_t> added;
+    for (size_t f = 0; f < faces.size(); ++f) {
+      const auto& t = *faces[f];
+      if (!in_band[f] && (near[t[0]] || near[t[1]] || near[t[2]])) added.push_back(f);
+    }
+    for (size_t f : added) {
+      in_band[f] = 1;
+      for (uint32_t v : *faces[f]) near[v] = 1;
+    }
+  }
+  for (size_t f = 0; f < faces.size(); ++f) (in_band[f] ? band : rest)->push_back(*faces[f]);
+}
+
 }  // namespace
 
 TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions,
@@ -523,19 +560,41 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   } else {
     merged = std::move(valid);
   }
+  // The last pass: over the band around the cuts, where the tiles kept every face; the faces outside it
+  // are already at the tiles' ratio and stay as they are.
+  std::vector<std::array<uint32_t, 3>> outside;
+  if (tiles.size() > 1 && options.final_band_rings > 0) {
+    std::vector<std::array<uint32_t, 3>> band;
+    const int rings = static_cast<int>(std::ceil(options.final_band_rings / std::sqrt(std::max(keep_ratio, 1e-4))));
+    SplitCutBand(pieces, n, rings, &band, &outside);
+    if (target_faces > static_cast<int64_t>(outside.size())) {
+      merged = std::move(band);
+      target_faces -= static_cast<int64_t>(outside.size());
+    } else {
+      outside.clear();  // the band alone cannot meet the target: every face takes part
+    }
+  }
   std::vector<uint32_t> scratch(n);
-  const Piece final_piece =
+  Piece final_piece =
       Simplify(positions, tiles.size() > 1 ? &quadrics : nullptr, merged, target_faces, -1.0, options, scratch);
+  for (size_t k = 0; k < final_piece.vertices.size(); ++k)
+    positions[final_piece.vertices[k]] = final_piece.positions[k];
+  final_piece.faces.insert(final_piece.faces.begin(), outside.begin(), outside.end());
+
+  // The surviving vertices in their input order, then the faces.
   TriangleMesh out;
   std::vector<uint32_t>& remap = scratch;
-  out.vertices_m.reserve(final_piece.vertices.size());
-  for (size_t k = 0; k < final_piece.vertices.size(); ++k) {
-    remap[final_piece.vertices[k]] = static_cast<uint32_t>(k);
+  std::vector<char> used(n, 0);
+  for (const auto& t : final_piece.faces) {
+    for (uint32_t v : t) used[v] = 1;
+  }
+  for (uint32_t g = 0; g < n; ++g) {
+    if (!used[g]) continue;
+    remap[g] = static_cast<uint32_t>(out.vertices_m.size());
     // A vertex that never moved keeps its input coordinates exactly ((v − c) + c need not be v).
-    const uint32_t g = final_piece.vertices[k];
-    const bool moved = final_piece.positions[k] != Eigen::Vector3d(mesh.vertices_m[g] - center);
-    out.vertices_m.push_back(moved ? Eigen::Vector3d(final_piece.positions[k] + center) : mesh.vertices_m[g]);
-    if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[final_piece.vertices[k]]);
+    const bool moved = positions[g] != Eigen::Vector3d(mesh.vertices_m[g] - center);
+    out.vertices_m.push_back(moved ? Eigen::Vector3d(positions[g] + center) : mesh.vertices_m[g]);
+    if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[g]);
   }
   out.faces.reserve(final_piece.faces.size());
   for (const auto& t : final_piece.faces) out.faces.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
