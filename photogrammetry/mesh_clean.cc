@@ -24,6 +24,7 @@
 
 #include "core/error.h"
 #include "photogrammetry/cgal_mesh_internal.h"
+#include "photogrammetry/union_find.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -80,20 +81,6 @@ bool FillableHole(bool outer, int64_t edges, double perimeter_m, const MeshClean
 using VertexIndex = SurfaceMesh::Vertex_index;
 using FaceIndex = SurfaceMesh::Face_index;
 using HalfedgeIndex = SurfaceMesh::Halfedge_index;
-
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t Find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void Unite(uint32_t a, uint32_t b) {
-    a = Find(a);
-    b = Find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 bool SameCyclicOrder(const std::array<size_t, 3>& polygon, const std::array<uint32_t, 3>& face,
                      const std::vector<size_t>& original_of_point) {

@@ -10,23 +10,10 @@
 
 #include "core/error.h"
 #include "photogrammetry/texture_view_selection.h"
+#include "photogrammetry/union_find.h"
 
 namespace cinepath::photogrammetry {
 namespace {
-
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t Find(uint32_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  }
-  void Join(uint32_t a, uint32_t b) {
-    a = Find(a);
-    b = Find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smaller index is the root: deterministic
-  }
-};
 
 int Ceil(double x) { return int(std::ceil(x - 1e-9)); }
 
@@ -72,7 +59,7 @@ TextureAtlas BuildTextureAtlas(const TriangleMesh& mesh, const std::vector<Textu
   // Charts: faces of one photo joined across their shared edges.
   UnionFind components(n);
   for (const auto& [a, b] : FaceEdgeNeighbours(mesh)) {
-    if (label[a] >= 0 && label[a] == label[b]) components.Join(a, b);
+    if (label[a] >= 0 && label[a] == label[b]) components.Unite(a, b);
   }
   std::vector<int> chart_of_root(n, -1);
   std::vector<std::array<Eigen::Vector2d, 3>> corner_px(n);
