@@ -190,15 +190,21 @@ TEST(TrimSurfaceToData, OutliersInAHeightFieldLeaveNoSpike) {
   }
 }
 
+// A flat 20 × 20 grid at 1 m, z = 0, and its vertices as the data points.
+void FlatGridAndItsPoints(TriangleMesh* mesh, PointCloud* points) {
+  *mesh = testing::TerrainGrid(20, 20, 1.0);
+  for (auto& v : mesh->vertices_m) {
+    v.z() = 0;
+    points->positions_m.push_back(v);
+  }
+}
+
 TEST(TrimSurfaceToData, StretchedBorderTrianglesArePeeledAndSpikesFlattened) {
   // A flat 20 × 20 grid (1 m) plus one stray point 6 m east of its border, joined to it by two long
   // triangles, and one vertex raised 3 m inside.
-  TriangleMesh mesh = testing::TerrainGrid(20, 20, 1.0);
+  TriangleMesh mesh;
   PointCloud points;
-  for (auto& v : mesh.vertices_m) {
-    v.z() = 0;
-    points.positions_m.push_back(v);
-  }
+  FlatGridAndItsPoints(&mesh, &points);
   const uint32_t stray = static_cast<uint32_t>(mesh.vertices_m.size());
   mesh.vertices_m.emplace_back(25.0, 9.5, 4.0);
   mesh.colors_rgb.push_back({0, 0, 0});
@@ -223,12 +229,9 @@ TEST(TrimSurfaceToData, StretchedBorderTrianglesArePeeledAndSpikesFlattened) {
 // to the west, each of its corners a clump of points 0.3 m across, so that the arm is stretched against
 // its own data: the ear and the fan go, the arm loses its tip, a few triangles a pass, and not more.
 TEST(TrimSurfaceToData, StretchedEarsAndStraysGoInABoundedNumberOfPasses) {
-  TriangleMesh mesh = testing::TerrainGrid(20, 20, 1.0);
+  TriangleMesh mesh;
   PointCloud points;
-  for (auto& v : mesh.vertices_m) {
-    v.z() = 0;
-    points.positions_m.push_back(v);
-  }
+  FlatGridAndItsPoints(&mesh, &points);
   const size_t grid_faces = mesh.num_faces();
   auto add_vertex = [&](const Eigen::Vector3d& p, bool clump) {
     mesh.vertices_m.push_back(p);
