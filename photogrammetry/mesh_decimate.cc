@@ -83,30 +83,12 @@ std::vector<uint32_t> SimplifyCompact(const MeshoptInput& in, const std::vector<
   return kept;
 }
 
-TriangleMesh FromKeptIndices(const TriangleMesh& mesh, const std::vector<uint32_t>& indices) {
-  std::vector<int64_t> remap(mesh.num_vertices(), -1);
-  for (uint32_t i : indices) remap[i] = 0;
-  TriangleMesh out;
-  for (size_t i = 0; i < mesh.num_vertices(); ++i) {
-    if (remap[i] < 0) continue;
-    remap[i] = static_cast<int64_t>(out.vertices_m.size());
-    out.vertices_m.push_back(mesh.vertices_m[i]);
-    if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[i]);
-  }
-  out.faces.reserve(indices.size() / 3);
-  for (size_t k = 0; k + 2 < indices.size(); k += 3) {
-    out.faces.push_back({static_cast<uint32_t>(remap[indices[k]]), static_cast<uint32_t>(remap[indices[k + 1]]),
-                         static_cast<uint32_t>(remap[indices[k + 2]])});
-  }
-  return out;
-}
-
 TriangleMesh DecimateMeshopt(const TriangleMesh& mesh, const DecimateOptions& options, double* error_m) {
   const MeshoptInput in = MakeMeshoptInput(mesh);
   const float scale = meshopt_simplifyScale(in.positions.data(), in.positions.size() / 3, 3 * sizeof(float));
   const std::vector<uint32_t> kept =
       MeshoptSimplify(in, in.indices, options.target_faces, options.max_error_m, scale, error_m);
-  return FromKeptIndices(mesh, kept);
+  return internal::FromKeptIndices(mesh, kept);
 }
 
 // Tiles on a grid over the xy bounding box of the face centroids; each tile is simplified on its
@@ -154,7 +136,7 @@ TriangleMesh DecimateMeshoptPartitioned(const TriangleMesh& mesh, const Decimate
   for (const auto& s : simplified) merged.insert(merged.end(), s.begin(), s.end());
   const std::vector<uint32_t> kept =
       SimplifyCompact(in, merged, options.target_faces, options.max_error_m, scale, error_m, scratch.local());
-  return FromKeptIndices(mesh, kept);
+  return internal::FromKeptIndices(mesh, kept);
 }
 
 using OmMesh = OpenMesh::TriMesh_ArrayKernelT<>;
@@ -208,6 +190,24 @@ TriangleMesh DecimateOpenMesh(const TriangleMesh& mesh, int64_t target_faces) {
 
 }  // namespace
 
+TriangleMesh internal::FromKeptIndices(const TriangleMesh& mesh, const std::vector<uint32_t>& indices) {
+  std::vector<int64_t> remap(mesh.num_vertices(), -1);
+  for (uint32_t i : indices) remap[i] = 0;
+  TriangleMesh out;
+  for (size_t i = 0; i < mesh.num_vertices(); ++i) {
+    if (remap[i] < 0) continue;
+    remap[i] = static_cast<int64_t>(out.vertices_m.size());
+    out.vertices_m.push_back(mesh.vertices_m[i]);
+    if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[i]);
+  }
+  out.faces.reserve(indices.size() / 3);
+  for (size_t k = 0; k + 2 < indices.size(); k += 3) {
+    out.faces.push_back({static_cast<uint32_t>(remap[indices[k]]), static_cast<uint32_t>(remap[indices[k + 1]]),
+                         static_cast<uint32_t>(remap[indices[k + 2]])});
+  }
+  return out;
+}
+
 const char* DecimationMethodName(DecimationMethod method) {
   switch (method) {
     case DecimationMethod::kMeshoptimizer: return "meshoptimizer";
@@ -251,7 +251,7 @@ TriangleMesh DecimateMesh(const TriangleMesh& mesh, const DecimateOptions& optio
   TriangleMesh out;
   const bool has_goal = options.target_faces > 0 || options.max_error_m > 0;
   if (!has_goal || (options.target_faces > 0 && options.target_faces >= s.faces_in)) {
-    out = FromKeptIndices(mesh, MakeMeshoptInput(mesh).indices);
+    out = internal::FromKeptIndices(mesh, MakeMeshoptInput(mesh).indices);
     s.simplifier_error_m = 0;
   } else {
     switch (options.method) {

@@ -74,6 +74,9 @@ TriangleMesh DecimateCgal(const TriangleMesh& mesh, int64_t target_faces, bool p
 // In mesh_decimate_qem.cc.
 TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions,
                               const QemOptions& options);
+// In mesh_decimate.cc: the mesh of the triangles `indices` (three vertex ids each) of `mesh`, with the
+// vertices they use, in their input order, and their colours.
+TriangleMesh FromKeptIndices(const TriangleMesh& mesh, const std::vector<uint32_t>& indices);
 }  // namespace internal
 
 }  // namespace cinepath::photogrammetry

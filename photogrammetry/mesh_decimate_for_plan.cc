@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "photogrammetry/mesh_decimate.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -158,24 +159,6 @@ std::vector<uint32_t> SimplifyTiles(const Positions& positions, const std::vecto
   std::vector<uint32_t> merged;
   for (const auto& k : kept) merged.insert(merged.end(), k.begin(), k.end());
   return merged;
-}
-
-TriangleMesh FromKeptIndices(const TriangleMesh& mesh, const std::vector<uint32_t>& indices) {
-  std::vector<int64_t> remap(mesh.num_vertices(), -1);
-  for (uint32_t i : indices) remap[i] = 0;
-  TriangleMesh out;
-  for (size_t i = 0; i < mesh.num_vertices(); ++i) {
-    if (remap[i] < 0) continue;
-    remap[i] = static_cast<int64_t>(out.vertices_m.size());
-    out.vertices_m.push_back(mesh.vertices_m[i]);
-    if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[i]);
-  }
-  out.faces.reserve(indices.size() / 3);
-  for (size_t k = 0; k + 2 < indices.size(); k += 3) {
-    out.faces.push_back({static_cast<uint32_t>(remap[indices[k]]), static_cast<uint32_t>(remap[indices[k + 1]]),
-                         static_cast<uint32_t>(remap[indices[k + 2]])});
-  }
-  return out;
 }
 
 // Passes 1 and 2 with the main tiles' goals. A frozen tile's faces go through both passes untouched:
@@ -389,7 +372,7 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
     kept = SimplifyTwoPasses(mesh, positions, grid, goal, frozen);
     r.rounds = round + 1;
     if (std::find(frozen.begin(), frozen.end(), 1) != frozen.end()) ++r.freeze_rounds;
-    const std::vector<double> distance = probe.DistancesM(FromKeptIndices(mesh, kept));
+    const std::vector<double> distance = probe.DistancesM(internal::FromKeptIndices(mesh, kept));
     std::fill(share.begin(), share.end(), 0.0);
     for (size_t i = 0; i < points.size(); ++i) {
       share[point_tile[i]] = std::max(share[point_tile[i]], distance[i] / point_allowed_m[i]);
@@ -452,7 +435,7 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
     if (settle_now) settling = true;
   }
   r.bound_met = r.worst_projected_px <= options.max_error_px && r.worst_unseen_error_m <= r.unseen_allowed_error_m;
-  TriangleMesh out = FromKeptIndices(mesh, kept);
+  TriangleMesh out = internal::FromKeptIndices(mesh, kept);
   for (const auto& f : out.faces) ++tiles[grid.Tile(Centroid(out, f))].faces_out;
   r.faces_out = static_cast<int64_t>(out.num_faces());
   for (size_t t = 0; t < num_tiles; ++t) tiles[t].frozen = frozen[t] != 0;
