@@ -441,17 +441,7 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
 
-  FrameSettings settings;
-  settings.width_px = width;
-  settings.height_px = height;
-  settings.preset = PresetFor(options.quality);
-  if (options.max_samples) settings.preset.max_samples = *options.max_samples;
-  if (options.min_samples) {
-    settings.preset.min_samples = *options.min_samples;
-    settings.preset.max_samples = std::max(settings.preset.max_samples, *options.min_samples);
-  }
-  settings.exposure = options.exposure;
-  settings.iso = options.iso;
+  const FrameSettings settings = SettingsFor(options, width, height);
 
   std::unique_ptr<VideoWriter> video;
   if (options.video) {
