@@ -82,6 +82,24 @@ std::string Polyline(const Frame& f, size_t begin, size_t end, GetX gx, GetY gy,
   return "<polyline fill=\"none\" " + style + " points=\"" + pts + "\"/>\n";
 }
 
+// The frame's horizontal field of view in the top view and its vertical one in the side view, as
+// wedges `length_m` long from the camera.
+std::string FrustumWedges(const TrajectorySample& s, const ImageExtentMm& image, double length_m, const Frame& top,
+                          const Frame& side, const std::string& colour, const char* opacity) {
+  const double hh = std::tan(FieldOfViewRad(image.width_mm, s.focal_length_mm) / 2);
+  const double vh = std::tan(FieldOfViewRad(image.height_mm, s.focal_length_mm) / 2);
+  const Eigen::Vector3d c = s.position_enu_m;
+  auto corner = [&](double x, double y) {
+    return Eigen::Vector3d(c + length_m * (s.world_from_camera * Eigen::Vector3d(x, y, 1.0)));
+  };
+  const Eigen::Vector3d l = corner(-hh, 0), r = corner(hh, 0), u = corner(0, -vh), d = corner(0, vh);
+  const std::string style = "<polygon fill=\"" + colour + "\" fill-opacity=\"" + opacity + "\" stroke=\"" + colour;
+  return style + "\" points=\"" + F(top.PX(c.x())) + "," + F(top.PY(c.y())) + " " + F(top.PX(l.x())) + "," +
+         F(top.PY(l.y())) + " " + F(top.PX(r.x())) + "," + F(top.PY(r.y())) + "\"/>\n" + style + "\" points=\"" +
+         F(side.PX(c.x())) + "," + F(side.PY(c.z())) + " " + F(side.PX(u.x())) + "," + F(side.PY(u.z())) + " " +
+         F(side.PX(d.x())) + "," + F(side.PY(d.z())) + "\"/>\n";
+}
+
 }  // namespace
 
 std::string PlanToSvg(const Trajectory& plan) {
@@ -160,20 +178,7 @@ std::string PlanToSvg(const Trajectory& plan) {
   for (size_t i = 0; i < S.size(); i += stride) {
     const auto& s = S[i];
     const std::string colour = kPalette[shot_of[i] % 10];
-    const ImageExtentMm image = plan.camera.image_extent_mm();
-    const double hh = std::tan(FieldOfViewRad(image.width_mm, s.focal_length_mm) / 2);
-    const double vh = std::tan(FieldOfViewRad(image.height_mm, s.focal_length_mm) / 2);
-    const Eigen::Vector3d c = s.position_enu_m;
-    auto corner = [&](double x, double y) {
-      return Eigen::Vector3d(c + frustum_len * (s.world_from_camera * Eigen::Vector3d(x, y, 1.0)));
-    };
-    const Eigen::Vector3d l = corner(-hh, 0), r = corner(hh, 0), u = corner(0, -vh), d = corner(0, vh);
-    svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.15\" stroke=\"" + colour + "\" points=\"" +
-           F(top.PX(c.x())) + "," + F(top.PY(c.y())) + " " + F(top.PX(l.x())) + "," + F(top.PY(l.y())) + " " +
-           F(top.PX(r.x())) + "," + F(top.PY(r.y())) + "\"/>\n";
-    svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.15\" stroke=\"" + colour + "\" points=\"" +
-           F(side.PX(c.x())) + "," + F(side.PY(c.z())) + " " + F(side.PX(u.x())) + "," + F(side.PY(u.z())) + " " +
-           F(side.PX(d.x())) + "," + F(side.PY(d.z())) + "\"/>\n";
+    svg += FrustumWedges(s, plan.camera.image_extent_mm(), frustum_len, top, side, colour, "0.15");
     for (const auto& subj : plan.subjects) {
       const Eigen::Vector3d& p = subj.positions_enu_m[i];
       svg += "<circle cx=\"" + F(top.PX(p.x())) + "\" cy=\"" + F(top.PY(p.y())) + "\" r=\"3\" fill=\"#555\"/>\n";
@@ -345,20 +350,7 @@ std::string TeamPlanToSvg(const TeamPlan& plan) {
     }
     const ImageExtentMm image = flight.plan.camera.image_extent_mm();
     for (size_t i = 0; i < S.size(); i += stride) {
-      const auto& s = S[i];
-      const double hh = std::tan(FieldOfViewRad(image.width_mm, s.focal_length_mm) / 2);
-      const double vh = std::tan(FieldOfViewRad(image.height_mm, s.focal_length_mm) / 2);
-      const Eigen::Vector3d c = s.position_enu_m;
-      auto corner = [&](double x, double y) {
-        return Eigen::Vector3d(c + frustum_len * (s.world_from_camera * Eigen::Vector3d(x, y, 1.0)));
-      };
-      const Eigen::Vector3d l = corner(-hh, 0), r = corner(hh, 0), u = corner(0, -vh), d = corner(0, vh);
-      svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.12\" stroke=\"" + colour + "\" points=\"" +
-             F(top.PX(c.x())) + "," + F(top.PY(c.y())) + " " + F(top.PX(l.x())) + "," + F(top.PY(l.y())) + " " +
-             F(top.PX(r.x())) + "," + F(top.PY(r.y())) + "\"/>\n";
-      svg += "<polygon fill=\"" + colour + "\" fill-opacity=\"0.12\" stroke=\"" + colour + "\" points=\"" +
-             F(side.PX(c.x())) + "," + F(side.PY(c.z())) + " " + F(side.PX(u.x())) + "," + F(side.PY(u.z())) + " " +
-             F(side.PX(d.x())) + "," + F(side.PY(d.z())) + "\"/>\n";
+      svg += FrustumWedges(S[i], image, frustum_len, top, side, colour, "0.12");
     }
   }
 
