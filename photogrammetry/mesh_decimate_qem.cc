@@ -82,16 +82,34 @@ Eigen::Vector3d Placement(const Quadric& q, const Eigen::Vector3d& a, const Eige
   const Eigen::Vector3d rhs(-q.q[3], -q.q[6], -q.q[8]);
   const Eigen::Vector3d mid = 0.5 * (a + b);
   const Eigen::Vector3d on_edge = BestOnSegment(q, a, b);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-  eigen.computeDirect(m);
-  const Eigen::Vector3d& lambda = eigen.eigenvalues();  // ascending
-  if (!(lambda(2) > 0)) return on_edge;
   const Eigen::Vector3d residual = rhs - m * mid;
   Eigen::Vector3d p = mid;
-  for (int k = 0; k < 3; ++k) {
-    if (lambda(k) > rcond * lambda(2)) {
-      const Eigen::Vector3d axis = eigen.eigenvectors().col(k);
-      p += axis * (axis.dot(residual) / lambda(k));
+  // Every eigenvalue is above rcond × the largest when det / m2 > rcond × trace, since the smallest
+  // is at least det / m2 (m2: the sum of the principal 2 × 2 minors, λ1λ2 + λ1λ3 + λ2λ3) and the
+  // largest at most the trace. Then nothing is truncated and the plain inverse (the adjugate) gives
+  // the same point without the eigen solve: most of a curved surface's edges.
+  const Eigen::Matrix3d adjugate = (Eigen::Matrix3d() << m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1),
+                                    m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2), m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1),
+                                    m(1, 2) * m(2, 0) - m(1, 0) * m(2, 2), m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0),
+                                    m(0, 2) * m(1, 0) - m(0, 0) * m(1, 2), m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0),
+                                    m(0, 1) * m(2, 0) - m(0, 0) * m(2, 1), m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0))
+                                       .finished();
+  const double trace = m.trace();
+  const double minors = adjugate(0, 0) + adjugate(1, 1) + adjugate(2, 2);
+  const double det = m(0, 0) * adjugate(0, 0) + m(0, 1) * adjugate(1, 0) + m(0, 2) * adjugate(2, 0);
+  // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
+  if (minors > 1e-9 * trace * trace && det > rcond * trace * minors) {
+    p += adjugate * residual / det;
+  } else {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    eigen.computeDirect(m);
+    const Eigen::Vector3d& lambda = eigen.eigenvalues();  // ascending
+    if (!(lambda(2) > 0)) return on_edge;
+    for (int k = 0; k < 3; ++k) {
+      if (lambda(k) > rcond * lambda(2)) {
+        const Eigen::Vector3d axis = eigen.eigenvectors().col(k);
+        p += axis * (axis.dot(residual) / lambda(k));
+      }
     }
   }
   if (p.allFinite() && (p - mid).squaredNorm() <= reach * reach * (b - a).squaredNorm() &&

@@ -237,5 +237,74 @@ TEST(QemTiled, TheBandPassIsAsAccurateAsThePassOverEveryFace) {
   }
 }
 
+// A closed box, each side an n × n grid of 1 m cells, rotated off the axes and moved off the origin
+// (so no coordinate is exact), faces outward; `corners` gets its 8 corners.
+TriangleMesh TessellatedBox(int n, std::vector<Eigen::Vector3d>* corners) {
+  TriangleMesh mesh;
+  std::map<std::array<int, 3>, uint32_t> index;
+  const Eigen::Matrix3d turn =
+      (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
+  auto vertex = [&](std::array<int, 3> g) {
+    auto [it, added] = index.emplace(g, static_cast<uint32_t>(mesh.vertices_m.size()));
+    if (added)
+      mesh.vertices_m.push_back(turn * Eigen::Vector3d(g[0], g[1], g[2]) + Eigen::Vector3d(1000.3, -2000.7, 55.1));
+    return it->second;
+  };
+  for (int c = 0; c < 8; ++c)
+    corners->push_back(mesh.vertices_m[vertex({(c & 1) * n, (c >> 1 & 1) * n, (c >> 2) * n})]);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = 0; side <= 1; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int di, int dj) {
+            std::array<int, 3> g{};
+            g[axis] = side * n;
+            g[u] = i + di;
+            g[v] = j + dj;
+            return vertex(g);
+          };
+          const uint32_t a = at(0, 0), b = at(1, 0), c = at(1, 1), d = at(0, 1);
+          if (side == 1) {
+            mesh.faces.push_back({a, b, c});
+            mesh.faces.push_back({a, c, d});
+          } else {
+            mesh.faces.push_back({a, c, b});
+            mesh.faces.push_back({a, d, c});
+          }
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+// Optimal placement on a shape whose quadrics are exact: a box decimated to 3 % stays the box. Its
+// corners (three planes: the full solve) stay where they are, and every vertex stays on the box's
+// faces and edges (one or two planes: the directions the quadric leaves free are held at the edge's
+// midpoint, on the same plane or line, not slid off it).
+TEST(QemTiled, ABoxStaysTheBoxCornersAndAll) {
+  const int n = 40;
+  std::vector<Eigen::Vector3d> corners;
+  const TriangleMesh box = TessellatedBox(n, &corners);  // 19,200 faces
+  DecimateOptions options;
+  options.method = DecimationMethod::kQemTiled;
+  options.qem.tiles = 16;
+  options.target_faces = static_cast<int64_t>(0.03 * box.num_faces());
+  const TriangleMesh out = DecimateMesh(box, options);
+  EXPECT_LE(static_cast<int64_t>(out.num_faces()), options.target_faces);
+  for (const Eigen::Vector3d& corner : corners) {
+    double nearest_m = INFINITY;
+    for (const auto& v : out.vertices_m) nearest_m = std::min(nearest_m, (v - corner).norm());
+    EXPECT_LT(nearest_m, 1e-6) << corner.transpose();
+  }
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = 200000;
+  const double error_m = ApproximateHausdorff(box, out, hausdorff).symmetric_m;
+  std::printf("box at 3 %%: %zu faces, Hausdorff %.2e m\n", out.num_faces(), error_m);
+  EXPECT_LT(error_m, 1e-6);
+}
+
 }  // namespace
 }  // namespace cinepath::photogrammetry
