@@ -2,6 +2,7 @@
 // and time. Prints one JSON document (figures for bench/RESULTS.md).
 //
 //   mesh_for_plan_bench --glb scene.glb --plan plan.json [--max-error-px P] [--tiles N] [--samples S]
+//                       [--face-freeze-rounds R]   (0: freeze whole tiles at once, as before 2026-11-26)
 //   mesh_for_plan_bench --synthetic [--cells N] [--no-building] ...  # an orbit around a building on terrain
 //   mesh_for_plan_bench --box ...    # the unit test's box on a plane
 //
@@ -150,7 +151,7 @@ void BoxScene(TriangleMesh* mesh, Trajectory* plan) {
 int main(int argc, char** argv) {
   std::string glb, plan_path;
   bool synthetic = false, building = true, box = false;
-  int cells = 1000, tiles = 16, threads = 0;
+  int cells = 1000, tiles = 16, threads = 0, face_freeze_rounds = ForPlanOptions{}.face_freeze_rounds;
   double max_error_px = 0.5;
   int64_t samples = 200000;
   for (int i = 1; i < argc; ++i) {
@@ -176,10 +177,12 @@ int main(int argc, char** argv) {
       max_error_px = std::stod(next());
     else if (arg == "--threads")
       threads = std::stoi(next());
+    else if (arg == "--face-freeze-rounds")
+      face_freeze_rounds = std::stoi(next());
     else {
       std::fprintf(stderr,
                    "usage: mesh_for_plan_bench (--glb scene.glb --plan plan.json | --synthetic [--cells N]) "
-                   "[--max-error-px P] [--tiles N] [--samples S] [--threads T]\n");
+                   "[--max-error-px P] [--tiles N] [--samples S] [--threads T] [--face-freeze-rounds R]\n");
       return 2;
     }
   }
@@ -212,6 +215,7 @@ int main(int argc, char** argv) {
   options.max_error_px = max_error_px;
   options.tiles_per_side = tiles;
   options.measure_samples = samples;
+  options.face_freeze_rounds = face_freeze_rounds;
 
   auto start = std::chrono::steady_clock::now();
   ForPlanReport report;
@@ -255,6 +259,7 @@ int main(int argc, char** argv) {
                      {"tiles_seen", report.tiles_seen},
                      {"tiles_unseen", report.tiles_unseen},
                      {"tiles_frozen", report.tiles_frozen},
+                     {"faces_frozen", report.faces_frozen},
                      {"freeze_rounds", report.freeze_rounds},
                      {"bound_met", report.bound_met}};
   out["uniform"] = {{"faces_out", static_cast<int64_t>(uniform_mesh.num_faces())},

@@ -161,22 +161,20 @@ std::vector<uint32_t> SimplifyTiles(const Positions& positions, const std::vecto
   return merged;
 }
 
-// Passes 1 and 2 with the main tiles' goals. A frozen tile's faces go through both passes untouched:
-// left out of pass 1, and out of pass 2's input (its edge with them is then an open border, which
-// meshopt_SimplifyLockBorder keeps in place); they come last in the output, in tile order.
+// Passes 1 and 2 with the main tiles' goals. The faces of a frozen tile and the frozen faces go through
+// both passes untouched: left out of pass 1, and out of pass 2's input (their edge with the rest is then
+// an open border, which meshopt_SimplifyLockBorder keeps in place); they come last, in input order.
 std::vector<uint32_t> SimplifyTwoPasses(const TriangleMesh& mesh, const Positions& positions, const TileGrid& grid,
-                                        const std::vector<double>& goal_error_m, const std::vector<char>& frozen) {
+                                        const std::vector<double>& goal_error_m, const std::vector<char>& frozen,
+                                        const std::vector<char>& face_frozen) {
   const int n = grid.n;
   std::vector<std::vector<uint32_t>> tiles(static_cast<size_t>(n) * n);
-  for (const auto& f : mesh.faces) {
-    auto& tile = tiles[grid.Tile(Centroid(mesh, f))];
-    tile.insert(tile.end(), f.begin(), f.end());
-  }
   std::vector<uint32_t> untouched;
-  for (size_t t = 0; t < tiles.size(); ++t) {
-    if (!frozen[t]) continue;
-    untouched.insert(untouched.end(), tiles[t].begin(), tiles[t].end());
-    tiles[t].clear();
+  for (size_t k = 0; k < mesh.faces.size(); ++k) {
+    const auto& f = mesh.faces[k];
+    const int t = grid.Tile(Centroid(mesh, f));
+    auto& tile = frozen[t] || face_frozen[k] ? untouched : tiles[t];
+    tile.insert(tile.end(), f.begin(), f.end());
   }
   const std::vector<uint32_t> pass1 = SimplifyTiles(positions, tiles, goal_error_m, mesh.num_vertices());
 
@@ -361,17 +359,32 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   // are on the output), until every tile is within or frozen. Steps only go forward, so this ends.
   const Positions positions = MakePositions(mesh);
   std::vector<double> factor(num_tiles, 1.0), within(num_tiles, 0.0), over(num_tiles, kInf);
-  std::vector<char> frozen(num_tiles, 0);
-  std::vector<int> stage(num_tiles, 0);  // settling steps taken: halved, zeroed
+  std::vector<char> frozen(num_tiles, 0), face_frozen(mesh.num_faces(), 0);
+  std::vector<int> stage(num_tiles, 0);  // settling steps taken: halved, zeroed, faces frozen (rounds)
+  // Faces around each vertex, to freeze the faces next to a point over the bound with its own.
+  std::vector<uint32_t> corner_offsets(mesh.num_vertices() + 1, 0), corner_faces(3 * mesh.num_faces());
+  for (const auto& f : mesh.faces) {
+    for (uint32_t i : f) ++corner_offsets[i + 1];
+  }
+  for (size_t i = 0; i < mesh.num_vertices(); ++i) corner_offsets[i + 1] += corner_offsets[i];
+  {
+    std::vector<uint32_t> next(corner_offsets.begin(), corner_offsets.end() - 1);
+    for (uint32_t k = 0; k < mesh.num_faces(); ++k) {
+      for (uint32_t i : mesh.faces[k]) corner_faces[next[i]++] = k;
+    }
+  }
   std::vector<uint32_t> kept;
   std::vector<double> share(num_tiles);
   bool settling = false;
   for (int round = 0;; ++round) {
     std::vector<double> goal(num_tiles);
     for (size_t t = 0; t < num_tiles; ++t) goal[t] = tiles[t].allowed_error_m * factor[t];
-    kept = SimplifyTwoPasses(mesh, positions, grid, goal, frozen);
+    kept = SimplifyTwoPasses(mesh, positions, grid, goal, frozen, face_frozen);
     r.rounds = round + 1;
-    if (std::find(frozen.begin(), frozen.end(), 1) != frozen.end()) ++r.freeze_rounds;
+    if (std::find(frozen.begin(), frozen.end(), 1) != frozen.end() ||
+        std::find(face_frozen.begin(), face_frozen.end(), 1) != face_frozen.end()) {
+      ++r.freeze_rounds;
+    }
     const std::vector<double> distance = probe.DistancesM(internal::FromKeptIndices(mesh, kept));
     std::fill(share.begin(), share.end(), 0.0);
     for (size_t i = 0; i < points.size(); ++i) {
@@ -398,18 +411,37 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
     }
     r.worst_camera_sample = worst_point >= 0 ? options.cameras[views[worst_point].camera].sample_index : -1;
     if (settling) {
-      // A tile still over has its factor halved, then zeroed, then is frozen (a goal of 0 is no bound
-      // with meshoptimizer 0.18); stop when no tile is over (or none has a step left).
+      // A tile still over has its factor halved, then zeroed; then, for up to face_freeze_rounds
+      // rounds, the faces under its points over the bound are frozen with the faces around their
+      // corners; then the whole tile is frozen (a goal of 0 is no bound with meshoptimizer 0.18). Stop
+      // when no tile is over (or none has a step left).
       bool changed = false;
+      std::vector<char> freeze_faces_in(num_tiles, 0);
       for (size_t t = 0; t < num_tiles; ++t) {
         if (share[t] <= 1.0 || frozen[t]) continue;
         if (stage[t] < 2 && factor[t] > 0) {
           factor[t] = stage[t] == 0 ? factor[t] * 0.5 : 0.0;
           ++stage[t];
           changed = true;
+        } else if (options.freeze && std::max(stage[t], 2) - 2 < options.face_freeze_rounds) {
+          stage[t] = std::max(stage[t], 2) + 1;
+          freeze_faces_in[t] = 1;
+          changed = true;  // (a round that froze no new face is repeated once per step; it then goes whole)
         } else if (options.freeze) {
           frozen[t] = 1;
           changed = true;
+        }
+      }
+      for (size_t i = 0; i < points.size(); ++i) {
+        const int64_t face = probe.faces()[i];
+        if (face < 0 || !freeze_faces_in[point_tile[i]] || distance[i] <= point_allowed_m[i]) continue;
+        for (uint32_t corner : mesh.faces[static_cast<size_t>(face)]) {
+          for (uint32_t k = corner_offsets[corner]; k < corner_offsets[corner + 1]; ++k) {
+            if (!face_frozen[corner_faces[k]]) {
+              face_frozen[corner_faces[k]] = 1;
+              changed = true;
+            }
+          }
         }
       }
       if (!changed) break;
@@ -439,6 +471,13 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   for (const auto& f : out.faces) ++tiles[grid.Tile(Centroid(out, f))].faces_out;
   r.faces_out = static_cast<int64_t>(out.num_faces());
   for (size_t t = 0; t < num_tiles; ++t) tiles[t].frozen = frozen[t] != 0;
+  for (size_t k = 0; k < mesh.num_faces(); ++k) {
+    if (!face_frozen[k]) continue;
+    const int t = grid.Tile(Centroid(mesh, mesh.faces[k]));
+    if (frozen[t]) continue;
+    ++tiles[t].faces_frozen;
+    ++r.faces_frozen;
+  }
   for (const ForPlanTile& t : tiles) {
     if (t.faces_in == 0 && t.faces_out == 0) continue;
     (t.seen ? r.tiles_seen : r.tiles_unseen) += 1;
@@ -463,9 +502,12 @@ Json ForPlanReport::ToJson() const {
   j["worst_unseen_error_m"] = round(worst_unseen_error_m, 6);
   j["bound_met"] = bound_met;
   j["tiles_frozen"] = tiles_frozen;
+  j["faces_frozen"] = faces_frozen;
   j["rounds"] = rounds;
   j["freeze_rounds"] = freeze_rounds;
-  j["frozen"] = "a tile over the bound after the search keeps its original faces";
+  j["frozen"] =
+      "over the bound after the search: first the faces under the points over it and around them, "
+      "then the whole tile, keep their original faces";
   j["points_measured"] = points_measured;
   j["points_seen"] = points_seen;
   j["min_allowed_error_m"] = round(min_allowed_error_m, 6);
@@ -493,6 +535,7 @@ Json ForPlanReport::ToJson() const {
     e["goal_error_m"] = round(t.goal_error_m, 6);
     e["worst_projected_px"] = round(t.worst_projected_px, 4);
     e["frozen"] = t.frozen;
+    e["faces_frozen"] = t.faces_frozen;
     list.push_back(std::move(e));
   }
   j["tiles"] = std::move(list);

@@ -18,7 +18,9 @@
 // meshoptimizer's error is its own estimate and passes 1 and 2 add up, so each tile's goal (allowed ×
 // a factor) is searched over the rounds: ×4 while its points stay within aim × the bound, ×1/4 while
 // over, then bisected; then each tile takes the largest factor found within. A tile still over after
-// that (its factor halved, then zeroed, a round each) is frozen: its original faces pass through both
+// that (its factor halved, then zeroed, a round each) first freezes, for up to face_freeze_rounds
+// rounds, the faces under its measured points over the bound and the faces around their corners; a
+// tile still over after those is frozen whole: its original faces pass through both
 // passes untouched (in pass 2 they are left out of the simplifier's input, so that its edge with them
 // is an open border that meshopt_SimplifyLockBorder keeps in place), and the rounds go on, freezing,
 // until every tile is within or frozen. meshoptimizer 0.18 makes collapses it rates at ~zero error that
@@ -52,6 +54,9 @@ struct ForPlanOptions {
   // instead, which meshoptimizer 0.18 can overshoot (the bound is then not met; for the tests and the
   // benchmark, to show what freezing buys).
   bool freeze = true;
+  // Before a whole tile is frozen: this many rounds that freeze only the faces under its points over
+  // the bound, with the faces around their corners (0: whole tiles at once).
+  int face_freeze_rounds = 8;
   int max_rounds = 10;  // search rounds (max_rounds - 3, at least 1) + 1 settling round; then freezing rounds
 
   void Check() const;  // InputError naming the field
@@ -68,6 +73,7 @@ struct ForPlanTile {
   double goal_error_m = 0;        // the error goal meshoptimizer got in the last round (allowed × 2^-k)
   double worst_projected_px = 0;  // over the measured points of the tile
   bool frozen = false;            // over the bound after the search: its original faces, untouched
+  int64_t faces_frozen = 0;       // in a tile not frozen whole: faces kept as they were (see face_freeze_rounds)
 };
 
 struct ForPlanReport {
@@ -82,6 +88,7 @@ struct ForPlanReport {
   double unseen_allowed_error_m = 0;
   int64_t tiles_seen = 0, tiles_unseen = 0;
   int64_t tiles_frozen = 0;
+  int64_t faces_frozen = 0;  // frozen on their own, in tiles not frozen whole
   int64_t faces_in = 0, faces_out = 0;
   int64_t points_measured = 0;  // vertices + face samples of the original mesh
   int64_t points_seen = 0;      // of those, seen by some frame

@@ -228,6 +228,7 @@ TEST(DecimateForPlan, ATileOverTheBoundAtGoalZeroIsFrozenAndTheBoundHolds) {
   ForPlanOptions options;
   options.cameras = CamerasFromPlan(OrbitPlan(120, 60, 40, 10, 35), "orbit.json");
   options.measure_samples = 50000;
+  options.face_freeze_rounds = 0;  // whole tiles at once (face freezing: the next test)
   options.freeze = false;
   ForPlanReport unfrozen;
   DecimateForPlan(mesh, options, &unfrozen);
@@ -278,6 +279,38 @@ TEST(DecimateForPlan, ATileOverTheBoundAtGoalZeroIsFrozenAndTheBoundHolds) {
   }
   EXPECT_GT(frozen_faces, 0);
   EXPECT_EQ(kept, frozen_faces);
+  const double worst = WorstProjectedPx(mesh, out, options.cameras, 20000);
+  std::printf("own check: worst %.3f px\n", worst);
+  EXPECT_LE(worst, 0.5);
+}
+
+// Freezing the faces under the points over the bound (and the faces around their corners) before a
+// whole tile: the bound still holds, on the library's points and on our own, and fewer faces are kept
+// than when whole tiles are frozen.
+TEST(DecimateForPlan, FreezingFacesBeforeTilesKeepsTheBoundWithFewerFaces) {
+  const TriangleMesh mesh = RibbedBuilding();
+  ForPlanOptions options;
+  options.cameras = CamerasFromPlan(OrbitPlan(120, 60, 40, 10, 35), "orbit.json");
+  options.measure_samples = 50000;
+  options.face_freeze_rounds = 0;
+  ForPlanReport tiles_only;
+  const TriangleMesh whole = DecimateForPlan(mesh, options, &tiles_only);
+  options.face_freeze_rounds = 8;
+  ForPlanReport report;
+  const TriangleMesh out = DecimateForPlan(mesh, options, &report);
+  std::printf(
+      "faces %zu; whole tiles: %zu faces (%lld tiles frozen); faces first: %zu faces (%lld faces, %lld tiles "
+      "frozen), worst %.3f px, rounds %d\n",
+      mesh.num_faces(), whole.num_faces(), static_cast<long long>(tiles_only.tiles_frozen), out.num_faces(),
+      static_cast<long long>(report.faces_frozen), static_cast<long long>(report.tiles_frozen),
+      report.worst_projected_px, report.rounds);
+  EXPECT_TRUE(report.bound_met);
+  EXPECT_LE(report.worst_projected_px, 0.5);
+  EXPECT_GT(report.faces_frozen, 0);
+  EXPECT_LT(out.num_faces(), whole.num_faces());
+  int64_t faces_frozen = 0;
+  for (const ForPlanTile& t : report.tiles) faces_frozen += t.faces_frozen;
+  EXPECT_EQ(faces_frozen, report.faces_frozen);
   const double worst = WorstProjectedPx(mesh, out, options.cameras, 20000);
   std::printf("own check: worst %.3f px\n", worst);
   EXPECT_LE(worst, 0.5);
