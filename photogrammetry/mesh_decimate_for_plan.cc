@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "photogrammetry/mesh_decimate.h"
+#include "photogrammetry/vertex_faces.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -362,17 +363,7 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   std::vector<char> frozen(num_tiles, 0), face_frozen(mesh.num_faces(), 0);
   std::vector<int> stage(num_tiles, 0);  // settling steps taken: halved, zeroed, faces frozen (rounds)
   // Faces around each vertex, to freeze the faces next to a point over the bound with its own.
-  std::vector<uint32_t> corner_offsets(mesh.num_vertices() + 1, 0), corner_faces(3 * mesh.num_faces());
-  for (const auto& f : mesh.faces) {
-    for (uint32_t i : f) ++corner_offsets[i + 1];
-  }
-  for (size_t i = 0; i < mesh.num_vertices(); ++i) corner_offsets[i + 1] += corner_offsets[i];
-  {
-    std::vector<uint32_t> next(corner_offsets.begin(), corner_offsets.end() - 1);
-    for (uint32_t k = 0; k < mesh.num_faces(); ++k) {
-      for (uint32_t i : mesh.faces[k]) corner_faces[next[i]++] = k;
-    }
-  }
+  const VertexFaces around(mesh.num_vertices(), mesh.faces);
   std::vector<uint32_t> kept;
   std::vector<double> share(num_tiles);
   bool settling = false;
@@ -436,12 +427,12 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
         const int64_t face = probe.faces()[i];
         if (face < 0 || !freeze_faces_in[point_tile[i]] || distance[i] <= point_allowed_m[i]) continue;
         for (uint32_t corner : mesh.faces[static_cast<size_t>(face)]) {
-          for (uint32_t k = corner_offsets[corner]; k < corner_offsets[corner + 1]; ++k) {
-            if (!face_frozen[corner_faces[k]]) {
-              face_frozen[corner_faces[k]] = 1;
+          around.ForEach(corner, [&](uint32_t k) {
+            if (!face_frozen[k]) {
+              face_frozen[k] = 1;
               changed = true;
             }
-          }
+          });
         }
       }
       if (!changed) break;

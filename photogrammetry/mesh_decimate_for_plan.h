@@ -96,7 +96,7 @@ struct ForPlanReport {
   int worst_camera_sample = -1;
   double worst_unseen_error_m = 0;  // over the points no frame sees (their budget: unseen_allowed_error_m)
   int rounds = 0;
-  int freeze_rounds = 0;  // of those, the rounds run with some tile frozen
+  int freeze_rounds = 0;  // of those, the rounds run with some tile or face frozen
   bool bound_met = false;
   Json ToJson() const;
 };

@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "photogrammetry/cgal_point_search_internal.h"
+#include "photogrammetry/vertex_faces.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -264,17 +265,7 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
     }
     // 2b. Stretched ears and stray border vertices, all measured on the same border in each pass.
     if (cut_ears) {
-      std::vector<uint32_t> vertex_offsets(v.size() + 1, 0), vertex_faces(3 * num_faces);
-      for (const auto& t : mesh.faces) {
-        for (uint32_t i : t) ++vertex_offsets[i + 1];
-      }
-      for (size_t i = 0; i < v.size(); ++i) vertex_offsets[i + 1] += vertex_offsets[i];
-      {
-        std::vector<uint32_t> next(vertex_offsets.begin(), vertex_offsets.end() - 1);
-        for (uint32_t f = 0; f < num_faces; ++f) {
-          for (uint32_t i : mesh.faces[f]) vertex_faces[next[i]++] = f;
-        }
-      }
+      const VertexFaces around(v.size(), mesh.faces);
       auto stretched_ear = [&](uint32_t f) { return edge_ratio[f] > options.ear_edge_factor; };
       // A border vertex with one or two faces, both stretched: a stray point the surface reached out to.
       // (Not more faces: in an arm of stretched triangles every vertex would be a stray, and the cut would
@@ -282,8 +273,8 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
       auto stray = [&](uint32_t i) {
         int count = 0;
         bool border = false;
-        for (uint32_t k = vertex_offsets[i]; k < vertex_offsets[i + 1]; ++k) {
-          const uint32_t f = vertex_faces[k];
+        for (uint32_t k = around.offsets[i]; k < around.offsets[i + 1]; ++k) {
+          const uint32_t f = around.faces[k];
           if (!alive[f]) continue;
           if (!stretched_ear(f) || ++count > 2) return false;
           border = border || on_border(f);
