@@ -3,15 +3,17 @@
 //
 //   mesh_for_plan_bench --glb scene.glb --plan plan.json [--max-error-px P] [--tiles N] [--samples S]
 //                       [--face-freeze-rounds R]   (0: freeze whole tiles at once, as before 2026-11-26)
+//                       [--simplifier qem_tiled|meshoptimizer]   (the simplifier of both runs)
 //   mesh_for_plan_bench --synthetic [--cells N] [--no-building] ...  # an orbit around a building on terrain
 //   mesh_for_plan_bench --box ...    # the unit test's box on a plane
 //
 // For-plan: DecimateForPlan (mesh_decimate_for_plan.h), its measurement rounds included in the time.
-// Uniform: tiled meshoptimizer (DecimateMesh, kMeshoptimizerPartitioned) with one error goal for the
-// whole mesh, the smallest allowed error of any seen region (the error the finest-seen region needs),
-// halved until its worst projected error — measured with the same points and the same cameras
-// (ProjectedErrorProbe) — is within the bound, as the pipeline tightens --max-error-m. Its time counts
-// every attempt and measurement; the time of the last attempt alone is printed too.
+// Uniform: the same simplifier (qem_tiled: DecimateQemTiled with the same goal at every vertex;
+// meshoptimizer: DecimateMesh, kMeshoptimizerPartitioned) with one error goal for the whole mesh, the smallest allowed
+// error of any seen region (the error the finest-seen region needs), halved until its worst projected error — measured
+// with the same points and the same cameras (ProjectedErrorProbe) — is within the bound, as the pipeline tightens
+// --max-error-m, then bisected 4 times between the last goal over and the first within. Its time counts every attempt
+// and measurement; the time of the attempt kept alone is printed too.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -154,6 +156,7 @@ int main(int argc, char** argv) {
   int cells = 1000, tiles = 16, threads = 0, face_freeze_rounds = ForPlanOptions{}.face_freeze_rounds;
   double max_error_px = 0.5;
   int64_t samples = 200000;
+  ForPlanSimplifier simplifier = ForPlanOptions{}.simplifier;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -179,10 +182,21 @@ int main(int argc, char** argv) {
       threads = std::stoi(next());
     else if (arg == "--face-freeze-rounds")
       face_freeze_rounds = std::stoi(next());
-    else {
+    else if (arg == "--simplifier") {
+      const std::string name = next();
+      if (name == ForPlanSimplifierName(ForPlanSimplifier::kQemTiled)) {
+        simplifier = ForPlanSimplifier::kQemTiled;
+      } else if (name == ForPlanSimplifierName(ForPlanSimplifier::kMeshoptimizer)) {
+        simplifier = ForPlanSimplifier::kMeshoptimizer;
+      } else {
+        std::fprintf(stderr, "--simplifier: qem_tiled or meshoptimizer\n");
+        return 2;
+      }
+    } else {
       std::fprintf(stderr,
                    "usage: mesh_for_plan_bench (--glb scene.glb --plan plan.json | --synthetic [--cells N]) "
-                   "[--max-error-px P] [--tiles N] [--samples S] [--threads T] [--face-freeze-rounds R]\n");
+                   "[--max-error-px P] [--tiles N] [--samples S] [--threads T] [--face-freeze-rounds R] "
+                   "[--simplifier qem_tiled|meshoptimizer]\n");
       return 2;
     }
   }
@@ -216,13 +230,15 @@ int main(int argc, char** argv) {
   options.tiles_per_side = tiles;
   options.measure_samples = samples;
   options.face_freeze_rounds = face_freeze_rounds;
+  options.simplifier = simplifier;
 
   auto start = std::chrono::steady_clock::now();
   ForPlanReport report;
   const TriangleMesh for_plan = DecimateForPlan(mesh, options, &report);
   const double for_plan_s = Seconds(start);
 
-  // Uniform, to the same worst projected error, measured on the same points.
+  // Uniform, to the same worst projected error, measured on the same points: the same simplifier with
+  // one error goal for the whole mesh.
   start = std::chrono::steady_clock::now();
   const ProjectedErrorProbe probe(mesh, options.cameras, samples, options.seed);
   DecimateOptions uniform;
@@ -231,13 +247,44 @@ int main(int argc, char** argv) {
   TriangleMesh uniform_mesh;
   double uniform_px = 0, last_s = 0;
   int attempts = 0;
-  for (; attempts < 12; ++attempts) {
+  auto attempt = [&](double goal_m, TriangleMesh* out, double* px) {
     const auto attempt_start = std::chrono::steady_clock::now();
-    uniform_mesh = DecimateMesh(mesh, uniform);
-    last_s = Seconds(attempt_start);
-    uniform_px = probe.WorstPx(uniform_mesh);
+    DecimateOptions o = uniform;
+    o.max_error_m = goal_m;
+    if (simplifier == ForPlanSimplifier::kQemTiled) {
+      const std::vector<double> goal(mesh.num_vertices(), goal_m);
+      *out = internal::DecimateQemTiled(mesh, 0, o.qem.tiles, o.qem, &goal);
+    } else {
+      *out = DecimateMesh(mesh, o);
+    }
+    *px = probe.WorstPx(*out);
+    ++attempts;
+    return Seconds(attempt_start);
+  };
+  // Halve the goal until the bound holds, then bisect (geometrically, 4 steps) between the last goal
+  // over it and the first within, keeping the largest goal within.
+  double over_m = 0;
+  for (int k = 0; k < 12; ++k) {
+    last_s = attempt(uniform.max_error_m, &uniform_mesh, &uniform_px);
     if (uniform_px <= max_error_px) break;
+    over_m = uniform.max_error_m;
     uniform.max_error_m *= 0.5;
+  }
+  if (uniform_px <= max_error_px && over_m > 0) {
+    for (int k = 0; k < 4; ++k) {
+      const double goal_m = std::sqrt(uniform.max_error_m * over_m);
+      TriangleMesh candidate;
+      double px = 0;
+      const double s = attempt(goal_m, &candidate, &px);
+      if (px <= max_error_px) {
+        uniform.max_error_m = goal_m;
+        uniform_mesh = std::move(candidate);
+        uniform_px = px;
+        last_s = s;
+      } else {
+        over_m = goal_m;
+      }
+    }
   }
   const double uniform_s = Seconds(start);
 
@@ -247,6 +294,7 @@ int main(int argc, char** argv) {
   out["faces_in"] = static_cast<int64_t>(mesh.num_faces());
   out["frames"] = static_cast<int64_t>(plan.samples.size());
   out["max_error_px"] = max_error_px;
+  out["simplifier"] = ForPlanSimplifierName(simplifier);
   out["tiles_per_side"] = tiles;
   out["points_measured"] = report.points_measured;
   out["points_seen"] = report.points_seen;
@@ -266,7 +314,7 @@ int main(int argc, char** argv) {
                     {"bound_met", uniform_px <= max_error_px},
                     {"worst_projected_px", RoundToDecimals(uniform_px, 4)},
                     {"goal_error_m", RoundToDecimals(uniform.max_error_m, 6)},
-                    {"attempts", attempts + 1},
+                    {"attempts", attempts},
                     {"time_s", RoundToDecimals(uniform_s, 3)},
                     {"last_attempt_time_s", RoundToDecimals(last_s, 3)}};
   out["faces_ratio_for_plan_over_uniform"] =

@@ -71,9 +71,13 @@ TriangleMesh DecimateMesh(const TriangleMesh& mesh, const DecimateOptions& optio
 namespace internal {
 // In mesh_decimate_cgal.cc (the CGAL translation unit).
 TriangleMesh DecimateCgal(const TriangleMesh& mesh, int64_t target_faces, bool probabilistic);
-// In mesh_decimate_qem.cc.
-TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions,
-                              const QemOptions& options);
+// In mesh_decimate_qem.cc. With `goal_error_m` (one per vertex) there is no face budget: every
+// collapse is made whose error (the root of its quadric's area-weighted mean: its point's RMS distance
+// to the planes of the faces merged into it) is within the smaller goal of its two vertices, and the
+// vertex kept takes that goal; a vertex whose goal is 0 is never moved or removed (nor, when all its
+// corners have goal 0, is a face). The measured error of the result is the caller's to check.
+TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions, const QemOptions& options,
+                              const std::vector<double>* goal_error_m = nullptr);
 // In mesh_decimate.cc: the mesh of the triangles `indices` (three vertex ids each) of `mesh`, with the
 // vertices they use, in their input order, and their colours.
 TriangleMesh FromKeptIndices(const TriangleMesh& mesh, const std::vector<uint32_t>& indices);

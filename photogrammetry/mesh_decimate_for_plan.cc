@@ -206,7 +206,28 @@ std::vector<uint32_t> SimplifyTwoPasses(const TriangleMesh& mesh, const Position
   return out;
 }
 
+// The same with quadric collapse (internal::DecimateQemTiled with an error goal per vertex): each
+// vertex's goal is its own budget (max_error_px × its metres per pixel in its finest view, or the
+// unseen budget) × its tile's factor; the corners of a frozen tile's faces and of the frozen faces get
+// a goal of 0, which the simplifier never touches, so those faces come out as they went in.
+TriangleMesh SimplifyQem(const TriangleMesh& mesh, const TileGrid& grid, const std::vector<int>& vertex_tile,
+                         const std::vector<double>& vertex_allowed_m, const std::vector<double>& factor,
+                         const std::vector<char>& frozen, const std::vector<char>& face_frozen) {
+  std::vector<double> goal_m(mesh.num_vertices());
+  for (size_t v = 0; v < goal_m.size(); ++v) goal_m[v] = vertex_allowed_m[v] * factor[vertex_tile[v]];
+  for (size_t k = 0; k < mesh.faces.size(); ++k) {
+    if (!face_frozen[k] && !frozen[grid.Tile(Centroid(mesh, mesh.faces[k]))]) continue;
+    for (uint32_t v : mesh.faces[k]) goal_m[v] = 0;
+  }
+  const internal::QemOptions qem;
+  return internal::DecimateQemTiled(mesh, 0, qem.tiles, qem, &goal_m);
+}
+
 }  // namespace
+
+const char* ForPlanSimplifierName(ForPlanSimplifier simplifier) {
+  return simplifier == ForPlanSimplifier::kMeshoptimizer ? "meshoptimizer" : "qem_tiled";
+}
 
 void ForPlanOptions::Check() const {
   if (cameras.empty()) throw InputError(Located(plan_source.empty() ? "for_plan" : plan_source, "no camera"));
@@ -287,6 +308,7 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   }
   ForPlanReport r;
   r.max_error_px = options.max_error_px;
+  r.simplifier = options.simplifier;
   r.aim = options.aim;
   r.faces_in = static_cast<int64_t>(mesh.num_faces());
   const TileGrid grid = MakeGrid(mesh, options.tiles_per_side);
@@ -351,6 +373,10 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
     point_allowed_m[i] =
         options.aim * (views[i].seen() ? options.max_error_px * views[i].metres_per_px : r.unseen_allowed_error_m);
   }
+  // The quadric simplifier's per-vertex budgets (the points begin with the vertices).
+  std::vector<int> vertex_tile(point_tile.begin(), point_tile.begin() + static_cast<ptrdiff_t>(mesh.num_vertices()));
+  std::vector<double> vertex_allowed_m(mesh.num_vertices());
+  for (size_t v = 0; v < vertex_allowed_m.size(); ++v) vertex_allowed_m[v] = point_allowed_m[v] / options.aim;
 
   // The search, per tile, for the largest goal (allowed error × factor) whose points stay within
   // their budget: factors grow ×4 while a tile stays within, shrink ×1/4 while over, then bisect
@@ -358,25 +384,32 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   // takes its largest factor seen within (0 where none was), and the rounds go on: a tile still over
   // has its factor halved, then zeroed, then is frozen (its faces are the original ones, so its points
   // are on the output), until every tile is within or frozen. Steps only go forward, so this ends.
-  const Positions positions = MakePositions(mesh);
-  std::vector<double> factor(num_tiles, 1.0), within(num_tiles, 0.0), over(num_tiles, kInf);
+  const bool quadric = options.simplifier == ForPlanSimplifier::kQemTiled;
+  const Positions positions = quadric ? Positions{} : MakePositions(mesh);
+  // The search starts where each simplifier's goal is about the measured error: meshoptimizer's goals
+  // are met with room (the box scene settles at factors 3–15), the quadric's RMS distance to its planes
+  // falls short of the largest distance (factors 0.2–0.7).
+  const double start_factor = quadric ? 0.25 : 1.0;
+  std::vector<double> factor(num_tiles, start_factor), within(num_tiles, 0.0), over(num_tiles, kInf);
   std::vector<char> frozen(num_tiles, 0), face_frozen(mesh.num_faces(), 0);
   std::vector<int> stage(num_tiles, 0);  // settling steps taken: halved, zeroed, faces frozen (rounds)
   // Faces around each vertex, to freeze the faces next to a point over the bound with its own.
   const VertexFaces around(mesh.num_vertices(), mesh.faces);
-  std::vector<uint32_t> kept;
+  TriangleMesh out;
   std::vector<double> share(num_tiles);
   bool settling = false;
   for (int round = 0;; ++round) {
     std::vector<double> goal(num_tiles);
     for (size_t t = 0; t < num_tiles; ++t) goal[t] = tiles[t].allowed_error_m * factor[t];
-    kept = SimplifyTwoPasses(mesh, positions, grid, goal, frozen, face_frozen);
+    out = quadric
+              ? SimplifyQem(mesh, grid, vertex_tile, vertex_allowed_m, factor, frozen, face_frozen)
+              : internal::FromKeptIndices(mesh, SimplifyTwoPasses(mesh, positions, grid, goal, frozen, face_frozen));
     r.rounds = round + 1;
     if (std::find(frozen.begin(), frozen.end(), 1) != frozen.end() ||
         std::find(face_frozen.begin(), face_frozen.end(), 1) != face_frozen.end()) {
       ++r.freeze_rounds;
     }
-    const std::vector<double> distance = probe.DistancesM(internal::FromKeptIndices(mesh, kept));
+    const std::vector<double> distance = probe.DistancesM(out);
     std::fill(share.begin(), share.end(), 0.0);
     for (size_t i = 0; i < points.size(); ++i) {
       share[point_tile[i]] = std::max(share[point_tile[i]], distance[i] / point_allowed_m[i]);
@@ -458,7 +491,6 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
     if (settle_now) settling = true;
   }
   r.bound_met = r.worst_projected_px <= options.max_error_px && r.worst_unseen_error_m <= r.unseen_allowed_error_m;
-  TriangleMesh out = internal::FromKeptIndices(mesh, kept);
   for (const auto& f : out.faces) ++tiles[grid.Tile(Centroid(out, f))].faces_out;
   r.faces_out = static_cast<int64_t>(out.num_faces());
   for (size_t t = 0; t < num_tiles; ++t) tiles[t].frozen = frozen[t] != 0;
@@ -483,6 +515,7 @@ Json ForPlanReport::ToJson() const {
   auto round = [](double v, int d) { return std::isfinite(v) ? Json(RoundToDecimals(v, d)) : Json(nullptr); };
   Json j = Json::object();
   j["max_error_px"] = max_error_px;
+  j["simplifier"] = ForPlanSimplifierName(simplifier);
   j["aim"] = aim;
   j["occlusion"] = "none: a point inside a frame's frustum counts as seen";
   j["unseen_budget"] = "the coarsest budget of a seen tile";

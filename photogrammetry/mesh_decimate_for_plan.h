@@ -7,27 +7,35 @@
 // focal length and resolution); a tile no frame sees gets the coarsest budget any seen tile gets, in
 // metres.
 //
-// Simplification (meshoptimizer, meshopt_simplify with an error goal and no face goal):
+// Simplification, with an error goal and no face goal, by one of two simplifiers:
+//   qem_tiled (the default): quadric collapse with optimal placement (internal::DecimateQemTiled) with
+//      a goal per vertex: its own budget (max_error_px × its metres per pixel in its finest view, or the
+//      unseen budget) × its tile's factor. Its error is the RMS distance of the placed point to the
+//      planes merged into it, which falls short of the largest distance, so the search starts at 1/4.
+//   meshoptimizer (meshopt_simplify, the simplifier before 2026-11-26; kept for comparison), a goal per
+//      tile, in two passes:
 //   1. every tile on its own, in parallel, its cut edges and the mesh's outer border locked, to its goal;
 //   2. a second grid shifted by half a tile, so that the cuts of pass 1 lie inside its tiles, each tile
 //      to the smallest goal of the (up to 4) pass-1 tiles it overlaps;
+// Then, with either:
 //   3. measure: points on the original surface (every vertex plus `measure_samples` random points on
 //      the faces, spread by area, seeded), each one's distance to the simplified mesh divided by its
 //      metres-per-pixel = its worst projected error in pixels over every frame that sees it (unseen
 //      points: the distance against the unseen budget).
-// meshoptimizer's error is its own estimate and passes 1 and 2 add up, so each tile's goal (allowed ×
-// a factor) is searched over the rounds: ×4 while its points stay within aim × the bound, ×1/4 while
-// over, then bisected; then each tile takes the largest factor found within. A tile still over after
-// that (its factor halved, then zeroed, a round each) first freezes, for up to face_freeze_rounds
-// rounds, the faces under its measured points over the bound and the faces around their corners; a
-// tile still over after those is frozen whole: its original faces pass through both
-// passes untouched (in pass 2 they are left out of the simplifier's input, so that its edge with them
-// is an open border that meshopt_SimplifyLockBorder keeps in place), and the rounds go on, freezing,
-// until every tile is within or frozen. meshoptimizer 0.18 makes collapses it rates at ~zero error that
-// move the surface by centimetres, so a goal of 0 is no bound; a frozen tile is (its points lie on
-// faces of the output). A point is the tile's of the face it lies on (a vertex: of its first face), so
-// that freezing the tile of a point over the bound puts the point back on the output. The outer border
-// of an open mesh stays in place. Deterministic at any thread count.
+// Either simplifier's error is its own estimate (and meshoptimizer's passes 1 and 2 add up), so each
+// tile's goal (allowed × a factor) is searched over the rounds: ×4 while its points stay within aim ×
+// the bound, ×1/4 while over, then bisected; then each tile takes the largest factor found within. A
+// tile still over after that (its factor halved, then zeroed, a round each) first freezes, for up to
+// face_freeze_rounds rounds, the faces under its measured points over the bound and the faces around
+// their corners; a tile still over after those is frozen whole. Frozen faces come out as they went in:
+// qem_tiled gives their corners a goal of 0, which it never touches; with meshoptimizer they are left
+// out of pass 1, and out of pass 2's input, so that its edge with them is an open border that
+// meshopt_SimplifyLockBorder keeps in place. The rounds go on, freezing, until every tile is within or
+// frozen. meshoptimizer 0.18 makes collapses it rates at ~zero error that move the surface by
+// centimetres, so a goal of 0 is no bound; a frozen tile is (its points lie on faces of the output). A
+// point is the tile's of the face it lies on (a vertex: of its first face), so that freezing the tile
+// of a point over the bound puts the point back on the output. The outer border of an open mesh stays
+// in place. Deterministic at any thread count.
 #pragma once
 
 #include <cstdint>
@@ -40,11 +48,18 @@
 
 namespace cinepath::photogrammetry {
 
+enum class ForPlanSimplifier {
+  kQemTiled,       // quadric collapse with optimal placement and an error goal per vertex (the default)
+  kMeshoptimizer,  // meshopt_simplify with an error goal per tile, in two passes (steps 1 and 2 above)
+};
+const char* ForPlanSimplifierName(ForPlanSimplifier simplifier);
+
 struct ForPlanOptions {
-  std::vector<PlanCamera> cameras;   // CamerasFromPlan
-  std::string plan_source;           // the plan file, for the report
-  double max_error_px = 0.5;         // --max-error-px
-  int tiles_per_side = 16;           // the region grid
+  std::vector<PlanCamera> cameras;                              // CamerasFromPlan
+  std::string plan_source;                                      // the plan file, for the report
+  double max_error_px = 0.5;                                    // --max-error-px
+  ForPlanSimplifier simplifier = ForPlanSimplifier::kQemTiled;  // see above
+  int tiles_per_side = 16;                                      // the region grid
   int64_t measure_samples = 200000;  // random points on the original faces (every vertex is measured too)
   uint32_t seed = 1;
   // The search aims at aim × the bound on the measured points: the error between them can be a little
@@ -77,6 +92,7 @@ struct ForPlanTile {
 };
 
 struct ForPlanReport {
+  ForPlanSimplifier simplifier = ForPlanSimplifier::kQemTiled;
   int tiles_per_side = 0;
   Eigen::Vector2d grid_min_m = Eigen::Vector2d::Zero();  // east/north of the grid's corner
   Eigen::Vector2d tile_size_m = Eigen::Vector2d::Zero();

@@ -142,7 +142,7 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     if (options.for_plan) {
       // Detail where the cameras look: each tile to the error its closest camera cannot see.
       step["goal"] = "for_plan";
-      step["method"] = "meshoptimizer_for_plan";
+      step["method"] = std::string(ForPlanSimplifierName(options.for_plan->simplifier)) + "_for_plan";
       ForPlanReport plan_report;
       simplified = DecimateForPlan(mesh, *options.for_plan, &plan_report);
       if (simplified.num_faces() < mesh.num_faces() && simplified.num_faces() > 0) {
