@@ -89,6 +89,77 @@ Plane FitPlane(const std::vector<Eigen::Vector3d>& points) {
   return plane;
 }
 
+// Step 2c. Every border vertex (on an edge of one face) farther from its nearest data point than
+// border_pull_factor × that point's own spacing is moved straight toward the point until it is that far.
+// The moves are made together; a vertex whose move would turn a face around it by more than 60° (or
+// flatten it) stays where it was, and the check is repeated until no face turns (a few rounds at most:
+// each round only takes moves back).
+void PullBorder(TriangleMesh& mesh, const PointCloud& points, const internal::PointSearch& search,
+                const std::vector<double>& point_spacing, const SurfaceTrimOptions& options,
+                SurfaceTrimReport* report) {
+  const size_t n = mesh.num_vertices();
+  std::vector<int> edge_uses;
+  std::vector<char> on_border(n, 0);
+  {
+    std::vector<std::pair<uint64_t, uint32_t>> edges;  // (key, one end), each face's three edges
+    edges.reserve(3 * mesh.faces.size());
+    for (const auto& t : mesh.faces) {
+      for (int c = 0; c < 3; ++c) edges.push_back({EdgeKey(t[c], t[(c + 1) % 3]), t[c]});
+    }
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i;
+      while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+      if (j - i == 1) {
+        on_border[static_cast<uint32_t>(edges[i].first >> 32)] = 1;
+        on_border[static_cast<uint32_t>(edges[i].first & 0xffffffffu)] = 1;
+      }
+      i = j;
+    }
+  }
+  std::vector<Eigen::Vector3d> target = mesh.vertices_m;
+  std::vector<char> moved(n, 0);
+  ForEachIndex(n, [&](size_t i) {
+    if (!on_border[i]) return;
+    const Eigen::Vector3d& p = mesh.vertices_m[i];
+    const auto nearest = search.Nearest(p, 1).front();
+    const double d = std::sqrt(nearest.first), keep_m = options.border_pull_factor * point_spacing[nearest.second];
+    if (!(d > keep_m)) return;
+    const Eigen::Vector3d& q = points.positions_m[nearest.second];
+    target[i] = q + (p - q) * (keep_m / d);
+    moved[i] = 1;
+  });
+  auto normal = [&](const std::array<uint32_t, 3>& t, const std::vector<Eigen::Vector3d>& at) {
+    return Eigen::Vector3d((at[t[1]] - at[t[0]]).cross(at[t[2]] - at[t[0]]));
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<Eigen::Vector3d> trial = mesh.vertices_m;
+    for (size_t i = 0; i < n; ++i) {
+      if (moved[i]) trial[i] = target[i];
+    }
+    std::vector<char> undo(n, 0);
+    for (const auto& t : mesh.faces) {
+      if (!moved[t[0]] && !moved[t[1]] && !moved[t[2]]) continue;
+      const Eigen::Vector3d before = normal(t, mesh.vertices_m), after = normal(t, trial);
+      if (after.norm() > 1e-3 * before.norm() && after.dot(before) >= 0.5 * after.norm() * before.norm()) continue;
+      for (uint32_t c : t) undo[c] = moved[c];
+    }
+    for (size_t i = 0; i < n; ++i) {
+      if (!undo[i]) continue;
+      moved[i] = 0;
+      ++report->border_pulls_refused;
+      changed = true;
+    }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (!moved[i]) continue;
+    ++report->border_vertices_pulled;
+    report->max_border_pull_m = std::max(report->max_border_pull_m, (target[i] - mesh.vertices_m[i]).norm());
+    mesh.vertices_m[i] = target[i];
+  }
+}
+
 }  // namespace
 
 Json SurfaceTrimReport::ToJson() const {
@@ -100,10 +171,14 @@ Json SurfaceTrimReport::ToJson() const {
   j["border_passes"] = border_passes;
   j["border_ears_cut"] = border_ears_cut;
   j["ear_passes"] = ear_passes;
+  j["border_vertices_pulled"] = border_vertices_pulled;
+  j["border_pulls_refused"] = border_pulls_refused;
+  j["max_border_pull_m"] = RoundToDecimals(max_border_pull_m, 4);
   j["spike_vertices_flattened"] = spike_vertices_flattened;
   j["max_spike_height_m"] = RoundToDecimals(max_spike_height_m, 4);
   j["faces_out"] = faces_out;
   j["median_spacing_m"] = RoundToDecimals(median_spacing_m, 4);
+  j["median_point_spacing_m"] = RoundToDecimals(median_point_spacing_m, 4);
   Json criteria;
   criteria["spacing_neighbours"] = options.spacing_neighbours;
   criteria["min_spacing_m"] = RoundToDecimals(options.min_spacing_m, 4);
@@ -112,6 +187,7 @@ Json SurfaceTrimReport::ToJson() const {
   criteria["border_edge_factor"] = options.border_edge_factor;
   criteria["ear_edge_factor"] = options.ear_edge_factor;
   criteria["max_ear_passes"] = options.max_ear_passes;
+  criteria["border_pull_factor"] = options.border_pull_factor;
   criteria["spike_factor"] = options.spike_factor;
   criteria["spike_min_m"] = options.spike_min_m;
   criteria["spike_passes"] = options.spike_passes;
@@ -146,17 +222,18 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
   }
   // Smoothed: the median over each point's 16 nearest points (a clump of near-duplicate points or a
   // lone stray point does not set the scale of its area), floored by the surface's own resolution.
+  // point_spacing keeps the points' own (smoothed, not floored): step 2c's scale.
+  std::vector<double> point_spacing(points.size(), 0.0);
   {
-    std::vector<double> smoothed(points.size(), 0.0);
     ForEachIndex(points.size(), [&](size_t i) {
       if (!points.positions_m[i].allFinite()) return;
       std::vector<double> around;
       for (const auto& hit : search.Nearest(points.positions_m[i], kSmoothingNeighbours)) {
         around.push_back(spacing[hit.second]);
       }
-      smoothed[i] = std::max(Median(around), options.min_spacing_m);
+      point_spacing[i] = Median(around);
     });
-    spacing.swap(smoothed);
+    for (size_t i = 0; i < points.size(); ++i) spacing[i] = std::max(point_spacing[i], options.min_spacing_m);
   }
   {
     std::vector<double> finite;
@@ -164,6 +241,11 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
       if (points.positions_m[i].allFinite()) finite.push_back(spacing[i]);
     }
     report.median_spacing_m = Median(finite);
+    finite.clear();
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (points.positions_m[i].allFinite()) finite.push_back(point_spacing[i]);
+    }
+    report.median_point_spacing_m = Median(finite);
   }
 
   // How far each vertex and each face centroid is from the data, in local spacings; each face's
@@ -320,6 +402,10 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
           {static_cast<uint32_t>(remap[t[0]]), static_cast<uint32_t>(remap[t[1]]), static_cast<uint32_t>(remap[t[2]])});
     }
   }
+
+  // 2c. Border pull: the border's vertices onto the data's border.
+  if (options.border_pull_factor > 0 && search.size() > 0 && !out.faces.empty())
+    PullBorder(out, points, search, point_spacing, options, &report);
 
   // 3. Spikes: every vertex against the plane of its ring (the 2-ring when the ring is too small to
   // span a plane, as at a border corner), all measured on the same positions in each pass.

@@ -25,6 +25,11 @@
 //    stretched (a lone point the surface reached out to). Up to max_ear_passes passes, so the cut
 //    reaches a few triangles in and never peels ring after ring: the part of step 2 that stays safe on
 //    a sparse cloud's clumpy border, where peeling eats into the data.
+//    2c. Border pull: a border vertex farther from its nearest data point than border_pull_factor × that
+//    point's own spacing (the points' k-NN spacing, not floored by min_spacing_m) is moved straight
+//    toward the point until it is that far, unless that would turn a face around it by more than 60°.
+//    Faces are removed a whole face at a time, so a Poisson border, whose facets are ~1.5 point
+//    spacings, otherwise ends up to a facet out past the points (and curls off their plane there).
 // 3. Spikes: a vertex whose distance to the least-squares plane of its one-ring neighbours exceeds
 //    max(spike_min_m, spike_factor × the mean length of its edges) is moved onto that plane (smoothed,
 //    not cut); up to spike_passes passes. The report keeps the largest such height found.
@@ -47,6 +52,7 @@ struct SurfaceTrimOptions {
   int max_border_passes = 1000;     // a bound on the peeling (each pass removes one ring of faces)
   double ear_edge_factor = 4.0;     // 0 = skip step 2b
   int max_ear_passes = 3;           // a bound on step 2b (each pass cuts what is an ear or stray then)
+  double border_pull_factor = 0.5;  // 0 = skip step 2c
   double spike_factor = 1.0;        // 0 = skip step 3
   double spike_min_m = 0.25;
   int spike_passes = 3;
@@ -60,9 +66,13 @@ struct SurfaceTrimReport {
   int64_t border_passes = 0;
   int64_t border_ears_cut = 0;  // step 2b
   int64_t ear_passes = 0;
+  int64_t border_vertices_pulled = 0;    // step 2c
+  int64_t border_pulls_refused = 0;      // step 2c: moves taken back (a face would turn)
+  double max_border_pull_m = 0;          // the longest move
   int64_t spike_vertices_flattened = 0;  // step 3 (a vertex flattened in two passes counts twice)
   double max_spike_height_m = 0;         // largest distance to the ring plane among flattened vertices
   double median_spacing_m = 0;           // median local spacing over the data points
+  double median_point_spacing_m = 0;     // the same, not floored by min_spacing_m (the points' own)
   SurfaceTrimOptions options;            // the criteria, as run
   Json ToJson() const;
 };
