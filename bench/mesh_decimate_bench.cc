@@ -8,10 +8,12 @@
 //   mesh_decimate_bench --list-methods      (the names --methods takes, one per line)
 //   mesh_decimate_bench [--faces N] [--ratio R | --ratios R1,R2,...] [--samples S] [--methods a,b,...]
 //                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C] [--qem-rcond R]
-//                       [--qem-band-rings B]
+//                       [--qem-band-rings B] [--error-goals E1,E2,...]
 //                       [--presets] [--export-raw FILE] [--import-raw FILE --label NAME]
 //                       [--end-to-end] [--defects] [--threads T]
 //
+// --error-goals: each method with an error goal in metres (DecimateOptions::max_error_m) instead of
+// a face budget, for the methods that take one (the meshoptimizer methods and qem_tiled).
 // --end-to-end: clean → decimate (the first of --methods) → Hausdorff, as `cinepath mesh` runs
 // them, each step and the totals in wall and CPU seconds, with input faces per second.
 // --defects: punch holes, add floating blobs, duplicate vertices/faces and degenerate faces into
@@ -264,7 +266,8 @@ int main(int argc, char** argv) {
   std::string methods =
       "meshoptimizer,meshoptimizer_partitioned,cgal_garland_heckbert_probabilistic,"
       "cgal_garland_heckbert,openmesh_quadric";
-  std::string ratios;  // --ratios a,b,...: the decimation table at each budget (overrides --ratio)
+  std::string ratios;       // --ratios a,b,...: the decimation table at each budget (overrides --ratio)
+  std::string error_goals;  // --error-goals e1,e2,...: error goals in metres instead of face budgets
   bool presets = false, end_to_end = false, defects = false;
   pg::internal::QemOptions qem;
   int partitions = 0;         // > 0: tiles of both tiled methods (default: each method's own)
@@ -282,6 +285,8 @@ int main(int argc, char** argv) {
       faces = std::stoll(next());
     else if (arg == "--ratios")
       ratios = next();
+    else if (arg == "--error-goals")
+      error_goals = next();
     else if (arg == "--bound")
       bound = true;
     else if (arg == "--sample-counts")
@@ -458,13 +463,18 @@ int main(int argc, char** argv) {
   Json rows = Json::array();
   std::unique_ptr<pg::MeshDistanceIndex> input_index;  // built once, for every method
   std::vector<double> budgets;
-  for (const std::string& r : Split(ratios)) budgets.push_back(std::stod(r));
+  for (const std::string& r : Split(error_goals.empty() ? ratios : error_goals)) budgets.push_back(std::stod(r));
   if (budgets.empty()) budgets.push_back(ratio);
+  const bool goals = !error_goals.empty();
   for (double budget : budgets)
     for (const std::string& name : Split(methods)) {
       pg::DecimateOptions options;
       options.method = pg::ParseDecimationMethod(name, "--methods");
-      options.target_faces = static_cast<int64_t>(std::llround(budget * input.num_faces()));
+      if (goals) {
+        options.max_error_m = budget;
+      } else {
+        options.target_faces = static_cast<int64_t>(std::llround(budget * input.num_faces()));
+      }
       options.qem = qem;
       if (partitions > 0) options.partitions = options.qem.tiles = partitions;
       start = std::chrono::steady_clock::now();
@@ -520,10 +530,11 @@ int main(int argc, char** argv) {
       }
       std::fprintf(
           stderr,
-          "%4.0f%% %-36s %8.2f s (cpu %.2f s) %9zu faces  hausdorff %.4f m (in->out %.4f, out->in %.4f; %.1f s)\n",
-          100 * budget, name.c_str(), s, cpu, out.num_faces(), d.symmetric_m, d.a_to_b_m, d.b_to_a_m, hs);
+          "%6g%s %-36s %8.2f s (cpu %.2f s) %9zu faces  hausdorff %.4f m (in->out %.4f, out->in %.4f; %.1f s)\n",
+          goals ? budget : 100 * budget, goals ? " m" : " %", name.c_str(), s, cpu, out.num_faces(), d.symmetric_m,
+          d.a_to_b_m, d.b_to_a_m, hs);
       rows.push_back({{"method", name},
-                      {"ratio", budget},
+                      {goals ? "error_goal_m" : "ratio", budget},
                       {"target_faces", options.target_faces},
                       {"digest", Digest(out)},
                       {"seconds", s},

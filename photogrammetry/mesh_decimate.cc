@@ -274,10 +274,16 @@ TriangleMesh DecimateMesh(const TriangleMesh& mesh, const DecimateOptions& optio
         out = DecimateOpenMesh(mesh, options.target_faces);
         break;
       case DecimationMethod::kQemTiled:
-        if (options.target_faces <= 0) {
-          throw InputError("decimate: the qem_tiled method needs a face budget");
+        if (options.target_faces > 0 && options.max_error_m > 0) {
+          throw InputError("decimate: the qem_tiled method takes a face budget or an error goal, not both");
         }
-        out = internal::DecimateQemTiled(mesh, options.target_faces, options.qem.tiles, options.qem);
+        if (options.max_error_m > 0) {
+          // The same goal at every vertex: collapses while their RMS distance to their planes is within it.
+          const std::vector<double> goal_m(mesh.num_vertices(), options.max_error_m);
+          out = internal::DecimateQemTiled(mesh, 0, options.qem.tiles, options.qem, &goal_m);
+        } else {
+          out = internal::DecimateQemTiled(mesh, options.target_faces, options.qem.tiles, options.qem);
+        }
         break;
     }
   }

@@ -52,8 +52,9 @@ struct QemOptions {
 struct DecimateOptions {
   DecimationMethod method = DecimationMethod::kMeshoptimizerPartitioned;
   int64_t target_faces = 0;  // > 0: stop at (about) this many faces
-  // > 0 (meshoptimizer methods only): also stop before the simplifier's own error estimate
-  // exceeds this distance in metres. The pipeline checks the result with a Hausdorff measurement.
+  // > 0 (meshoptimizer methods: also) stop before the simplifier's own error estimate exceeds this
+  // distance in metres; qem_tiled takes it instead of a face budget (its estimate: a collapse's RMS
+  // distance to the planes merged into it). The pipeline checks the result with a Hausdorff measurement.
   double max_error_m = 0;
   int partitions = 16;  // kMeshoptimizerPartitioned: tiles (fixed: same mesh on any machine)
   internal::QemOptions qem;

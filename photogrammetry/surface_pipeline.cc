@@ -151,14 +151,17 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
       }
       step["for_plan"] = plan_report.ToJson();
     } else if (options.max_error_m) {
-      // Error bound: meshoptimizer's own estimate is not a Hausdorff distance, so tighten it until
+      // Error bound: the simplifier's own estimate is not a Hausdorff distance, so tighten it until
       // the measured symmetric Hausdorff distance is within the bound (at most 8 halvings; the
       // undecimated mesh always meets it). Every attempt is measured against the same input tree.
       step["goal"] = "max_error_m";
       step["max_error_m"] = *options.max_error_m;
+      // CGAL and OpenMesh take face budgets only: qem_tiled, which meets a measured bound with the
+      // fewest faces on the bench terrain (bench/RESULTS.md, "Error goals").
       if (decimate.method != DecimationMethod::kMeshoptimizer &&
-          decimate.method != DecimationMethod::kMeshoptimizerPartitioned) {
-        decimate.method = DecimationMethod::kMeshoptimizerPartitioned;  // error goals need meshopt
+          decimate.method != DecimationMethod::kMeshoptimizerPartitioned &&
+          decimate.method != DecimationMethod::kQemTiled) {
+        decimate.method = DecimationMethod::kQemTiled;
         step["method"] = DecimationMethodName(decimate.method);
       }
       decimate.max_error_m = *options.max_error_m;

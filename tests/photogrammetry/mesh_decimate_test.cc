@@ -72,6 +72,30 @@ TEST(DecimateMesh, ErrorBoundStopsEarlier) {
   EXPECT_LE(tight_stats.simplifier_error_m, 0.01 * 1.001);
 }
 
+// qem_tiled with an error goal instead of a face budget: a looser goal keeps fewer faces, the measured
+// Hausdorff distance follows the goal (within a few × of it: the goal bounds an RMS distance to planes,
+// not the largest distance), and a budget with a goal is refused.
+TEST(DecimateMesh, QemTiledTakesAnErrorGoal) {
+  const TriangleMesh grid = testing::TerrainGrid(101, 101, 1.0);
+  DecimateOptions tight, loose;
+  tight.method = loose.method = DecimationMethod::kQemTiled;
+  tight.max_error_m = 0.01;
+  loose.max_error_m = 0.2;
+  const TriangleMesh a = DecimateMesh(grid, tight);
+  const TriangleMesh b = DecimateMesh(grid, loose);
+  EXPECT_LT(b.num_faces(), a.num_faces());
+  EXPECT_LT(a.num_faces(), grid.num_faces());
+  const HausdorffOptions hausdorff;
+  const double tight_m = ApproximateHausdorff(grid, a, hausdorff).symmetric_m;
+  const double loose_m = ApproximateHausdorff(grid, b, hausdorff).symmetric_m;
+  std::printf("qem_tiled error goals: 0.01 m -> %zu faces, %.4f m; 0.2 m -> %zu faces, %.4f m (of %zu)\n",
+              a.num_faces(), tight_m, b.num_faces(), loose_m, grid.num_faces());
+  EXPECT_LT(tight_m, loose_m);
+  EXPECT_LT(tight_m, 4 * 0.01);
+  tight.target_faces = 1000;
+  EXPECT_THROW(DecimateMesh(grid, tight), InputError);
+}
+
 TEST(DecimateMesh, NoGoalOrABudgetAboveTheInputKeepsEveryFace) {
   const TriangleMesh grid = testing::TerrainGrid(11, 11, 1.0);
   DecimateOptions options;
