@@ -1,6 +1,7 @@
 #include "photogrammetry/mesh_decimate_for_plan.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <array>
@@ -353,6 +354,29 @@ TEST(DecimateForPlan, TheQuadricSimplifierKeepsTheBoundWithFarFewerFacesThanMesh
     bool found = false;
     for (const auto& v : out.vertices_m) found = found || v == corner;
     EXPECT_TRUE(found) << corner.transpose();
+  }
+}
+
+// The same mesh and report on 1 thread and on all of them, with either simplifier.
+TEST(DecimateForPlan, TheSameMeshAtAnyThreadCount) {
+  const TriangleMesh mesh = BoxOnPlane();
+  for (ForPlanSimplifier simplifier : {ForPlanSimplifier::kQemTiled, ForPlanSimplifier::kMeshoptimizer}) {
+    ForPlanOptions options;
+    options.cameras = CamerasFromPlan(OrbitPlan(60), "orbit.json");
+    options.measure_samples = 20000;
+    options.max_rounds = 5;
+    options.simplifier = simplifier;
+    ForPlanReport all_report, one_report;
+    const TriangleMesh all = DecimateForPlan(mesh, options, &all_report);
+    TriangleMesh one;
+    {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      one = DecimateForPlan(mesh, options, &one_report);
+    }
+    EXPECT_LT(all.num_faces(), mesh.num_faces()) << ForPlanSimplifierName(simplifier);
+    EXPECT_EQ(one.faces, all.faces) << ForPlanSimplifierName(simplifier);
+    EXPECT_EQ(one.vertices_m, all.vertices_m) << ForPlanSimplifierName(simplifier);
+    EXPECT_EQ(DumpJson(one_report.ToJson()), DumpJson(all_report.ToJson())) << ForPlanSimplifierName(simplifier);
   }
 }
 
