@@ -98,23 +98,15 @@ void PullBorder(TriangleMesh& mesh, const PointCloud& points, const internal::Po
                 const std::vector<double>& point_spacing, const SurfaceTrimOptions& options,
                 SurfaceTrimReport* report) {
   const size_t n = mesh.num_vertices();
-  std::vector<int> edge_uses;
   std::vector<char> on_border(n, 0);
   {
-    std::vector<std::pair<uint64_t, uint32_t>> edges;  // (key, one end), each face's three edges
-    edges.reserve(3 * mesh.faces.size());
-    for (const auto& t : mesh.faces) {
-      for (int c = 0; c < 3; ++c) edges.push_back({EdgeKey(t[c], t[(c + 1) % 3]), t[c]});
-    }
-    std::sort(edges.begin(), edges.end());
-    for (size_t i = 0; i < edges.size();) {
-      size_t j = i;
-      while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-      if (j - i == 1) {
-        on_border[static_cast<uint32_t>(edges[i].first >> 32)] = 1;
-        on_border[static_cast<uint32_t>(edges[i].first & 0xffffffffu)] = 1;
+    const EdgeTable edges(mesh.faces);
+    for (size_t f = 0; f < mesh.faces.size(); ++f) {
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t e = edges.face_edges[f][c];
+        if (edges.offsets[e + 1] - edges.offsets[e] != 1) continue;  // not an edge of one face
+        on_border[mesh.faces[f][c]] = on_border[mesh.faces[f][(c + 1) % 3]] = 1;
       }
-      i = j;
     }
   }
   std::vector<Eigen::Vector3d> target = mesh.vertices_m;
