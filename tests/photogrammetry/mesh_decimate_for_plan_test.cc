@@ -132,6 +132,15 @@ Trajectory OrbitPlan(int frames, double radius_m = 30, double height_m = 25, dou
   return plan;
 }
 
+// The options of the ribbed-building tests: the benchmark building's orbit (120 frames), 50,000
+// measured points on the faces.
+ForPlanOptions BuildingOrbit() {
+  ForPlanOptions options;
+  options.cameras = CamerasFromPlan(OrbitPlan(120, 60, 40, 10, 35), "orbit.json");
+  options.measure_samples = 50000;
+  return options;
+}
+
 struct Counts {
   int64_t box = 0, far_plane = 0;
 };
@@ -227,10 +236,8 @@ TEST(DecimateForPlan, AnOrbitKeepsTheBoxDenseAndThinsTheFarPlaneWithinTheBound) 
 // meshoptimizer is the simplifier that needs it.)
 TEST(DecimateForPlan, ATileOverTheBoundAtGoalZeroIsFrozenAndTheBoundHolds) {
   const TriangleMesh mesh = RibbedBuilding();
-  ForPlanOptions options;
+  ForPlanOptions options = BuildingOrbit();
   options.simplifier = ForPlanSimplifier::kMeshoptimizer;
-  options.cameras = CamerasFromPlan(OrbitPlan(120, 60, 40, 10, 35), "orbit.json");
-  options.measure_samples = 50000;
   options.face_freeze_rounds = 0;  // whole tiles at once (face freezing: the next test)
   options.freeze = false;
   ForPlanReport unfrozen;
@@ -292,10 +299,8 @@ TEST(DecimateForPlan, ATileOverTheBoundAtGoalZeroIsFrozenAndTheBoundHolds) {
 // than when whole tiles are frozen.
 TEST(DecimateForPlan, FreezingFacesBeforeTilesKeepsTheBoundWithFewerFaces) {
   const TriangleMesh mesh = RibbedBuilding();
-  ForPlanOptions options;
+  ForPlanOptions options = BuildingOrbit();
   options.simplifier = ForPlanSimplifier::kMeshoptimizer;
-  options.cameras = CamerasFromPlan(OrbitPlan(120, 60, 40, 10, 35), "orbit.json");
-  options.measure_samples = 50000;
   options.face_freeze_rounds = 0;
   ForPlanReport tiles_only;
   const TriangleMesh whole = DecimateForPlan(mesh, options, &tiles_only);
@@ -326,9 +331,7 @@ TEST(DecimateForPlan, FreezingFacesBeforeTilesKeepsTheBoundWithFewerFaces) {
 // where the planes meet), so only a hundred faces or so end up frozen, against whole tiles' worth.
 TEST(DecimateForPlan, TheQuadricSimplifierKeepsTheBoundWithFarFewerFacesThanMeshoptimizer) {
   const TriangleMesh mesh = RibbedBuilding();
-  ForPlanOptions options;
-  options.cameras = CamerasFromPlan(OrbitPlan(120, 60, 40, 10, 35), "orbit.json");
-  options.measure_samples = 50000;
+  ForPlanOptions options = BuildingOrbit();
   ASSERT_EQ(options.simplifier, ForPlanSimplifier::kQemTiled);
   ForPlanReport report;
   const TriangleMesh out = DecimateForPlan(mesh, options, &report);
