@@ -8,7 +8,7 @@
 //   mesh_decimate_bench --list-methods      (the names --methods takes, one per line)
 //   mesh_decimate_bench [--faces N] [--ratio R | --ratios R1,R2,...] [--samples S] [--methods a,b,...]
 //                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C] [--qem-rcond R]
-//                       [--qem-band-rings B] [--error-goals E1,E2,...]
+//                       [--qem-band-rings B] [--qem-band-cell-faces C] [--error-goals E1,E2,...]
 //                       [--presets] [--export-raw FILE] [--import-raw FILE --label NAME]
 //                       [--end-to-end] [--defects] [--threads T]
 //
@@ -305,6 +305,8 @@ int main(int argc, char** argv) {
       qem.placement_rcond = std::stod(next());
     else if (arg == "--qem-band-rings")
       qem.final_band_rings = std::stod(next());
+    else if (arg == "--qem-band-cell-faces")
+      qem.band_cell_faces = std::stod(next());
     else if (arg == "--ratio")
       ratio = std::stod(next());
     else if (arg == "--samples")

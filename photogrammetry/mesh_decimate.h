@@ -46,6 +46,10 @@ struct QemOptions {
   // share of the faces (the lighter the budget, the coarser the tiles' faces next to the band, and the
   // wider it must be to take their share). 0 = on every merged face.
   double final_band_rings = 4;
+  // The band pass runs in parallel on cells (a grid shifted by half a tile) that each keep about this
+  // many faces; a band that would keep fewer than four times this, or 0, is simplified as one piece.
+  // The cells' locked cuts cost some accuracy on small meshes (docs/mesh.md, bench/RESULTS.md).
+  double band_cell_faces = 4000;
 };
 }  // namespace internal
 

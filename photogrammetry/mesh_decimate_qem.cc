@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <queue>
+#include <memory>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -40,6 +40,10 @@ struct Quadric {
   }
   Quadric& operator+=(const Quadric& o) {
     for (int k = 0; k < 10; ++k) q[k] += o.q[k];
+    return *this;
+  }
+  Quadric& operator-=(const Quadric& o) {
+    for (int k = 0; k < 10; ++k) q[k] -= o.q[k];
     return *this;
   }
   // The planes' total weight: each plane adds w·|n|² = w to the trace of the 3 × 3 part.
@@ -83,7 +87,6 @@ Eigen::Vector3d Placement(const Quadric& q, const Eigen::Vector3d& a, const Eige
   m << q.q[0], q.q[1], q.q[2], q.q[1], q.q[4], q.q[5], q.q[2], q.q[5], q.q[7];
   const Eigen::Vector3d rhs(-q.q[3], -q.q[6], -q.q[8]);
   const Eigen::Vector3d mid = 0.5 * (a + b);
-  const Eigen::Vector3d on_edge = BestOnSegment(q, a, b);
   const Eigen::Vector3d residual = rhs - m * mid;
   Eigen::Vector3d p = mid;
   // Every eigenvalue is above rcond × the largest when det / m2 > rcond × trace, since the smallest
@@ -99,25 +102,26 @@ Eigen::Vector3d Placement(const Quadric& q, const Eigen::Vector3d& a, const Eige
   const double trace = m.trace();
   const double minors = adjugate(0, 0) + adjugate(1, 1) + adjugate(2, 2);
   const double det = m(0, 0) * adjugate(0, 0) + m(0, 1) * adjugate(1, 0) + m(0, 2) * adjugate(2, 0);
+  const double reach2 = reach * reach * (b - a).squaredNorm();
   // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
   if (minors > 1e-9 * trace * trace && det > rcond * trace * minors) {
+    // The quadric's minimum over all space, so no point of the edge does better when it is in reach.
     p += adjugate * residual / det;
-  } else {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-    eigen.computeDirect(m);
-    const Eigen::Vector3d& lambda = eigen.eigenvalues();  // ascending
-    if (!(lambda(2) > 0)) return on_edge;
-    for (int k = 0; k < 3; ++k) {
-      if (lambda(k) > rcond * lambda(2)) {
-        const Eigen::Vector3d axis = eigen.eigenvectors().col(k);
-        p += axis * (axis.dot(residual) / lambda(k));
-      }
+    return p.allFinite() && (p - mid).squaredNorm() <= reach2 ? p : BestOnSegment(q, a, b);
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(m);
+  const Eigen::Vector3d& lambda = eigen.eigenvalues();  // ascending
+  if (!(lambda(2) > 0)) return BestOnSegment(q, a, b);
+  for (int k = 0; k < 3; ++k) {
+    if (lambda(k) > rcond * lambda(2)) {
+      const Eigen::Vector3d axis = eigen.eigenvectors().col(k);
+      p += axis * (axis.dot(residual) / lambda(k));
     }
   }
-  if (p.allFinite() && (p - mid).squaredNorm() <= reach * reach * (b - a).squaredNorm() &&
-      q.Error(p) < q.Error(on_edge)) {
-    return p;
-  }
+  // Truncated: p holds some directions at the midpoint, so a point of the edge may do better.
+  const Eigen::Vector3d on_edge = BestOnSegment(q, a, b);
+  if (p.allFinite() && (p - mid).squaredNorm() <= reach2 && q.Error(p) < q.Error(on_edge)) return p;
   return on_edge;
 }
 
@@ -125,7 +129,7 @@ struct HeapEntry {
   float cost;
   uint32_t a, b;
   uint32_t stamps;                            // stamp[a] + stamp[b] when pushed: stamps only grow, so any change shows
-  bool operator<(const HeapEntry& o) const {  // std::priority_queue is a max-heap: reversed
+  bool operator<(const HeapEntry& o) const {  // the std heap functions make max-heaps: reversed
     if (cost != o.cost) return cost > o.cost;
     if (a != o.a) return a > o.a;
     return b > o.b;
@@ -165,27 +169,48 @@ class QemSimplifier {
     faces_alive_ = static_cast<int64_t>(faces_.size());
   }
 
-  void Run(int64_t target_faces) {
-    std::vector<HeapEntry> entries;
-    entries.reserve(faces_.size() * 3 / 2 + 16);
+  // Costs every edge's collapse (done by Run when not called before).
+  void BuildHeap() {
+    heap_.clear();
+    heap_.reserve(faces_.size() * 3 / 2 + 16);
     for (const auto& f : faces_) {
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = f[k], b = f[(k + 1) % 3];
-        if (a < b || IsBorderEdgeOnce(a, b)) Push(entries, a, b);
+        if (a < b || IsBorderEdgeOnce(a, b)) Push(heap_, a, b);
       }
     }
-    std::priority_queue<HeapEntry> heap(std::less<HeapEntry>(), std::move(entries));
+    std::make_heap(heap_.begin(), heap_.end());
+    heap_built_ = true;
+  }
+
+  // The collapses waiting in the heap (after BuildHeap: one per edge that may collapse), unordered.
+  const std::vector<HeapEntry>& heap() const { return heap_; }
+
+  void Run(int64_t target_faces) {
+    if (!heap_built_) BuildHeap();
     std::vector<HeapEntry> fresh;
-    while (faces_alive_ > target_faces && !heap.empty()) {
-      const HeapEntry e = heap.top();
-      heap.pop();
+    while (faces_alive_ > target_faces && !heap_.empty()) {
+      std::pop_heap(heap_.begin(), heap_.end());
+      const HeapEntry e = heap_.back();
+      heap_.pop_back();
       if (!vertex_alive_[e.a] || !vertex_alive_[e.b] || stamp_[e.a] + stamp_[e.b] != e.stamps) continue;
       const uint32_t kept = TryCollapse(e.a, e.b);
       if (kept == kNone) continue;
       fresh.clear();
       ForNeighbours(kept, [&](uint32_t w) { Push(fresh, std::min(kept, w), std::max(kept, w)); });
-      for (const HeapEntry& f : fresh) heap.push(f);
+      for (const HeapEntry& f : fresh) {
+        heap_.push_back(f);
+        std::push_heap(heap_.begin(), heap_.end());
+      }
     }
+  }
+
+  int64_t faces_alive() const { return faces_alive_; }
+  // Faces with a locked corner (at the start: the faces along the piece's cuts and borders).
+  int64_t FacesTouchingLocked() const {
+    int64_t count = 0;
+    for (const auto& t : faces_) count += (locked_[t[0]] || locked_[t[1]] || locked_[t[2]]) ? 1 : 0;
+    return count;
   }
 
   const std::vector<Eigen::Vector3d>& positions() const { return pos_; }
@@ -383,13 +408,18 @@ class QemSimplifier {
   uint32_t epoch_ = 0;
   std::vector<uint32_t> head_, next_;
   int64_t faces_alive_ = 0;
+  std::vector<HeapEntry> heap_;  // a max-heap under HeapEntry's reversed order: the cheapest on top
+  bool heap_built_ = false;
 };
 
-// Plane quadric of each face added to its three corners (area-weighted, or one per face).
+// Plane quadric of each of the first face_count faces added to its three corners (area-weighted, or one
+// per face).
 std::vector<Quadric> FaceQuadrics(const std::vector<Eigen::Vector3d>& pos,
-                                  const std::vector<std::array<uint32_t, 3>>& faces, bool area_weighted) {
+                                  const std::vector<std::array<uint32_t, 3>>& faces, size_t face_count,
+                                  bool area_weighted) {
   std::vector<Quadric> q(pos.size());
-  for (const auto& t : faces) {
+  for (size_t f = 0; f < face_count; ++f) {
+    const auto& t = faces[f];
     const Eigen::Vector3d n2 = (pos[t[1]] - pos[t[0]]).cross(pos[t[2]] - pos[t[0]]);
     const double len = n2.norm();
     if (!(len > 0)) continue;
@@ -436,6 +466,8 @@ std::vector<char> BorderVertices(size_t n, const std::vector<std::array<uint32_t
   return locked;
 }
 
+constexpr uint32_t kUnmapped = 0xffffffffu;
+
 // Result of one simplification, in global vertex ids.
 struct Piece {
   std::vector<uint32_t> vertices;  // global ids of the surviving vertices used by faces
@@ -445,18 +477,89 @@ struct Piece {
   std::vector<std::array<uint32_t, 3>> faces;  // global ids
 };
 
-// Simplifies the faces `faces` (global ids) of a mesh whose positions are `positions`, with
-// per-vertex quadrics either computed from these faces (tiles) or given (`quadrics`, the merge).
-// keep_ratio >= 0 (tiles): the target comes from the ratio instead of target_faces. goals2: the
-// squared error goal of every global vertex, or empty (a face budget only).
-Piece Simplify(const std::vector<Eigen::Vector3d>& positions, const std::vector<Quadric>* quadrics,
-               const std::vector<std::array<uint32_t, 3>>& faces, int64_t target_faces, double keep_ratio,
-               const std::vector<double>& goals2, const QemOptions& options, std::vector<uint32_t>& scratch) {
-  std::vector<uint32_t> global;
+// One piece of the mesh (a tile, or a cell of the band) in local vertex ids, ready to simplify.
+struct PieceJob {
+  std::vector<uint32_t> global;  // local → global vertex id
+  // The simplifier's faces are the piece's own, then `halo_faces` of its neighbours' (never changed).
+  std::unique_ptr<QemSimplifier> simplifier;
+  int64_t halo_faces = 0;
+  int64_t own_faces_alive() const { return simplifier->faces_alive() - halo_faces; }
+};
+
+// For each piece, the faces of the other pieces around its cut vertices (those in the faces of two
+// or more pieces), in the pieces' order. A piece simplified with its halo as fixed context sees the
+// whole neighbourhood of each cut vertex in its link and fold-over checks; without it, a collapse onto
+// a cut vertex can join an edge the next piece already has, and make it non-manifold.
+std::vector<std::vector<std::array<uint32_t, 3>>> Halos(const std::vector<std::vector<std::array<uint32_t, 3>>>& pieces,
+                                                        size_t n) {
+  constexpr uint32_t kNoPiece = 0xffffffffu, kCut = 0xfffffffeu;
+  std::vector<uint32_t> piece_of(n, kNoPiece);
+  for (uint32_t p = 0; p < pieces.size(); ++p) {
+    for (const auto& t : pieces[p]) {
+      for (uint32_t v : t) piece_of[v] = piece_of[v] == kNoPiece || piece_of[v] == p ? p : kCut;
+    }
+  }
+  // The faces around each cut vertex, as (piece, face) references in one array.
+  std::vector<uint32_t> start(n + 1, 0);
+  for (const auto& piece : pieces) {
+    for (const auto& t : piece) {
+      for (uint32_t v : t) start[v + 1] += piece_of[v] == kCut ? 1 : 0;
+    }
+  }
+  for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::pair<uint32_t, uint32_t>> around(start[n]);
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (uint32_t p = 0; p < pieces.size(); ++p) {
+    for (uint32_t f = 0; f < pieces[p].size(); ++f) {
+      for (uint32_t v : pieces[p][f]) {
+        if (piece_of[v] == kCut) around[fill[v]++] = {p, f};
+      }
+    }
+  }
+  std::vector<std::vector<std::array<uint32_t, 3>>> halos(pieces.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      std::vector<std::pair<uint32_t, uint32_t>> refs;
+      for (const auto& t : pieces[p]) {
+        for (uint32_t v : t) {
+          if (piece_of[v] != kCut) continue;
+          for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
+            if (around[k].first != p) refs.push_back(around[k]);
+          }
+        }
+      }
+      std::sort(refs.begin(), refs.end());
+      refs.erase(std::unique(refs.begin(), refs.end()), refs.end());
+      for (const auto& [q, f] : refs) halos[p].push_back(pieces[q][f]);
+    }
+  });
+  return halos;
+}
+
+// The faces `faces` (global ids) of a mesh whose positions are `positions`, with per-vertex quadrics
+// either computed from these faces (tiles) or given (`quadrics`, the band). goals2: the squared
+// error goal of every global vertex, or empty (a face budget only). The piece's border and cut
+// vertices are locked. scratch: n entries, kUnmapped outside a call.
+PieceJob PreparePiece(const std::vector<Eigen::Vector3d>& positions, const std::vector<Quadric>* quadrics,
+                      const std::vector<std::array<uint32_t, 3>>& own_faces,
+                      const std::vector<std::array<uint32_t, 3>>& halo, const std::vector<double>& goals2,
+                      const QemOptions& options, std::vector<uint32_t>& scratch) {
+  PieceJob job;
+  job.halo_faces = static_cast<int64_t>(halo.size());
+  std::vector<std::array<uint32_t, 3>> faces = own_faces;
+  faces.insert(faces.end(), halo.begin(), halo.end());
+  // The piece's vertices in increasing global order.
+  std::vector<uint32_t>& global = job.global;
   global.reserve(faces.size() / 2 + 16);
-  for (const auto& t : faces) global.insert(global.end(), t.begin(), t.end());
+  for (const auto& t : faces) {
+    for (uint32_t v : t) {
+      if (scratch[v] == kUnmapped) {
+        scratch[v] = 0;
+        global.push_back(v);
+      }
+    }
+  }
   std::sort(global.begin(), global.end());
-  global.erase(std::unique(global.begin(), global.end()), global.end());
   std::vector<Eigen::Vector3d> local_pos(global.size());
   for (size_t k = 0; k < global.size(); ++k) {
     scratch[global[k]] = static_cast<uint32_t>(k);
@@ -466,50 +569,110 @@ Piece Simplify(const std::vector<Eigen::Vector3d>& positions, const std::vector<
   for (size_t f = 0; f < faces.size(); ++f) {
     for (int k = 0; k < 3; ++k) local_faces[f][k] = scratch[faces[f][k]];
   }
+  for (uint32_t g : global) scratch[g] = kUnmapped;
   std::vector<Quadric> local_q;
   if (quadrics) {
     local_q.resize(global.size());
     for (size_t k = 0; k < global.size(); ++k) local_q[k] = (*quadrics)[global[k]];
   } else {
-    local_q = FaceQuadrics(local_pos, local_faces, options.area_weighted);
+    // From the piece's own faces (the halo's are its neighbours' to count).
+    local_q = FaceQuadrics(local_pos, local_faces, own_faces.size(), options.area_weighted);
   }
   std::vector<char> locked = BorderVertices(global.size(), local_faces);
+  for (size_t f = own_faces.size(); f < local_faces.size(); ++f) {
+    for (uint32_t v : local_faces[f]) locked[v] = 1;
+  }
   std::vector<double> local_goal2;
   if (!goals2.empty()) {
     local_goal2.resize(global.size());
     for (size_t k = 0; k < global.size(); ++k) local_goal2[k] = goals2[global[k]];
   }
-  if (keep_ratio >= 0 && !goals2.empty()) {
-    target_faces = 0;  // error goals only
-  } else if (keep_ratio >= 0) {
-    // A tile: its faces that touch a locked (cut) vertex stay for the pass over the whole, which
-    // simplifies them with the cheapest collapses anywhere; the others are kept in proportion.
-    int64_t touching = 0;
-    for (const auto& t : local_faces) touching += (locked[t[0]] || locked[t[1]] || locked[t[2]]) ? 1 : 0;
-    target_faces =
-        touching + static_cast<int64_t>(std::llround(
-                       keep_ratio * static_cast<double>(static_cast<int64_t>(local_faces.size()) - touching)));
-  }
-  QemSimplifier simplifier(std::move(local_pos), std::move(local_faces), std::move(local_q), std::move(locked),
-                           std::move(local_goal2), options);
-  simplifier.Run(target_faces);
+  job.simplifier = std::make_unique<QemSimplifier>(std::move(local_pos), std::move(local_faces), std::move(local_q),
+                                                   std::move(locked), std::move(local_goal2), options);
+  return job;
+}
+
+// Runs the piece down to target_faces (0 with error goals: as far as they allow) and returns what
+// survives, in global ids.
+Piece FinishPiece(PieceJob& job, int64_t target_faces) {
+  const QemSimplifier& simplifier = *job.simplifier;
+  // The halo's faces never die (each has only locked corners), and come last.
+  job.simplifier->Run(target_faces + job.halo_faces);
   Piece piece;
   piece.faces = simplifier.AliveFaces();
-  std::vector<char> used(global.size(), 0);
+  piece.faces.resize(piece.faces.size() - static_cast<size_t>(job.halo_faces));
+  std::vector<char> used(job.global.size(), 0);
   for (auto& t : piece.faces) {
     for (uint32_t& v : t) {
       used[v] = 1;
-      v = global[v];
+      v = job.global[v];
     }
   }
-  for (size_t k = 0; k < global.size(); ++k) {
+  const bool goals = !simplifier.goals2().empty();
+  for (size_t k = 0; k < job.global.size(); ++k) {
     if (!used[k]) continue;
-    piece.vertices.push_back(global[k]);
+    piece.vertices.push_back(job.global[k]);
     piece.positions.push_back(simplifier.positions()[k]);
     piece.quadrics.push_back(simplifier.quadrics()[k]);
-    if (!goals2.empty()) piece.goals2.push_back(simplifier.goals2()[k]);
+    if (goals) piece.goals2.push_back(simplifier.goals2()[k]);
   }
+  job.simplifier.reset();
   return piece;
+}
+
+// Splits `total` into whole shares proportional to `sizes` that add up to it: the floors of the exact
+// shares, then one more for the largest remainders (ties to the lower index).
+std::vector<int64_t> Apportion(const std::vector<int64_t>& sizes, int64_t total) {
+  int64_t sum = 0;
+  for (int64_t size : sizes) sum += size;
+  std::vector<int64_t> shares(sizes.size(), 0);
+  if (sum <= 0) return shares;
+  std::vector<std::pair<int64_t, size_t>> remainders;  // (−remainder, index): the largest first
+  int64_t given = 0;
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    // total and sizes are face counts (< 2^32), so the product fits.
+    const int64_t exact = sizes[i] * total;
+    shares[i] = exact / sum;
+    given += shares[i];
+    remainders.push_back({-(exact % sum), i});
+  }
+  std::sort(remainders.begin(), remainders.end());
+  for (size_t k = 0; given < total && k < remainders.size(); ++k, ++given) ++shares[remainders[k].second];
+  return shares;
+}
+
+// Each band cell's face target, for a band budget of `target_faces`. The collapses are shared among
+// the cells as the one serial pass over the band would share them: that pass makes the cheapest
+// collapses first, anywhere, up to a cost τ, so a cell's share follows its number of edges whose
+// collapse costs at most τ (by the costs before any collapse). A collapse removes two faces and
+// three edges (the edge itself, and two that merge into others), so τ is the cost of the (3 ×
+// collapses needed)-th cheapest edge. Shares in proportion to the faces instead (as the tiles take
+// theirs) leave rough cells too coarse: on the bench terrain at 10 %, 0.188 m against 0.154 m for
+// the serial pass; τ at 1 × the collapses gives 0.161 m, at 2× and 3× 0.154 m (bench/RESULTS.md).
+std::vector<int64_t> CellTargets(const std::vector<PieceJob>& jobs, int64_t target_faces) {
+  std::vector<int64_t> sizes(jobs.size(), 0);
+  int64_t band_faces = 0;
+  std::vector<float> costs;
+  for (size_t c = 0; c < jobs.size(); ++c) {
+    if (!jobs[c].simplifier) continue;
+    sizes[c] = jobs[c].own_faces_alive();
+    band_faces += sizes[c];
+    for (const HeapEntry& e : jobs[c].simplifier->heap()) costs.push_back(e.cost);
+  }
+  const int64_t collapses = (band_faces - std::max<int64_t>(0, target_faces) + 1) / 2;
+  if (collapses <= 0 || costs.empty()) return sizes;
+  const size_t edges = std::min(costs.size(), static_cast<size_t>(3 * collapses));
+  std::nth_element(costs.begin(), costs.begin() + static_cast<std::ptrdiff_t>(edges - 1), costs.end());
+  const float tau = costs[edges - 1];
+  std::vector<int64_t> cheap(jobs.size(), 0);
+  for (size_t c = 0; c < jobs.size(); ++c) {
+    if (!jobs[c].simplifier) continue;
+    for (const HeapEntry& e : jobs[c].simplifier->heap()) cheap[c] += e.cost <= tau ? 1 : 0;
+  }
+  const std::vector<int64_t> shares = Apportion(cheap, collapses);
+  std::vector<int64_t> targets(jobs.size(), 0);
+  for (size_t c = 0; c < jobs.size(); ++c) targets[c] = std::max<int64_t>(0, sizes[c] - 2 * shares[c]);
+  return targets;
 }
 
 // Splits the tiles' merged faces into those within `rings` rings of a cut vertex (one in the faces of
@@ -596,10 +759,21 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   std::vector<Piece> pieces(tiles.size());
   if (tiles.size() > 1) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      std::vector<uint32_t> scratch(n);
+      std::vector<uint32_t> scratch(n, kUnmapped);
       for (size_t t = range.begin(); t != range.end(); ++t) {
         if (tiles[t].empty()) continue;
-        pieces[t] = Simplify(positions, nullptr, tiles[t], 0, keep_ratio, goals2, options, scratch);
+        // No halo: the tiles cut the input mesh, whose faces around a cut vertex close no short loop
+        // that a collapse could turn into a doubled edge (the band cells, cut from a thinned mesh, do).
+        PieceJob job = PreparePiece(positions, nullptr, tiles[t], {}, goals2, options, scratch);
+        int64_t tile_target = 0;  // with error goals: as far as they allow
+        if (goals2.empty()) {
+          // The faces that touch a locked (cut) vertex stay for the band pass, which simplifies them
+          // with the others near the cut; the rest are kept in proportion.
+          const int64_t touching = job.simplifier->FacesTouchingLocked() - job.halo_faces;
+          const int64_t rest = static_cast<int64_t>(tiles[t].size()) - touching;
+          tile_target = touching + static_cast<int64_t>(std::llround(keep_ratio * static_cast<double>(rest)));
+        }
+        pieces[t] = FinishPiece(job, tile_target);
       }
     });
   }
@@ -626,9 +800,10 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   // The last pass: over the band around the cuts, where the tiles kept every face; the faces outside it
   // are already at the tiles' ratio and stay as they are.
   std::vector<std::array<uint32_t, 3>> outside;
+  const int rings =
+      static_cast<int>(std::ceil(std::max(1.0, options.final_band_rings) / std::sqrt(std::max(keep_ratio, 1e-4))));
   if (tiles.size() > 1 && options.final_band_rings > 0) {
     std::vector<std::array<uint32_t, 3>> band;
-    const int rings = static_cast<int>(std::ceil(options.final_band_rings / std::sqrt(std::max(keep_ratio, 1e-4))));
     SplitCutBand(pieces, n, rings, &band, &outside);
     if (!goals2.empty()) {
       merged = std::move(band);  // the faces outside met their goals in the tiles
@@ -639,18 +814,90 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
       outside.clear();  // the band alone cannot meet the target: every face takes part
     }
   }
-  std::vector<uint32_t> scratch(n);
-  Piece final_piece =
-      Simplify(positions, tiles.size() > 1 ? &quadrics : nullptr, merged, target_faces, -1.0, goals2, options, scratch);
-  for (size_t k = 0; k < final_piece.vertices.size(); ++k)
-    positions[final_piece.vertices[k]] = final_piece.positions[k];
-  final_piece.faces.insert(final_piece.faces.begin(), outside.begin(), outside.end());
+  std::vector<std::array<uint32_t, 3>> kept = std::move(outside);
+  std::vector<uint32_t> scratch(n, kUnmapped);
+  if (tiles.size() == 1) {
+    PieceJob job = PreparePiece(positions, nullptr, merged, {}, goals2, options, scratch);
+    Piece whole = FinishPiece(job, target_faces);
+    for (size_t k = 0; k < whole.vertices.size(); ++k) positions[whole.vertices[k]] = whole.positions[k];
+    kept = std::move(whole.faces);
+  } else {
+    // The pass runs in parallel on the cells of a grid shifted by half a tile, k tiles wide: each
+    // cell holds crossings of the tiles' cuts, and its own cuts (locked, as the tiles' were) cross
+    // the band where the tiles had already thinned it. Cells are made large enough to keep about
+    // band_cell_faces faces each, since a small cell, walled in by its locked cuts, is forced into
+    // costly collapses to meet its share; a band too small for four such cells is one piece.
+    const double band_out =
+        goals2.empty() ? static_cast<double>(target_faces) : keep_ratio * static_cast<double>(merged.size());
+    const double wanted_cells = options.band_cell_faces > 0 ? band_out / options.band_cell_faces : 0.0;
+    const int k =
+        wanted_cells < 4 ? 2 * grid : std::max(1, static_cast<int>(std::ceil(grid / std::sqrt(wanted_cells))));
+    // Cell boundaries at 0.5 + j·k tiles along each axis.
+    const int per_axis = k >= 2 * grid ? 1 : static_cast<int>(std::floor((grid - 0.5) / k)) + 2;
+    std::vector<std::vector<std::array<uint32_t, 3>>> cells(static_cast<size_t>(per_axis) * per_axis);
+    for (const auto& t : merged) {
+      const Eigen::Vector2d c = ((positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0).head<2>();
+      const auto cell = [&](int axis) {
+        const double u = (c[axis] - clo[axis]) / extent[axis] * grid;  // in tiles
+        return std::clamp(static_cast<int>(std::floor((u - 0.5) / k)) + 1, 0, per_axis - 1);
+      };
+      cells[static_cast<size_t>(cell(1)) * per_axis + cell(0)].push_back(t);
+    }
+    const std::vector<std::vector<std::array<uint32_t, 3>>> halos = Halos(cells, n);
+    std::vector<PieceJob> jobs(cells.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      std::vector<uint32_t> cell_scratch(n, kUnmapped);
+      for (size_t c = range.begin(); c != range.end(); ++c) {
+        if (cells[c].empty()) continue;
+        jobs[c] = PreparePiece(positions, &quadrics, cells[c], halos[c], goals2, options, cell_scratch);
+        if (goals2.empty()) jobs[c].simplifier->BuildHeap();
+      }
+    });
+    const std::vector<int64_t> cell_targets =
+        goals2.empty() ? CellTargets(jobs, target_faces) : std::vector<int64_t>(cells.size(), 0);
+    std::vector<Piece> band_pieces(cells.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t c = range.begin(); c != range.end(); ++c) {
+        if (jobs[c].simplifier) band_pieces[c] = FinishPiece(jobs[c], cell_targets[c]);
+      }
+    });
+    int64_t band_kept = 0;
+    std::vector<Quadric> base;  // the quadrics the cells started from (a cut vertex's grew in each cell)
+    if (goals2.empty()) base = quadrics;
+    for (const Piece& piece : band_pieces) {
+      for (size_t k = 0; k < piece.vertices.size(); ++k) {
+        const uint32_t v = piece.vertices[k];
+        positions[v] = piece.positions[k];
+        if (goals2.empty()) {
+          quadrics[v] += piece.quadrics[k];
+          quadrics[v] -= base[v];
+        }
+      }
+      band_kept += static_cast<int64_t>(piece.faces.size());
+    }
+    if (goals2.empty() && band_kept > target_faces && band_pieces.size() > 1) {
+      // A cell walled in by its locked cuts could not take its share: one more pass, over the faces
+      // around the cells' cuts, takes the rest.
+      std::vector<std::array<uint32_t, 3>> around_cuts, rest;
+      SplitCutBand(band_pieces, n, rings, &around_cuts, &rest);
+      const int64_t around_target = target_faces - static_cast<int64_t>(rest.size());
+      if (around_target > 0) {
+        PieceJob job = PreparePiece(positions, &quadrics, around_cuts, {}, goals2, options, scratch);
+        Piece last = FinishPiece(job, around_target);
+        for (size_t k = 0; k < last.vertices.size(); ++k) positions[last.vertices[k]] = last.positions[k];
+        band_pieces.assign(1, Piece{});
+        band_pieces[0].faces = std::move(rest);
+        band_pieces[0].faces.insert(band_pieces[0].faces.end(), last.faces.begin(), last.faces.end());
+      }
+    }
+    for (const Piece& piece : band_pieces) kept.insert(kept.end(), piece.faces.begin(), piece.faces.end());
+  }
 
   // The surviving vertices in their input order, then the faces.
   TriangleMesh out;
   std::vector<uint32_t>& remap = scratch;
   std::vector<char> used(n, 0);
-  for (const auto& t : final_piece.faces) {
+  for (const auto& t : kept) {
     for (uint32_t v : t) used[v] = 1;
   }
   for (uint32_t g = 0; g < n; ++g) {
@@ -661,8 +908,8 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     out.vertices_m.push_back(moved ? Eigen::Vector3d(positions[g] + center) : mesh.vertices_m[g]);
     if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[g]);
   }
-  out.faces.reserve(final_piece.faces.size());
-  for (const auto& t : final_piece.faces) out.faces.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  out.faces.reserve(kept.size());
+  for (const auto& t : kept) out.faces.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
   return out;
 }
 
