@@ -1,9 +1,9 @@
 // Mesh decimation to a face budget (or an error bound), with the simplifiers measured in
 // bench/mesh_decimate_bench.cc: meshoptimizer, a partitioned parallel meshoptimizer (the fastest,
-// ~30× faster than CGAL; used for error goals), CGAL Garland–Heckbert (plane — the final preset: the
-// most accurate at light budgets — and probabilistic plane policies), OpenMesh's quadric Decimater,
-// and qem_tiled (draft and standard presets): quadric collapse with optimal placement in parallel
-// tiles (mesh_decimate_qem.cc; below OpenMesh's error from 10 % to 80 % of the bench terrain, 3–15×
+// ~30× faster than CGAL), CGAL Garland–Heckbert (plane — the final preset: the most accurate at light
+// budgets — and probabilistic plane policies), OpenMesh's quadric Decimater, and qem_tiled (draft and
+// standard presets, and error goals): quadric collapse with optimal placement in parallel tiles
+// (mesh_decimate_qem.cc; below OpenMesh's error from 10 % to 80 % of the bench terrain, 12–25×
 // faster, bench/RESULTS.md). The outer border of an open (terrain) mesh is kept in place by every
 // method.
 #pragma once
