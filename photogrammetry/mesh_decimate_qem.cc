@@ -853,8 +853,9 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
         if (goals2.empty()) jobs[c].simplifier->BuildHeap();
       }
     });
-    const std::vector<int64_t> cell_targets =
-        goals2.empty() ? CellTargets(jobs, target_faces) : std::vector<int64_t>(cells.size(), 0);
+    std::vector<int64_t> cell_targets(cells.size(), 0);  // with error goals: as far as they allow
+    if (goals2.empty())
+      cell_targets = cells.size() == 1 ? std::vector<int64_t>{target_faces} : CellTargets(jobs, target_faces);
     std::vector<Piece> band_pieces(cells.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t c = range.begin(); c != range.end(); ++c) {
@@ -862,22 +863,22 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
       }
     });
     int64_t band_kept = 0;
-    std::vector<Quadric> base;  // the quadrics the cells started from (a cut vertex's grew in each cell)
-    if (goals2.empty()) base = quadrics;
     for (const Piece& piece : band_pieces) {
-      for (size_t k = 0; k < piece.vertices.size(); ++k) {
-        const uint32_t v = piece.vertices[k];
-        positions[v] = piece.positions[k];
-        if (goals2.empty()) {
-          quadrics[v] += piece.quadrics[k];
-          quadrics[v] -= base[v];
-        }
-      }
+      for (size_t k = 0; k < piece.vertices.size(); ++k) positions[piece.vertices[k]] = piece.positions[k];
       band_kept += static_cast<int64_t>(piece.faces.size());
     }
     if (goals2.empty() && band_kept > target_faces && band_pieces.size() > 1) {
       // A cell walled in by its locked cuts could not take its share: one more pass, over the faces
-      // around the cells' cuts, takes the rest.
+      // around the cells' cuts, takes the rest. Each cell started from the same quadrics, and a cut
+      // vertex's grew in each of its cells: add up what each cell added.
+      const std::vector<Quadric> base = quadrics;
+      for (const Piece& piece : band_pieces) {
+        for (size_t k = 0; k < piece.vertices.size(); ++k) {
+          const uint32_t v = piece.vertices[k];
+          quadrics[v] += piece.quadrics[k];
+          quadrics[v] -= base[v];
+        }
+      }
       std::vector<std::array<uint32_t, 3>> around_cuts, rest;
       SplitCutBand(band_pieces, n, rings, &around_cuts, &rest);
       const int64_t around_target = target_faces - static_cast<int64_t>(rest.size());
