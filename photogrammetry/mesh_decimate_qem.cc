@@ -88,11 +88,10 @@ Eigen::Vector3d Placement(const Quadric& q, const Eigen::Vector3d& a, const Eige
   const Eigen::Vector3d rhs(-q.q[3], -q.q[6], -q.q[8]);
   const Eigen::Vector3d mid = 0.5 * (a + b);
   const Eigen::Vector3d residual = rhs - m * mid;
-  Eigen::Vector3d p = mid;
   // Every eigenvalue is above rcond × the largest when det / m2 > rcond × trace, since the smallest
   // is at least det / m2 (m2: the sum of the principal 2 × 2 minors, λ1λ2 + λ1λ3 + λ2λ3) and the
   // largest at most the trace. Then nothing is truncated and the plain inverse (the adjugate) gives
-  // the same point without the eigen solve: most of a curved surface's edges.
+  // the same point without the eigenvalues: most of a curved surface's edges.
   const Eigen::Matrix3d adjugate = (Eigen::Matrix3d() << m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1),
                                     m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2), m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1),
                                     m(1, 2) * m(2, 0) - m(1, 0) * m(2, 2), m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0),
@@ -103,21 +102,34 @@ Eigen::Vector3d Placement(const Quadric& q, const Eigen::Vector3d& a, const Eige
   const double minors = adjugate(0, 0) + adjugate(1, 1) + adjugate(2, 2);
   const double det = m(0, 0) * adjugate(0, 0) + m(0, 1) * adjugate(1, 0) + m(0, 2) * adjugate(2, 0);
   const double reach2 = reach * reach * (b - a).squaredNorm();
-  // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
-  if (minors > 1e-9 * trace * trace && det > rcond * trace * minors) {
+  const auto full_rank = [&] {
     // The quadric's minimum over all space, so no point of the edge does better when it is in reach.
-    p += adjugate * residual / det;
+    const Eigen::Vector3d p = mid + adjugate * residual / det;
     return p.allFinite() && (p - mid).squaredNorm() <= reach2 ? p : BestOnSegment(q, a, b);
-  }
+  };
+  // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
+  if (minors > 1e-9 * trace * trace && det > rcond * trace * minors) return full_rank();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-  eigen.computeDirect(m);
-  const Eigen::Vector3d& lambda = eigen.eigenvalues();  // ascending
-  if (!(lambda(2) > 0)) return BestOnSegment(q, a, b);
-  for (int k = 0; k < 3; ++k) {
-    if (lambda(k) > rcond * lambda(2)) {
-      const Eigen::Vector3d axis = eigen.eigenvectors().col(k);
-      p += axis * (axis.dot(residual) / lambda(k));
-    }
+  eigen.computeDirect(m, Eigen::EigenvaluesOnly);
+  const double l1 = eigen.eigenvalues()(0), l2 = eigen.eigenvalues()(1), l3 = eigen.eigenvalues()(2);  // ascending
+  if (!(l3 > 0)) return BestOnSegment(q, a, b);
+  const double cut = rcond * l3;
+  if (l1 > cut) return full_rank();
+  // The truncated solve Σ v_k (v_k · r) / λ_k over the kept eigenpairs, written as a polynomial in m
+  // that is 1/λ on the kept eigenvalues and 0 on the dropped ones (Lagrange interpolation), so that
+  // no eigenvector is needed: two products with m instead. The coefficients are symmetric in the
+  // eigenvalues kept together, so a repeated eigenvalue (λ2 = λ3 on a right-angled crease, λ1 = λ2
+  // on a plane) costs nothing in accuracy; they divide only by the gap between a kept and a dropped
+  // eigenvalue. One dropped (λ1): f(m) = (m − λ1)(β − α m) / (λ2 λ3 (λ2 − λ1)(λ3 − λ1)) with
+  // α = λ2 + λ3 − λ1 and β = (λ2 + λ3)² − λ2 λ3 − λ1 (λ2 + λ3). Two dropped: f(m) = (m − λ1)(m − λ2)
+  // / (λ3 (λ3 − λ1)(λ3 − λ2)).
+  const Eigen::Vector3d u = m * residual - l1 * residual;
+  Eigen::Vector3d p = mid;
+  if (l2 > cut) {
+    const double sum = l2 + l3, alpha = sum - l1, beta = sum * sum - l2 * l3 - l1 * sum;
+    p += (beta * u - alpha * (m * u)) / (l2 * l3 * (l2 - l1) * (l3 - l1));
+  } else {
+    p += (m * u - l2 * u) / (l3 * (l3 - l1) * (l3 - l2));
   }
   // Truncated: p holds some directions at the midpoint, so a point of the edge may do better.
   const Eigen::Vector3d on_edge = BestOnSegment(q, a, b);
@@ -140,7 +152,8 @@ struct HeapEntry {
 // squared error goal per vertex; empty: a face budget only) a collapse is made only while its error,
 // the root of its quadric's weighted mean (its point's mean squared distance to the planes merged into
 // the edge, by area), is within the smaller goal of its two vertices, and the vertex kept takes that
-// goal. A vertex whose goal is 0 is never touched.
+// goal. A vertex whose goal is 0 is never touched. `locked` must hold every vertex of an edge with
+// one face or more than two (BorderVertices): such edges are never costed.
 class QemSimplifier {
  public:
   QemSimplifier(std::vector<Eigen::Vector3d> positions, std::vector<std::array<uint32_t, 3>> faces,
@@ -173,10 +186,12 @@ class QemSimplifier {
   void BuildHeap() {
     heap_.clear();
     heap_.reserve(faces_.size() * 3 / 2 + 16);
+    // Each interior edge is seen twice, once as a < b. An edge seen once (on the border) has both
+    // ends locked, and Push skips it either way.
     for (const auto& f : faces_) {
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = f[k], b = f[(k + 1) % 3];
-        if (a < b || IsBorderEdgeOnce(a, b)) Push(heap_, a, b);
+        if (a < b) Push(heap_, a, b);
       }
     }
     std::make_heap(heap_.begin(), heap_.end());
@@ -229,15 +244,6 @@ class QemSimplifier {
 
  private:
   static constexpr uint32_t kNone = 0xffffffffu;
-
-  // True when a → b is an edge seen in only one orientation (so the a < b rule would miss it when
-  // a > b). Cheap enough: only consulted for a > b.
-  bool IsBorderEdgeOnce(uint32_t a, uint32_t b) const {
-    for (uint32_t c = head_[b]; c != kNone; c = next_[c]) {
-      if (faces_[c / 3][(c % 3 + 1) % 3] == a) return false;
-    }
-    return true;
-  }
 
   // Calls visit(face) for every live face around v, unlinking dead ones on the way.
   template <typename F>
