@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <Eigen/Dense>
 
@@ -229,7 +230,7 @@ class QemSimplifier {
   }
 
   const std::vector<Eigen::Vector3d>& positions() const { return pos_; }
-  const std::vector<Quadric>& quadrics() const { return quadric_; }
+  std::vector<Quadric> TakeQuadrics() { return std::move(quadric_); }
   const std::vector<double>& goals2() const { return goal2_; }
   const std::vector<char>& vertex_alive() const { return vertex_alive_; }
   // Surviving faces, in their input order.
@@ -477,11 +478,41 @@ constexpr uint32_t kUnmapped = 0xffffffffu;
 // Result of one simplification, in global vertex ids.
 struct Piece {
   std::vector<uint32_t> vertices;  // global ids of the surviving vertices used by faces
+  std::vector<uint32_t> local;     // each one's id in `quadrics`
   std::vector<Eigen::Vector3d> positions;
-  std::vector<Quadric> quadrics;
+  std::vector<Quadric> quadrics;               // the simplifier's own, by its vertex ids (moved, not copied)
   std::vector<double> goals2;                  // with error goals: each survivor's squared goal
   std::vector<std::array<uint32_t, 3>> faces;  // global ids
+  const Quadric& quadric(size_t k) const { return quadrics[local[k]]; }
 };
+
+// The quadrics of some of a mesh's vertices: vertex v's is values[slot[v]] (kUnmapped: not held).
+struct QuadricStore {
+  std::vector<uint32_t> slot;
+  std::vector<Quadric> values;
+};
+
+// The quadrics of the vertices of `faces`, each summed over the pieces it survived in (a cut vertex
+// belongs to several; each piece's quadric holds its own faces and what collapsed into it there).
+QuadricStore SumQuadrics(const std::vector<Piece>& pieces, const std::vector<std::array<uint32_t, 3>>& faces,
+                         size_t n) {
+  QuadricStore store;
+  store.slot.assign(n, kUnmapped);
+  uint32_t held = 0;
+  for (const auto& t : faces) {
+    for (uint32_t v : t) {
+      if (store.slot[v] == kUnmapped) store.slot[v] = held++;
+    }
+  }
+  store.values.assign(held, Quadric{});
+  for (const Piece& piece : pieces) {
+    for (size_t k = 0; k < piece.vertices.size(); ++k) {
+      const uint32_t slot = store.slot[piece.vertices[k]];
+      if (slot != kUnmapped) store.values[slot] += piece.quadric(k);
+    }
+  }
+  return store;
+}
 
 // One piece of the mesh (a tile, or a cell of the band) in local vertex ids, ready to simplify.
 struct PieceJob {
@@ -546,7 +577,7 @@ std::vector<std::vector<std::array<uint32_t, 3>>> Halos(const std::vector<std::v
 // either computed from these faces (tiles) or given (`quadrics`, the band). goals2: the squared
 // error goal of every global vertex, or empty (a face budget only). The piece's border and cut
 // vertices are locked. scratch: n entries, kUnmapped outside a call.
-PieceJob PreparePiece(const std::vector<Eigen::Vector3d>& positions, const std::vector<Quadric>* quadrics,
+PieceJob PreparePiece(const std::vector<Eigen::Vector3d>& positions, const QuadricStore* quadrics,
                       const std::vector<std::array<uint32_t, 3>>& own_faces,
                       const std::vector<std::array<uint32_t, 3>>& halo, const std::vector<double>& goals2,
                       const QemOptions& options, std::vector<uint32_t>& scratch) {
@@ -579,7 +610,7 @@ PieceJob PreparePiece(const std::vector<Eigen::Vector3d>& positions, const std::
   std::vector<Quadric> local_q;
   if (quadrics) {
     local_q.resize(global.size());
-    for (size_t k = 0; k < global.size(); ++k) local_q[k] = (*quadrics)[global[k]];
+    for (size_t k = 0; k < global.size(); ++k) local_q[k] = quadrics->values[quadrics->slot[global[k]]];
   } else {
     // From the piece's own faces (the halo's are its neighbours' to count).
     local_q = FaceQuadrics(local_pos, local_faces, own_faces.size(), options.area_weighted);
@@ -618,10 +649,11 @@ Piece FinishPiece(PieceJob& job, int64_t target_faces) {
   for (size_t k = 0; k < job.global.size(); ++k) {
     if (!used[k]) continue;
     piece.vertices.push_back(job.global[k]);
+    piece.local.push_back(static_cast<uint32_t>(k));
     piece.positions.push_back(simplifier.positions()[k]);
-    piece.quadrics.push_back(simplifier.quadrics()[k]);
     if (goals) piece.goals2.push_back(simplifier.goals2()[k]);
   }
+  piece.quadrics = job.simplifier->TakeQuadrics();
   job.simplifier.reset();
   return piece;
 }
@@ -688,6 +720,7 @@ void SplitCutBand(const std::vector<Piece>& pieces, size_t n, int rings, std::ve
   constexpr uint32_t kNoTile = 0xffffffffu;
   std::vector<uint32_t> tile_of(n, kNoTile);
   std::vector<char> near(n, 0);  // a cut vertex, then a vertex of a band face
+  size_t total = 0;
   for (uint32_t p = 0; p < pieces.size(); ++p) {
     for (const auto& t : pieces[p].faces) {
       for (uint32_t v : t) {
@@ -698,24 +731,40 @@ void SplitCutBand(const std::vector<Piece>& pieces, size_t n, int rings, std::ve
         }
       }
     }
+    total += pieces[p].faces.size();
   }
-  std::vector<const std::array<uint32_t, 3>*> faces;
-  for (const Piece& piece : pieces) {
-    for (const auto& t : piece.faces) faces.push_back(&t);
-  }
-  std::vector<char> in_band(faces.size(), 0);
+  // Face f of the merged list (the pieces' faces one after the other) is in the band when in_band[f].
+  std::vector<char> in_band(total, 0);
+  std::vector<size_t> added;
   for (int ring = 0; ring < rings; ++ring) {
-    std::vector<size_t> added;
-    for (size_t f = 0; f < faces.size(); ++f) {
-      const auto& t = *faces[f];
-      if (!in_band[f] && (near[t[0]] || near[t[1]] || near[t[2]])) added.push_back(f);
+    added.clear();
+    size_t f = 0;
+    for (const Piece& piece : pieces) {
+      for (const auto& t : piece.faces) {
+        if (!in_band[f] && (near[t[0]] || near[t[1]] || near[t[2]])) added.push_back(f);
+        ++f;
+      }
     }
-    for (size_t f : added) {
-      in_band[f] = 1;
-      for (uint32_t v : *faces[f]) near[v] = 1;
+    size_t next = 0;
+    f = 0;
+    for (const Piece& piece : pieces) {
+      for (const auto& t : piece.faces) {
+        if (next < added.size() && added[next] == f) {
+          in_band[f] = 1;
+          for (uint32_t v : t) near[v] = 1;
+          ++next;
+        }
+        ++f;
+      }
     }
   }
-  for (size_t f = 0; f < faces.size(); ++f) (in_band[f] ? band : rest)->push_back(*faces[f]);
+  const size_t in = static_cast<size_t>(std::count(in_band.begin(), in_band.end(), 1));
+  band->reserve(band->size() + in);
+  rest->reserve(rest->size() + total - in);
+  size_t f = 0;
+  for (const Piece& piece : pieces) {
+    for (const auto& t : piece.faces) (in_band[f++] ? band : rest)->push_back(t);
+  }
 }
 
 }  // namespace
@@ -738,34 +787,50 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   const Eigen::Vector3d center = n > 0 ? Eigen::Vector3d(0.5 * (lo + hi)) : Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> positions(n);
   for (size_t i = 0; i < n; ++i) positions[i] = mesh.vertices_m[i] - center;
-  std::vector<std::array<uint32_t, 3>> valid;
-  valid.reserve(mesh.num_faces());
-  for (const auto& f : mesh.faces) {
-    if (f[0] != f[1] && f[1] != f[2] && f[0] != f[2]) valid.push_back(f);
-  }
-
-  // Tiles on a grid over the xy bounding box of the face centroids (fixed by the geometry).
+  // Tiles on a grid over the xy bounding box of the face centroids (fixed by the geometry), in the
+  // faces' order; faces with a repeated corner are dropped.
+  const auto is_valid = [](const std::array<uint32_t, 3>& f) { return f[0] != f[1] && f[1] != f[2] && f[0] != f[2]; };
+  const auto centroid_xy = [&](const std::array<uint32_t, 3>& t) -> Eigen::Vector2d {
+    return ((positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0).head<2>();
+  };
   const int grid = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, partitions)))));
   Eigen::Vector2d clo(INFINITY, INFINITY), chi(-INFINITY, -INFINITY);
-  std::vector<Eigen::Vector2d> centroids(valid.size());
-  for (size_t f = 0; f < valid.size(); ++f) {
-    const auto& t = valid[f];
-    centroids[f] = ((positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0).head<2>();
-    clo = clo.cwiseMin(centroids[f]);
-    chi = chi.cwiseMax(centroids[f]);
+  size_t valid_faces = 0;
+  for (const auto& f : mesh.faces) {
+    if (!is_valid(f)) continue;
+    ++valid_faces;
+    const Eigen::Vector2d c = centroid_xy(f);
+    clo = clo.cwiseMin(c);
+    chi = chi.cwiseMax(c);
   }
   const Eigen::Vector2d extent = (chi - clo).cwiseMax(Eigen::Vector2d(1e-9, 1e-9));
   std::vector<std::vector<std::array<uint32_t, 3>>> tiles(static_cast<size_t>(grid) * grid);
-  for (size_t f = 0; f < valid.size(); ++f) {
-    const int ix = std::min(grid - 1, static_cast<int>((centroids[f].x() - clo.x()) / extent.x() * grid));
-    const int iy = std::min(grid - 1, static_cast<int>((centroids[f].y() - clo.y()) / extent.y() * grid));
-    tiles[static_cast<size_t>(iy) * grid + ix].push_back(valid[f]);
+  {
+    // Each face's tile first (sized exactly, so no tile grows by copying).
+    std::vector<uint32_t> tile_of;
+    tile_of.reserve(valid_faces);
+    std::vector<size_t> sizes(tiles.size(), 0);
+    for (const auto& f : mesh.faces) {
+      if (!is_valid(f)) continue;
+      const Eigen::Vector2d c = centroid_xy(f);
+      const int ix = std::min(grid - 1, static_cast<int>((c.x() - clo.x()) / extent.x() * grid));
+      const int iy = std::min(grid - 1, static_cast<int>((c.y() - clo.y()) / extent.y() * grid));
+      tile_of.push_back(static_cast<uint32_t>(iy * grid + ix));
+      ++sizes[tile_of.back()];
+    }
+    for (size_t t = 0; t < tiles.size(); ++t) tiles[t].reserve(sizes[t]);
+    size_t k = 0;
+    for (const auto& f : mesh.faces) {
+      if (is_valid(f)) tiles[tile_of[k++]].push_back(f);
+    }
   }
-  double keep_ratio = static_cast<double>(target_faces) / std::max<size_t>(1, valid.size());
+  double keep_ratio = static_cast<double>(target_faces) / std::max<size_t>(1, valid_faces);
+  // PreparePiece's scratch, one per thread (kUnmapped between calls).
+  tbb::enumerable_thread_specific<std::vector<uint32_t>> scratches(n, kUnmapped);
   std::vector<Piece> pieces(tiles.size());
   if (tiles.size() > 1) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      std::vector<uint32_t> scratch(n, kUnmapped);
+      std::vector<uint32_t>& scratch = scratches.local();
       for (size_t t = range.begin(); t != range.end(); ++t) {
         if (tiles[t].empty()) continue;
         // No halo: the tiles cut the input mesh, whose faces around a cut vertex close no short loop
@@ -783,42 +848,49 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
       }
     });
   }
-  // Merge: positions of the survivors, quadrics summed over the tiles (a cut vertex belongs to
-  // several; each tile's quadric holds its own faces and what collapsed into it there).
-  std::vector<std::array<uint32_t, 3>> merged;
-  std::vector<Quadric> quadrics;
+  // Merge: the survivors' positions (and goals).
+  std::vector<std::array<uint32_t, 3>> merged;  // the faces of the last pass
   if (tiles.size() > 1) {
-    quadrics.assign(n, Quadric{});
+    size_t tile_faces = 0;
     for (const Piece& piece : pieces) {
       for (size_t k = 0; k < piece.vertices.size(); ++k) {
         positions[piece.vertices[k]] = piece.positions[k];
-        quadrics[piece.vertices[k]] += piece.quadrics[k];
         // A cut vertex is in several tiles: the smallest goal of what merged into it in any of them.
         if (!goals2.empty()) goals2[piece.vertices[k]] = std::min(goals2[piece.vertices[k]], piece.goals2[k]);
       }
-      merged.insert(merged.end(), piece.faces.begin(), piece.faces.end());
+      tile_faces += piece.faces.size();
     }
     // With error goals the band's width follows the share of the faces the tiles kept.
-    if (!goals2.empty()) keep_ratio = static_cast<double>(merged.size()) / std::max<size_t>(1, valid.size());
+    if (!goals2.empty()) keep_ratio = static_cast<double>(tile_faces) / std::max<size_t>(1, valid_faces);
   } else {
-    merged = std::move(valid);
+    merged = std::move(tiles[0]);
   }
   // The last pass: over the band around the cuts, where the tiles kept every face; the faces outside it
   // are already at the tiles' ratio and stay as they are.
   std::vector<std::array<uint32_t, 3>> outside;
   const int rings =
       static_cast<int>(std::ceil(std::max(1.0, options.final_band_rings) / std::sqrt(std::max(keep_ratio, 1e-4))));
-  if (tiles.size() > 1 && options.final_band_rings > 0) {
-    std::vector<std::array<uint32_t, 3>> band;
-    SplitCutBand(pieces, n, rings, &band, &outside);
-    if (!goals2.empty()) {
-      merged = std::move(band);  // the faces outside met their goals in the tiles
-    } else if (target_faces > static_cast<int64_t>(outside.size())) {
-      merged = std::move(band);
-      target_faces -= static_cast<int64_t>(outside.size());
-    } else {
-      outside.clear();  // the band alone cannot meet the target: every face takes part
+  QuadricStore quadrics;  // those of the last pass's vertices
+  if (tiles.size() > 1) {
+    bool every_face = true;  // takes part in the last pass
+    if (options.final_band_rings > 0) {
+      std::vector<std::array<uint32_t, 3>> band;
+      SplitCutBand(pieces, n, rings, &band, &outside);
+      if (!goals2.empty()) {
+        merged = std::move(band);  // the faces outside met their goals in the tiles
+        every_face = false;
+      } else if (target_faces > static_cast<int64_t>(outside.size())) {
+        merged = std::move(band);
+        target_faces -= static_cast<int64_t>(outside.size());
+        every_face = false;
+      } else {
+        outside.clear();  // the band alone cannot meet the target
+      }
     }
+    if (every_face) {
+      for (const Piece& piece : pieces) merged.insert(merged.end(), piece.faces.begin(), piece.faces.end());
+    }
+    quadrics = SumQuadrics(pieces, merged, n);
   }
   std::vector<std::array<uint32_t, 3>> kept = std::move(outside);
   std::vector<uint32_t> scratch(n, kUnmapped);
@@ -852,7 +924,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     const std::vector<std::vector<std::array<uint32_t, 3>>> halos = Halos(cells, n);
     std::vector<PieceJob> jobs(cells.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      std::vector<uint32_t> cell_scratch(n, kUnmapped);
+      std::vector<uint32_t>& cell_scratch = scratches.local();
       for (size_t c = range.begin(); c != range.end(); ++c) {
         if (cells[c].empty()) continue;
         jobs[c] = PreparePiece(positions, &quadrics, cells[c], halos[c], goals2, options, cell_scratch);
@@ -877,12 +949,12 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
       // A cell walled in by its locked cuts could not take its share: one more pass, over the faces
       // around the cells' cuts, takes the rest. Each cell started from the same quadrics, and a cut
       // vertex's grew in each of its cells: add up what each cell added.
-      const std::vector<Quadric> base = quadrics;
+      const std::vector<Quadric> base = quadrics.values;
       for (const Piece& piece : band_pieces) {
         for (size_t k = 0; k < piece.vertices.size(); ++k) {
-          const uint32_t v = piece.vertices[k];
-          quadrics[v] += piece.quadrics[k];
-          quadrics[v] -= base[v];
+          const uint32_t slot = quadrics.slot[piece.vertices[k]];
+          quadrics.values[slot] += piece.quadric(k);
+          quadrics.values[slot] -= base[slot];
         }
       }
       std::vector<std::array<uint32_t, 3>> around_cuts, rest;
