@@ -433,7 +433,9 @@ std::vector<Quadric> FaceQuadrics(const std::vector<Eigen::Vector3d>& pos,
     const Eigen::Vector3d n = n2 / len;
     const double d = -n.dot(pos[t[0]]);
     const double w = area_weighted ? 0.5 * len : 1.0;
-    for (uint32_t v : t) q[v].AddPlane(n, d, w);
+    Quadric plane;
+    plane.AddPlane(n, d, w);
+    for (uint32_t v : t) q[v] += plane;
   }
   return q;
 }
@@ -585,18 +587,33 @@ PieceJob PreparePiece(const std::vector<Eigen::Vector3d>& positions, const Quadr
   job.halo_faces = static_cast<int64_t>(halo.size());
   std::vector<std::array<uint32_t, 3>> faces = own_faces;
   faces.insert(faces.end(), halo.begin(), halo.end());
-  // The piece's vertices in increasing global order.
+  // The piece's vertices in increasing global order: read off a bitmap of their id range when it is
+  // dense enough (a tile's ids span a few of the mesh's rows), sorted otherwise.
   std::vector<uint32_t>& global = job.global;
   global.reserve(faces.size() / 2 + 16);
+  uint32_t lowest = kUnmapped, highest = 0;
   for (const auto& t : faces) {
     for (uint32_t v : t) {
       if (scratch[v] == kUnmapped) {
         scratch[v] = 0;
         global.push_back(v);
+        lowest = std::min(lowest, v);
+        highest = std::max(highest, v);
       }
     }
   }
-  std::sort(global.begin(), global.end());
+  if (!global.empty() && highest - lowest < 64 * static_cast<uint64_t>(global.size())) {
+    std::vector<uint64_t> bits((highest - lowest) / 64 + 1, 0);
+    for (uint32_t v : global) bits[(v - lowest) / 64] |= uint64_t{1} << ((v - lowest) % 64);
+    global.clear();
+    for (size_t w = 0; w < bits.size(); ++w) {
+      for (uint64_t word = bits[w]; word != 0; word &= word - 1) {
+        global.push_back(lowest + static_cast<uint32_t>(64 * w + static_cast<uint32_t>(__builtin_ctzll(word))));
+      }
+    }
+  } else {
+    std::sort(global.begin(), global.end());
+  }
   std::vector<Eigen::Vector3d> local_pos(global.size());
   for (size_t k = 0; k < global.size(); ++k) {
     scratch[global[k]] = static_cast<uint32_t>(k);
@@ -714,13 +731,14 @@ std::vector<int64_t> CellTargets(const std::vector<PieceJob>& jobs, int64_t targ
 }
 
 // Splits the tiles' merged faces into those within `rings` rings of a cut vertex (one in the faces of
-// two or more tiles) and the rest, each in the tiles' order.
+// two or more tiles) and the rest, each in the tiles' order. The rings grow in each piece on its own
+// (in parallel): they reach another piece's faces only through cut vertices, which are near from the
+// start, and every other vertex a piece marks is its own.
 void SplitCutBand(const std::vector<Piece>& pieces, size_t n, int rings, std::vector<std::array<uint32_t, 3>>* band,
                   std::vector<std::array<uint32_t, 3>>* rest) {
   constexpr uint32_t kNoTile = 0xffffffffu;
   std::vector<uint32_t> tile_of(n, kNoTile);
   std::vector<char> near(n, 0);  // a cut vertex, then a vertex of a band face
-  size_t total = 0;
   for (uint32_t p = 0; p < pieces.size(); ++p) {
     for (const auto& t : pieces[p].faces) {
       for (uint32_t v : t) {
@@ -731,40 +749,52 @@ void SplitCutBand(const std::vector<Piece>& pieces, size_t n, int rings, std::ve
         }
       }
     }
-    total += pieces[p].faces.size();
   }
-  // Face f of the merged list (the pieces' faces one after the other) is in the band when in_band[f].
-  std::vector<char> in_band(total, 0);
-  std::vector<size_t> added;
-  for (int ring = 0; ring < rings; ++ring) {
-    added.clear();
-    size_t f = 0;
-    for (const Piece& piece : pieces) {
-      for (const auto& t : piece.faces) {
-        if (!in_band[f] && (near[t[0]] || near[t[1]] || near[t[2]])) added.push_back(f);
-        ++f;
-      }
-    }
-    size_t next = 0;
-    f = 0;
-    for (const Piece& piece : pieces) {
-      for (const auto& t : piece.faces) {
-        if (next < added.size() && added[next] == f) {
-          in_band[f] = 1;
-          for (uint32_t v : t) near[v] = 1;
-          ++next;
+  std::vector<std::vector<char>> in_band(pieces.size());  // per piece, per face
+  std::vector<size_t> band_at(pieces.size() + 1, 0), rest_at(pieces.size() + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<size_t> added;
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      const auto& faces = pieces[p].faces;
+      std::vector<char>& flags = in_band[p];
+      flags.assign(faces.size(), 0);
+      for (int ring = 0; ring < rings; ++ring) {
+        added.clear();
+        for (size_t f = 0; f < faces.size(); ++f) {
+          const auto& t = faces[f];
+          if (!flags[f] && (near[t[0]] || near[t[1]] || near[t[2]])) added.push_back(f);
         }
-        ++f;
+        for (size_t f : added) {
+          flags[f] = 1;
+          for (uint32_t v : faces[f]) {
+            if (!near[v]) near[v] = 1;  // a cut vertex is only read: it is near already
+          }
+        }
+      }
+      band_at[p + 1] = static_cast<size_t>(std::count(flags.begin(), flags.end(), 1));
+      rest_at[p + 1] = faces.size() - band_at[p + 1];
+    }
+  });
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    band_at[p + 1] += band_at[p];
+    rest_at[p + 1] += rest_at[p];
+  }
+  const size_t band_start = band->size(), rest_start = rest->size();
+  band->resize(band_start + band_at.back());
+  rest->resize(rest_start + rest_at.back());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      size_t to_band = band_start + band_at[p], to_rest = rest_start + rest_at[p];
+      const auto& faces = pieces[p].faces;
+      for (size_t f = 0; f < faces.size(); ++f) {
+        if (in_band[p][f]) {
+          (*band)[to_band++] = faces[f];
+        } else {
+          (*rest)[to_rest++] = faces[f];
+        }
       }
     }
-  }
-  const size_t in = static_cast<size_t>(std::count(in_band.begin(), in_band.end(), 1));
-  band->reserve(band->size() + in);
-  rest->reserve(rest->size() + total - in);
-  size_t f = 0;
-  for (const Piece& piece : pieces) {
-    for (const auto& t : piece.faces) (in_band[f++] ? band : rest)->push_back(t);
-  }
+  });
 }
 
 }  // namespace
@@ -913,13 +943,22 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     // Cell boundaries at 0.5 + j·k tiles along each axis.
     const int per_axis = k >= 2 * grid ? 1 : static_cast<int>(std::floor((grid - 0.5) / k)) + 2;
     std::vector<std::vector<std::array<uint32_t, 3>>> cells(static_cast<size_t>(per_axis) * per_axis);
-    for (const auto& t : merged) {
-      const Eigen::Vector2d c = ((positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0).head<2>();
-      const auto cell = [&](int axis) {
-        const double u = (c[axis] - clo[axis]) / extent[axis] * grid;  // in tiles
-        return std::clamp(static_cast<int>(std::floor((u - 0.5) / k)) + 1, 0, per_axis - 1);
-      };
-      cells[static_cast<size_t>(cell(1)) * per_axis + cell(0)].push_back(t);
+    {
+      std::vector<uint32_t> cell_of(merged.size());
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, merged.size()), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t f = range.begin(); f != range.end(); ++f) {
+          const Eigen::Vector2d c = centroid_xy(merged[f]);
+          const auto cell = [&](int axis) {
+            const double u = (c[axis] - clo[axis]) / extent[axis] * grid;  // in tiles
+            return std::clamp(static_cast<int>(std::floor((u - 0.5) / k)) + 1, 0, per_axis - 1);
+          };
+          cell_of[f] = static_cast<uint32_t>(cell(1) * per_axis + cell(0));
+        }
+      });
+      std::vector<size_t> sizes(cells.size(), 0);
+      for (uint32_t c : cell_of) ++sizes[c];
+      for (size_t c = 0; c < cells.size(); ++c) cells[c].reserve(sizes[c]);
+      for (size_t f = 0; f < merged.size(); ++f) cells[cell_of[f]].push_back(merged[f]);
     }
     const std::vector<std::vector<std::array<uint32_t, 3>>> halos = Halos(cells, n);
     std::vector<PieceJob> jobs(cells.size());
@@ -979,16 +1018,39 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   for (const auto& t : kept) {
     for (uint32_t v : t) used[v] = 1;
   }
-  for (uint32_t g = 0; g < n; ++g) {
-    if (!used[g]) continue;
-    remap[g] = static_cast<uint32_t>(out.vertices_m.size());
-    // A vertex that never moved keeps its input coordinates exactly ((v − c) + c need not be v).
-    const bool moved = positions[g] != Eigen::Vector3d(mesh.vertices_m[g] - center);
-    out.vertices_m.push_back(moved ? Eigen::Vector3d(positions[g] + center) : mesh.vertices_m[g]);
-    if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[g]);
-  }
-  out.faces.reserve(kept.size());
-  for (const auto& t : kept) out.faces.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  // Output ids by blocks of input ids: each block's count, their running sum, then each block filled.
+  constexpr size_t kBlock = size_t{1} << 16;
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<size_t> block_start(blocks + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      block_start[b + 1] =
+          static_cast<size_t>(std::count(used.begin() + b * kBlock, used.begin() + std::min(n, (b + 1) * kBlock), 1));
+    }
+  });
+  for (size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
+  out.vertices_m.resize(block_start[blocks]);
+  if (mesh.has_colors()) out.colors_rgb.resize(block_start[blocks]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      size_t id = block_start[b];
+      for (size_t g = b * kBlock; g < std::min(n, (b + 1) * kBlock); ++g) {
+        if (!used[g]) continue;
+        remap[g] = static_cast<uint32_t>(id);
+        // A vertex that never moved keeps its input coordinates exactly ((v − c) + c need not be v).
+        const bool moved = positions[g] != Eigen::Vector3d(mesh.vertices_m[g] - center);
+        out.vertices_m[id] = moved ? Eigen::Vector3d(positions[g] + center) : mesh.vertices_m[g];
+        if (mesh.has_colors()) out.colors_rgb[id] = mesh.colors_rgb[g];
+        ++id;
+      }
+    }
+  });
+  out.faces.resize(kept.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, kept.size()), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t f = range.begin(); f != range.end(); ++f) {
+      out.faces[f] = {remap[kept[f][0]], remap[kept[f][1]], remap[kept[f][2]]};
+    }
+  });
   return out;
 }
 
