@@ -3,7 +3,7 @@
 // ~30× faster than CGAL), CGAL Garland–Heckbert (plane — the final preset: the most accurate at light
 // budgets — and probabilistic plane policies), OpenMesh's quadric Decimater, and qem_tiled (draft and
 // standard presets, and error goals): quadric collapse with optimal placement in parallel tiles
-// (mesh_decimate_qem.cc; below OpenMesh's error from 10 % to 80 % of the bench terrain, 13–27×
+// (mesh_decimate_qem.cc; below OpenMesh's error from 10 % to 80 % of the bench terrain, 19–30×
 // faster, bench/RESULTS.md). The outer border of an open (terrain) mesh is kept in place by every
 // method.
 #pragma once
