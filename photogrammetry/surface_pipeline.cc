@@ -374,6 +374,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
     } else {
       PoissonOptions poisson;
       poisson.spacing_factor = defaults.poisson_spacing_factor;
+      poisson.seed = options.poisson_seed;
       if (options.trim) poisson.trim_factor = 0;  // the trim step below trims, against the local spacing
       PoissonReport surface_report;
       mesh = PoissonSurface(filtered, poisson, &surface_report);

@@ -18,6 +18,7 @@
 #include "photogrammetry/mesh_decimate_for_plan.h"
 #include "photogrammetry/point_cloud.h"
 #include "photogrammetry/surface_points.h"
+#include "photogrammetry/surface_poisson.h"
 #include "photogrammetry/surface_trim.h"
 #include "photogrammetry/triangle_mesh.h"
 
@@ -46,7 +47,8 @@ struct SurfacePipelineOptions {
   // Simplification goal: at most one of the two (both unset → the quality preset's face budget).
   std::optional<int64_t> target_faces;  // --target-faces N   (> 0)
   std::optional<double> max_error_m;    // --max-error-m E    (> 0, symmetric Hausdorff bound)
-  // Simplifier; unset → the quality preset's. An error goal always uses tiled meshoptimizer.
+  // Simplifier; unset → the quality preset's. An error goal takes qem_tiled unless a meshoptimizer
+  // method is asked for (the others take face budgets only).
   std::optional<DecimationMethod> decimation_method;
   // --for-plan: simplify each region only as far as the plan's cameras can tell, within
   // for_plan->max_error_px (mesh_decimate_for_plan.h). Excludes target_faces and max_error_m.
@@ -60,6 +62,7 @@ struct SurfacePipelineOptions {
   // Unset trim: no trim step (the Poisson surface then keeps its own centroid-distance trim).
   PointFilterOptions point_filter;
   std::optional<SurfaceTrimOptions> trim = SurfaceTrimOptions{};
+  unsigned int poisson_seed = PoissonOptions{}.seed;  // the Poisson surface mesher's (surface_poisson.h)
 
   bool draco = false;  // --draco: KHR_draco_mesh_compression in the GLB
 

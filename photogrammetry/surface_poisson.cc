@@ -28,7 +28,6 @@ using PointWithNormal = std::pair<Point, Vector>;
 using PointMap = CGAL::First_of_pair_property_map<PointWithNormal>;
 using NormalMap = CGAL::Second_of_pair_property_map<PointWithNormal>;
 using Mesh = CGAL::Surface_mesh<Point>;
-constexpr unsigned int kPoissonSeed = 20240611;  // any fixed value: the surface mesher's initial points
 
 // Vertices in lexicographic order of their coordinates, each face starting at its smallest index (its
 // winding kept), faces sorted. The surface mesher walks sets ordered by cell addresses, so the same
@@ -128,7 +127,7 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
   // CGAL's surface mesher seeds its first points from CGAL::get_default_random(), a thread-local generator
   // that CGAL seeds with the wall clock (std::time) on first use: the same input gave another mesh every
   // second. Reset it to a fixed seed first, so the surface depends on the input alone.
-  CGAL::get_default_random() = CGAL::Random(kPoissonSeed);
+  CGAL::get_default_random() = CGAL::Random(options.seed);
   Mesh sm;
   bool solved = false;
   try {

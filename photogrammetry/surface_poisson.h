@@ -23,6 +23,10 @@ struct PoissonOptions {
   // Spacing multiplier: > 1 gives a coarser (faster) surface.
   double spacing_factor = 1.0;
   double trim_factor = 3.0;  // 0 = no trimming
+  // Seed of CGAL's default generator, from which the surface mesher draws its first points. Any value
+  // gives a valid surface; a fixed one gives the same surface for the same input in a fresh process
+  // (within one process CGAL's Poisson solver also follows the allocator's addresses: docs/mesh.md).
+  unsigned int seed = 20240611;
 };
 
 struct PoissonReport {
