@@ -406,6 +406,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
       trim.far_factor = 0;
       trim.border_factor = 0;
       trim.border_edge_factor = 0;
+      trim.border_extend_factor = 0;  // its border vertices are points of the data's border already
     }
     mesh = TrimSurfaceToData(mesh, filtered, trim, &trim_report);
     Json step;

@@ -7,16 +7,22 @@
 #include <utility>
 #include <vector>
 
+#include <CGAL/IO/facets_in_complex_2_to_triangle_mesh.h>
+#include <CGAL/Implicit_surface_3.h>
+#include <CGAL/Poisson_reconstruction_function.h>
 #include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_complex_2_in_triangulation_3.h>
+#include <CGAL/Surface_mesh_default_criteria_3.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/exceptions.h>
 #include <CGAL/jet_estimate_normals.h>
-#include <CGAL/poisson_surface_reconstruction.h>
+#include <CGAL/make_surface_mesh.h>
 #include <CGAL/property_map.h>
 
 #include "core/error.h"
 #include "photogrammetry/cgal_point_search_internal.h"
+#include "photogrammetry/cgal_poisson_order_internal.h"  // first: before anything instantiates CGAL's triangulations
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -128,13 +134,31 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
   // that CGAL seeds with the wall clock (std::time) on first use: the same input gave another mesh every
   // second. Reset it to a fixed seed first, so the surface depends on the input alone.
   CGAL::get_default_random() = CGAL::Random(options.seed);
+  // And CGAL walks its triangulations in creation order, not in address order (see the header).
+  const internal::CreationOrderScope creation_order;
   Mesh sm;
-  bool solved = false;
+  // CGAL::poisson_surface_reconstruction_delaunay's steps, with the surface mesher on a triangulation
+  // whose handles compare in creation order (cgal_poisson_order_internal.h).
+  using Function = CGAL::Poisson_reconstruction_function<Kernel>;
+  using Complex = CGAL::Surface_mesh_complex_2_in_triangulation_3<internal::PoissonMesherTriangulation>;
+  const double spacing_m = report.average_spacing_m * std::max(options.spacing_factor, 1e-3);
   try {
-    solved = CGAL::poisson_surface_reconstruction_delaunay(
-        points.begin(), points.end(), PointMap(), NormalMap(), sm,
-        report.average_spacing_m * std::max(options.spacing_factor, 1e-3), options.angle_deg, options.radius_factor,
-        options.distance_factor);
+    Function function(points.begin(), points.end(), PointMap(), NormalMap());
+    if (!function.compute_implicit_function()) throw RuntimeError("poisson: CGAL's Poisson solver failed");
+    // The mesher's bounding sphere: 5 × the points' bounding sphere, about the function's inner point;
+    // its bisection stops at distance_factor × spacing / 1000 (CGAL's convenience function's choice).
+    const double sphere_radius_m = 5.0 * std::sqrt(function.bounding_sphere().squared_radius());
+    const double bisection_error_m = options.distance_factor * spacing_m / 1000.0;
+    const CGAL::Implicit_surface_3<Kernel, Function> surface(
+        function, Kernel::Sphere_3(function.get_inner_point(), sphere_radius_m * sphere_radius_m),
+        bisection_error_m / sphere_radius_m);
+    const CGAL::Surface_mesh_default_criteria_3<internal::PoissonMesherTriangulation> criteria(
+        options.angle_deg, options.radius_factor * spacing_m, options.distance_factor * spacing_m);
+    internal::PoissonMesherTriangulation triangulation;
+    Complex complex(triangulation);
+    CGAL::make_surface_mesh(complex, surface, criteria, CGAL::Manifold_with_boundary_tag());
+    if (triangulation.number_of_vertices() == 0) throw RuntimeError("poisson: CGAL's surface mesher found no surface");
+    CGAL::facets_in_complex_2_to_triangle_mesh(complex, sm);
   } catch (const CGAL::Failure_exception& e) {
     std::string what = e.message();
     while (!what.empty() && std::isspace(static_cast<unsigned char>(what.back()))) what.pop_back();
@@ -143,7 +167,6 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     throw RuntimeError("poisson: CGAL's surface mesher failed (" + what +
                        "); a nearly flat, nadir scene needs --surface height-field");
   }
-  if (!solved) throw RuntimeError("poisson: CGAL's Poisson solver failed");
   report.faces_reconstructed = static_cast<int64_t>(sm.number_of_faces());
 
   // Trim: drop triangles whose centroid is far from every input point.

@@ -89,41 +89,120 @@ Plane FitPlane(const std::vector<Eigen::Vector3d>& points) {
   return plane;
 }
 
-// Step 2c. Every border vertex (on an edge of one face) farther from its nearest data point than
-// border_pull_factor × that point's own spacing is moved straight toward the point until it is that far.
-// The moves are made together; a vertex whose move would turn a face around it by more than 60° (or
-// flatten it) stays where it was, and the check is repeated until no face turns (a few rounds at most:
-// each round only takes moves back).
-void PullBorder(TriangleMesh& mesh, const PointCloud& points, const internal::PointSearch& search,
-                const std::vector<double>& point_spacing, const SurfaceTrimOptions& options,
-                SurfaceTrimReport* report) {
+// The direction, from border vertex i, away from the faces on its border edges: for each such edge, the
+// unit vector in the face's plane, perpendicular to the edge, pointing away from the face's third corner;
+// summed (not normalised).
+Eigen::Vector3d OutwardAt(const TriangleMesh& mesh, const std::vector<std::array<uint32_t, 3>>& border_edges_of_face,
+                          const std::vector<std::vector<uint32_t>>& border_faces, uint32_t i) {
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  const auto& v = mesh.vertices_m;
+  for (uint32_t f : border_faces[i]) {
+    const auto& t = mesh.faces[f];
+    for (int c = 0; c < 3; ++c) {
+      if (!border_edges_of_face[f][c]) continue;
+      const uint32_t a = t[c], b = t[(c + 1) % 3], k = t[(c + 2) % 3];
+      if (a != i && b != i) continue;
+      const Eigen::Vector3d d = (v[b] - v[a]).normalized();
+      const Eigen::Vector3d w = (v[k] - v[a]) - (v[k] - v[a]).dot(d) * d;
+      if (w.norm() > 0) out -= w.normalized();
+    }
+  }
+  return out;
+}
+
+// Step 2c, the border fit. For each border vertex (on an edge of one face), against the data points
+// near it:
+// - Short of the data (the surface ends before the points do): when the points within
+//   border_extend_factor × spacing lie on a plane (RMS off it under a third of a spacing) and some of
+//   them, in a band one spacing either side of the vertex, lie more than border_pull_factor × spacing
+//   past it (along the border's outward direction in that plane), the vertex goes onto the plane, out to
+//   the farthest of them. Poisson rounds a sheet over at a free edge; the trim cuts the roll away and
+//   the surface would otherwise end up to two spacings short.
+// - Past the data: a vertex farther from its nearest data point than border_pull_factor × that point's
+//   spacing is moved straight toward the point until it is that far.
+// The spacing is the points' own (not floored by min_spacing_m). The moves are made together; a vertex
+// whose move would turn a face around it by more than 60° (or flatten it) tries half of it, up to three
+// times, and then stays where it was; the check is repeated until no face turns (each round only
+// shortens moves or takes them back).
+void FitBorderToData(TriangleMesh& mesh, const PointCloud& points, const internal::PointSearch& search,
+                     const std::vector<double>& point_spacing, const SurfaceTrimOptions& options,
+                     SurfaceTrimReport* report) {
   const size_t n = mesh.num_vertices();
   std::vector<char> on_border(n, 0);
+  std::vector<std::array<uint32_t, 3>> border_edge_of_face(mesh.faces.size(), {0, 0, 0});
+  std::vector<std::vector<uint32_t>> border_faces(n);
   {
     const EdgeTable edges(mesh.faces);
-    for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
       for (int c = 0; c < 3; ++c) {
         const uint32_t e = edges.face_edges[f][c];
         if (edges.offsets[e + 1] - edges.offsets[e] != 1) continue;  // not an edge of one face
-        on_border[mesh.faces[f][c]] = on_border[mesh.faces[f][(c + 1) % 3]] = 1;
+        border_edge_of_face[f][c] = 1;
+        for (uint32_t i : {mesh.faces[f][c], mesh.faces[f][(c + 1) % 3]}) {
+          on_border[i] = 1;
+          if (border_faces[i].empty() || border_faces[i].back() != f) border_faces[i].push_back(f);
+        }
       }
     }
   }
+  constexpr int kFitNeighbours = 48;
+  const bool extend = options.border_extend_factor > 0;
   std::vector<Eigen::Vector3d> target = mesh.vertices_m;
-  std::vector<char> moved(n, 0);
+  std::vector<char> moved(n, 0);  // 1 pulled in, 2 extended out
   ForEachIndex(n, [&](size_t i) {
     if (!on_border[i]) return;
     const Eigen::Vector3d& p = mesh.vertices_m[i];
-    const auto nearest = search.Nearest(p, 1).front();
-    const double d = std::sqrt(nearest.first), keep_m = options.border_pull_factor * point_spacing[nearest.second];
+    const auto near = search.Nearest(p, extend ? kFitNeighbours : 1);
+    const double d = std::sqrt(near.front().first), s = point_spacing[near.front().second];
+    const double keep_m = options.border_pull_factor * s;
+    if (extend && d <= keep_m + s) {
+      // The points near the vertex and near the surface's plane there (not those of another surface
+      // meeting this one at a crease).
+      Eigen::Vector3d surface_normal = Eigen::Vector3d::Zero();
+      for (uint32_t f : border_faces[i]) {
+        const auto& t = mesh.faces[f];
+        const auto& v = mesh.vertices_m;
+        surface_normal += (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
+      }
+      if (surface_normal.norm() > 0) surface_normal.normalize();
+      std::vector<Eigen::Vector3d> around;
+      const double radius_m = options.border_extend_factor * s;
+      for (const auto& [d2, j] : near) {
+        const Eigen::Vector3d& q = points.positions_m[j];
+        if (d2 <= radius_m * radius_m && std::abs((q - p).dot(surface_normal)) <= s) around.push_back(q);
+      }
+      const Plane plane = FitPlane(around);
+      double off_plane_m2 = 0;
+      for (const auto& q : around) off_plane_m2 += std::pow((q - plane.centroid).dot(plane.normal), 2);
+      if (plane.valid && around.size() >= 8 && off_plane_m2 < around.size() * std::pow(s / 3, 2)) {
+        Eigen::Vector3d out = OutwardAt(mesh, border_edge_of_face, border_faces, static_cast<uint32_t>(i));
+        out -= out.dot(plane.normal) * plane.normal;
+        if (out.norm() > 0.5) {  // the border's outward direction lies near the data's plane
+          out.normalize();
+          const Eigen::Vector3d along = plane.normal.cross(out);
+          const Eigen::Vector3d foot = p - (p - plane.centroid).dot(plane.normal) * plane.normal;
+          double past_m = 0;
+          for (const auto& q : around) {
+            if (std::abs((q - foot).dot(along)) <= s) past_m = std::max(past_m, (q - foot).dot(out));
+          }
+          if (past_m > keep_m) {
+            target[i] = foot + past_m * out;
+            moved[i] = 2;
+            return;
+          }
+        }
+      }
+    }
     if (!(d > keep_m)) return;
-    const Eigen::Vector3d& q = points.positions_m[nearest.second];
+    const Eigen::Vector3d& q = points.positions_m[near.front().second];
     target[i] = q + (p - q) * (keep_m / d);
     moved[i] = 1;
   });
   auto normal = [&](const std::array<uint32_t, 3>& t, const std::vector<Eigen::Vector3d>& at) {
     return Eigen::Vector3d((at[t[1]] - at[t[0]]).cross(at[t[2]] - at[t[0]]));
   };
+  constexpr int kMaxHalvings = 3;
+  std::vector<int> halvings(n, 0);
   for (bool changed = true; changed;) {
     changed = false;
     std::vector<Eigen::Vector3d> trial = mesh.vertices_m;
@@ -135,19 +214,30 @@ void PullBorder(TriangleMesh& mesh, const PointCloud& points, const internal::Po
       if (!moved[t[0]] && !moved[t[1]] && !moved[t[2]]) continue;
       const Eigen::Vector3d before = normal(t, mesh.vertices_m), after = normal(t, trial);
       if (after.norm() > 1e-3 * before.norm() && after.dot(before) >= 0.5 * after.norm() * before.norm()) continue;
-      for (uint32_t c : t) undo[c] = moved[c];
+      for (uint32_t c : t) undo[c] = moved[c] != 0;
     }
     for (size_t i = 0; i < n; ++i) {
       if (!undo[i]) continue;
+      changed = true;
+      if (++halvings[i] <= kMaxHalvings) {  // try half the move
+        target[i] = 0.5 * (target[i] + mesh.vertices_m[i]);
+        continue;
+      }
       moved[i] = 0;
       ++report->border_pulls_refused;
-      changed = true;
     }
   }
   for (size_t i = 0; i < n; ++i) {
     if (!moved[i]) continue;
-    ++report->border_vertices_pulled;
-    report->max_border_pull_m = std::max(report->max_border_pull_m, (target[i] - mesh.vertices_m[i]).norm());
+    report->border_moves_shortened += halvings[i] > 0;
+    const double move_m = (target[i] - mesh.vertices_m[i]).norm();
+    if (moved[i] == 1) {
+      ++report->border_vertices_pulled;
+      report->max_border_pull_m = std::max(report->max_border_pull_m, move_m);
+    } else {
+      ++report->border_vertices_extended;
+      report->max_border_extension_m = std::max(report->max_border_extension_m, move_m);
+    }
     mesh.vertices_m[i] = target[i];
   }
 }
@@ -165,7 +255,10 @@ Json SurfaceTrimReport::ToJson() const {
   j["ear_passes"] = ear_passes;
   j["border_vertices_pulled"] = border_vertices_pulled;
   j["border_pulls_refused"] = border_pulls_refused;
+  j["border_moves_shortened"] = border_moves_shortened;
   j["max_border_pull_m"] = RoundToDecimals(max_border_pull_m, 4);
+  j["border_vertices_extended"] = border_vertices_extended;
+  j["max_border_extension_m"] = RoundToDecimals(max_border_extension_m, 4);
   j["spike_vertices_flattened"] = spike_vertices_flattened;
   j["max_spike_height_m"] = RoundToDecimals(max_spike_height_m, 4);
   j["faces_out"] = faces_out;
@@ -180,6 +273,7 @@ Json SurfaceTrimReport::ToJson() const {
   criteria["ear_edge_factor"] = options.ear_edge_factor;
   criteria["max_ear_passes"] = options.max_ear_passes;
   criteria["border_pull_factor"] = options.border_pull_factor;
+  criteria["border_extend_factor"] = options.border_extend_factor;
   criteria["spike_factor"] = options.spike_factor;
   criteria["spike_min_m"] = options.spike_min_m;
   criteria["spike_passes"] = options.spike_passes;
@@ -395,9 +489,9 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
     }
   }
 
-  // 2c. Border pull: the border's vertices onto the data's border.
+  // 2c. Border fit: the border's vertices onto the data's border.
   if (options.border_pull_factor > 0 && search.size() > 0 && !out.faces.empty())
-    PullBorder(out, points, search, point_spacing, options, &report);
+    FitBorderToData(out, points, search, point_spacing, options, &report);
 
   // 3. Spikes: every vertex against the plane of its ring (the 2-ring when the ring is too small to
   // span a plane, as at a border corner), all measured on the same positions in each pass.

@@ -17,19 +17,24 @@
 //    far_factor × that point's spacing is removed, wherever it is.
 // 2. Border peeling: repeatedly, a face with an edge on the border is removed when its centroid or a
 //    corner is farther than border_factor × spacing from the data, or when its longest edge exceeds
-//    border_edge_factor × spacing (the largest spacing at its corners; a border triangle stretched between scattered
-//    points). Interior faces are left alone: a gap in the middle of the data is bridged, as the height field does.
+//    border_edge_factor × spacing (the largest spacing at its corners; a border triangle stretched
+//    between scattered points). Interior faces are left alone: a gap in the middle of the data is
+//    bridged, as the height field does.
 //    2b. Ears and strays: a face whose longest edge exceeds ear_edge_factor × spacing is removed when
 //    two or more of its edges are on the border (an ear: it hangs from the surface by one edge or
 //    none), or when one of its corners is a stray, a border vertex with one or two faces, both that
 //    stretched (a lone point the surface reached out to). Up to max_ear_passes passes, so the cut
 //    reaches a few triangles in and never peels ring after ring: the part of step 2 that stays safe on
 //    a sparse cloud's clumpy border, where peeling eats into the data.
-//    2c. Border pull: a border vertex farther from its nearest data point than border_pull_factor × that
-//    point's own spacing (the points' k-NN spacing, not floored by min_spacing_m) is moved straight
-//    toward the point until it is that far, unless that would turn a face around it by more than 60°.
-//    Faces are removed a whole face at a time, so a Poisson border, whose facets are ~1.5 point
-//    spacings, otherwise ends up to a facet out past the points (and curls off their plane there).
+//    2c. Border fit: a border vertex short of the data (points lie past it, within border_extend_factor ×
+//    spacing, on a plane around it) is moved onto that plane, out to the farthest of those points (Poisson
+//    rounds a sheet over at a free edge, and the roll is cut away); a border vertex past the data (farther
+//    from its nearest data point than border_pull_factor × that point's spacing) is moved straight toward
+//    the point until it is that far. Both use the points' own k-NN spacing (not floored by min_spacing_m),
+//    and a move that would turn a face around it by more than 60° is halved (up to three times) or else
+//    not made. Faces are removed a whole face at a time, so a Poisson border, whose facets are ~1.5 point
+//    spacings, otherwise ends up to a facet out past the points (and curls off their plane there), or up
+//    to two spacings short of a free edge.
 // 3. Spikes: a vertex whose distance to the least-squares plane of its one-ring neighbours exceeds
 //    max(spike_min_m, spike_factor × the mean length of its edges) is moved onto that plane (smoothed,
 //    not cut); up to spike_passes passes. The report keeps the largest such height found.
@@ -46,14 +51,15 @@ namespace cinepath::photogrammetry {
 struct SurfaceTrimOptions {
   int spacing_neighbours = 6;
   double min_spacing_m = 0;
-  double far_factor = 3.0;          // 0 = skip step 1
-  double border_factor = 1.0;       // 0 = skip the distance test of step 2
-  double border_edge_factor = 4.0;  // 0 = skip the edge test of step 2
-  int max_border_passes = 1000;     // a bound on the peeling (each pass removes one ring of faces)
-  double ear_edge_factor = 4.0;     // 0 = skip step 2b
-  int max_ear_passes = 3;           // a bound on step 2b (each pass cuts what is an ear or stray then)
-  double border_pull_factor = 0.5;  // 0 = skip step 2c
-  double spike_factor = 1.0;        // 0 = skip step 3
+  double far_factor = 3.0;            // 0 = skip step 1
+  double border_factor = 1.0;         // 0 = skip the distance test of step 2
+  double border_edge_factor = 4.0;    // 0 = skip the edge test of step 2
+  int max_border_passes = 1000;       // a bound on the peeling (each pass removes one ring of faces)
+  double ear_edge_factor = 4.0;       // 0 = skip step 2b
+  int max_ear_passes = 3;             // a bound on step 2b (each pass cuts what is an ear or stray then)
+  double border_pull_factor = 0.5;    // 0 = skip step 2c
+  double border_extend_factor = 3.0;  // 0 = step 2c only pulls (never moves a vertex out to the data)
+  double spike_factor = 1.0;          // 0 = skip step 3
   double spike_min_m = 0.25;
   int spike_passes = 3;
 };
@@ -68,7 +74,10 @@ struct SurfaceTrimReport {
   int64_t ear_passes = 0;
   int64_t border_vertices_pulled = 0;    // step 2c
   int64_t border_pulls_refused = 0;      // step 2c: moves taken back (a face would turn)
+  int64_t border_moves_shortened = 0;    // step 2c: moves kept at 1/2, 1/4 or 1/8 (a face would turn)
   double max_border_pull_m = 0;          // the longest move
+  int64_t border_vertices_extended = 0;  // step 2c: moved out to the data's border
+  double max_border_extension_m = 0;     // the longest such move
   int64_t spike_vertices_flattened = 0;  // step 3 (a vertex flattened in two passes counts twice)
   double max_spike_height_m = 0;         // largest distance to the ring plane among flattened vertices
   double median_spacing_m = 0;           // median local spacing over the data points

@@ -1,8 +1,10 @@
 // Synthetic meshes and clouds for the surface tests (generated in code, no fixtures).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <random>
 
 #include <Eigen/Geometry>
 
@@ -54,6 +56,34 @@ inline PointCloud TerrainCloud(int cols, int rows, double spacing_m) {
                                         50.0);
   }
   cloud.observers.assign(cloud.size(), {0, 1, 2, 3});
+  return cloud;
+}
+
+// An L of two bounded planes, as a box's floor and one wall: the floor z = 0 over [0, kLWidthM] ×
+// [0, kLDepthM] and the wall y = 0 over [0, kLWidthM] × [0, kLHeightM], facing the floor; points every
+// kLPitchM, jittered by up to 0.3 pitch, with normals, seen by three cameras in front of the wall.
+constexpr double kLWidthM = 12.0, kLDepthM = 8.0, kLHeightM = 5.0, kLPitchM = 0.3;
+inline PointCloud LCloud() {
+  PointCloud cloud;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.3 * kLPitchM, 0.3 * kLPitchM);
+  auto add = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+    cloud.positions_m.push_back(p);
+    cloud.normals.push_back(n);
+    cloud.colors_rgb.push_back({120, 120, 120});
+    cloud.reprojection_error_px.push_back(0.4);
+  };
+  for (double x = 0; x <= kLWidthM + 1e-9; x += kLPitchM) {
+    for (double y = kLPitchM; y <= kLDepthM + 1e-9; y += kLPitchM) {
+      add({std::clamp(x + jitter(rng), 0.0, kLWidthM), std::clamp(y + jitter(rng), 0.0, kLDepthM), 0}, {0, 0, 1});
+    }
+    for (double z = 0; z <= kLHeightM + 1e-9; z += kLPitchM) {
+      add({std::clamp(x + jitter(rng), 0.0, kLWidthM), 0, std::clamp(z + jitter(rng), 0.0, kLHeightM)}, {0, 1, 0});
+    }
+  }
+  // Cameras in front of the wall and above the floor.
+  cloud.camera_centers_m = {{2, 20, 12}, {10, 20, 12}, {6, 14, 18}};
+  cloud.observers.assign(cloud.size(), {0, 1, 2});
   return cloud;
 }
 

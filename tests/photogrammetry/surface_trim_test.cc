@@ -52,60 +52,41 @@ double SegmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const
   return (p - (a + t * d)).norm();
 }
 
-// An L of two bounded planes, as a box's floor and one wall: the floor z = 0 over
-// [0, kWidth] × [0, kDepth] and the wall y = 0 over [0, kWidth] × [0, kHeight], facing the floor.
-constexpr double kWidth = 12.0, kDepth = 8.0, kHeight = 5.0, kPitch = 0.3;
+// The L of testing::LCloud: the floor z = 0 over [0, kWidth] × [0, kDepth] and the wall y = 0 over
+// [0, kWidth] × [0, kHeight], facing the floor, with points every kPitch (jittered).
+constexpr double kWidth = testing::kLWidthM, kDepth = testing::kLDepthM, kHeight = testing::kLHeightM,
+                 kPitch = testing::kLPitchM;
+// Where the points end: their last row (kDepth and kHeight are not whole multiples of the pitch; the
+// points reach 7.8 m and 4.8 m, give or take their jitter). The L measured below is the data's.
+const double kDataWidth = std::floor(kWidth / kPitch + 1e-6) * kPitch;
+const double kDataDepth = std::floor(kDepth / kPitch + 1e-6) * kPitch;
+const double kDataHeight = std::floor(kHeight / kPitch + 1e-6) * kPitch;
 
-// Distance from p to the union of the two rectangles.
+// Distance from p to the union of the two rectangles the points cover.
 double DistanceToL(const Eigen::Vector3d& p) {
-  const double x = std::clamp(p.x(), 0.0, kWidth);
-  const Eigen::Vector3d on_floor(x, std::clamp(p.y(), 0.0, kDepth), 0.0);
-  const Eigen::Vector3d on_wall(x, 0.0, std::clamp(p.z(), 0.0, kHeight));
+  const double x = std::clamp(p.x(), 0.0, kDataWidth);
+  const Eigen::Vector3d on_floor(x, std::clamp(p.y(), 0.0, kDataDepth), 0.0);
+  const Eigen::Vector3d on_wall(x, 0.0, std::clamp(p.z(), 0.0, kDataHeight));
   return std::min((p - on_floor).norm(), (p - on_wall).norm());
 }
 
 // Distance from p to the data's border: the outline of the L (every rectangle edge but the shared one).
 double DistanceToLBorder(const Eigen::Vector3d& p) {
   using V = Eigen::Vector3d;
-  const std::vector<std::pair<V, V>> edges = {{V(0, 0, 0), V(0, kDepth, 0)},
-                                              {V(kWidth, 0, 0), V(kWidth, kDepth, 0)},
-                                              {V(0, kDepth, 0), V(kWidth, kDepth, 0)},
-                                              {V(0, 0, 0), V(0, 0, kHeight)},
-                                              {V(kWidth, 0, 0), V(kWidth, 0, kHeight)},
-                                              {V(0, 0, kHeight), V(kWidth, 0, kHeight)}};
-  double d = INFINITY;
-  for (const auto& [a, b] : edges) d = std::min(d, SegmentDistance(p, a, b));
-  return d;
-}
-
-PointCloud LCloud() {
-  PointCloud cloud;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> jitter(-0.3 * kPitch, 0.3 * kPitch);
-  auto add = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
-    cloud.positions_m.push_back(p);
-    cloud.normals.push_back(n);
-    cloud.colors_rgb.push_back({120, 120, 120});
-    cloud.reprojection_error_px.push_back(0.4);
-  };
-  for (double x = 0; x <= kWidth + 1e-9; x += kPitch) {
-    for (double y = kPitch; y <= kDepth + 1e-9; y += kPitch) {
-      add({std::clamp(x + jitter(rng), 0.0, kWidth), std::clamp(y + jitter(rng), 0.0, kDepth), 0}, {0, 0, 1});
-    }
-    for (double z = 0; z <= kHeight + 1e-9; z += kPitch) {
-      add({std::clamp(x + jitter(rng), 0.0, kWidth), 0, std::clamp(z + jitter(rng), 0.0, kHeight)}, {0, 1, 0});
-    }
-  }
-  // Cameras in front of the wall and above the floor.
-  cloud.camera_centers_m = {{2, 20, 12}, {10, 20, 12}, {6, 14, 18}};
-  cloud.observers.assign(cloud.size(), {0, 1, 2});
-  return cloud;
+  const double w = kDataWidth, d = kDataDepth, h = kDataHeight;
+  const std::vector<std::pair<V, V>> edges = {{V(0, 0, 0), V(0, d, 0)}, {V(w, 0, 0), V(w, d, 0)},
+                                              {V(0, d, 0), V(w, d, 0)}, {V(0, 0, 0), V(0, 0, h)},
+                                              {V(w, 0, 0), V(w, 0, h)}, {V(0, 0, h), V(w, 0, h)}};
+  double distance_m = INFINITY;
+  for (const auto& [a, b] : edges) distance_m = std::min(distance_m, SegmentDistance(p, a, b));
+  return distance_m;
 }
 
 // The Poisson surface of an L of two bounded planes ends where the points end, for every seed of the
-// surface mesher's first points (each seed gives another valid surface).
-TEST(TrimSurfaceToData, PoissonSurfaceOfBoundedPlanesEndsWithinTwoSpacingsOfTheirBorderWhateverTheSeed) {
-  const PointCloud cloud = LCloud();
+// surface mesher's first points (each seed gives another valid surface): within one point spacing of
+// the data's border, neither past it nor short of it.
+TEST(TrimSurfaceToData, PoissonSurfaceOfBoundedPlanesEndsWithinOneSpacingOfTheirBorderWhateverTheSeed) {
+  const PointCloud cloud = testing::LCloud();
   double worst_border_spacings = 0;
   for (const unsigned int seed : {PoissonOptions{}.seed, 1u, 2u, 3u, 4u, 5u}) {
     SCOPED_TRACE(seed);
@@ -141,16 +122,17 @@ TEST(TrimSurfaceToData, PoissonSurfaceOfBoundedPlanesEndsWithinTwoSpacingsOfThei
     const double point_spacing_m = (*trim)["median_point_spacing_m"].get<double>();
     EXPECT_GT(point_spacing_m, 1.0 * kPitch);
     EXPECT_LT(point_spacing_m, 1.3 * kPitch);
-    EXPECT_GT((*trim)["border_vertices_pulled"].get<int64_t>(), 0);
-    // Within two of the points' own spacings. The default seed gives 0.95 spacings; other seeds gave
-    // 1.2-1.9 (twelve, each in a fresh process), always short of a free edge (the wall's top, the
-    // floor's far side), where Poisson rounds the sheet over (docs/mesh.md). One spacing, the first
-    // goal, holds only for some seeds.
-    EXPECT_LT(worst_border_m, 2 * point_spacing_m)
+    EXPECT_GT((*trim)["border_vertices_pulled"].get<int64_t>(), 0);    // past the points: pulled in
+    EXPECT_GT((*trim)["border_vertices_extended"].get<int64_t>(), 0);  // short of a free edge: moved out
+    // Within one of the points' own spacings: 0.76-0.84 for these seeds, at most 0.91 over 64 of 65
+    // seeds (docs/mesh.md: the 65th surface is torn). Without moving border vertices out to the data,
+    // 0.79-1.24 for these seeds: at a free edge (the wall's top, the floor's far side) Poisson rounds
+    // the sheet over, and the trim cuts the roll away.
+    EXPECT_LT(worst_border_m, point_spacing_m)
         << "point spacing " << point_spacing_m << ", worst at " << worst_at.transpose();
     worst_border_spacings = std::max(worst_border_spacings, worst_border_m / point_spacing_m);
     // And the surface still covers the data: every point has a vertex within about one spacing
-    // (0.93-1.01 spacings over these seeds: a point at a free edge whose roll was cut away).
+    // (0.94-1.08 spacings over these seeds, at most 1.15 over 64 of 65 seeds).
     double worst_cover_m = 0;
     for (const auto& p : cloud.positions_m) {
       double d = INFINITY;
