@@ -33,8 +33,8 @@
 //    the point until it is that far. Both use the points' own k-NN spacing (not floored by min_spacing_m),
 //    and a move that would turn a face around it by more than 60° is halved (up to three times) or else
 //    not made. Faces are removed a whole face at a time, so a Poisson border, whose facets are ~1.5 point
-//    spacings, otherwise ends up to a facet out past the points (and curls off their plane there), or up
-//    to two spacings short of a free edge.
+//    spacings, otherwise ends up to a facet out past the points (and curls off their plane there), or
+//    more than a spacing short of a free edge.
 // 3. Spikes: a vertex whose distance to the least-squares plane of its one-ring neighbours exceeds
 //    max(spike_min_m, spike_factor × the mean length of its edges) is moved onto that plane (smoothed,
 //    not cut); up to spike_passes passes. The report keeps the largest such height found.
