@@ -1,6 +1,7 @@
 #include "photogrammetry/surface_pipeline.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "core/error.h"
 #include "surface_test_meshes.h"
@@ -46,6 +47,35 @@ TEST(BuildSurfaceFromPoints, NadirCloudGivesAHeightFieldReportAndGlb) {
   const SurfacePipelineResult again = BuildSurfaceFromPoints(cloud, options);
   EXPECT_EQ(again.glb, result.glb);
   EXPECT_EQ(DumpJson(again.report), DumpJson(result.report));
+}
+
+// The Poisson path end to end (filter, Poisson, trim, clean, decimate, colours, GLB) on a scene no
+// height field can hold (a wall over a floor): the same bytes and report when run again in the same
+// process, and when run on one thread.
+TEST(BuildSurfaceFromPoints, PoissonPathGivesTheSameBytesAgainAndOnOneThread) {
+  const PointCloud cloud = testing::LCloud();
+  SurfacePipelineOptions options;
+  options.method = SurfaceMethod::kPoisson;
+  options.target_faces = 600;  // the trimmed surface has about 870 faces: the decimation works too
+  options.report_times = false;
+  const SurfacePipelineResult first = BuildSurfaceFromPoints(cloud, options);
+  ASSERT_NE(FindStep(first.report, "poisson"), nullptr);
+  ASSERT_NE(FindStep(first.report, "trim"), nullptr);
+  const Json* decimate = FindStep(first.report, "decimate");
+  ASSERT_NE(decimate, nullptr);
+  EXPECT_GT((*decimate)["faces_in"].get<int64_t>(), 600);
+  EXPECT_LE(first.mesh.num_faces(), 600u);
+  EXPECT_GT(first.mesh.num_faces(), 500u);
+  const SurfacePipelineResult again = BuildSurfaceFromPoints(cloud, options);
+  SurfacePipelineResult one_thread;
+  {
+    const tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);
+    one_thread = BuildSurfaceFromPoints(cloud, options);
+  }
+  for (const SurfacePipelineResult* other : {&again, static_cast<const SurfacePipelineResult*>(&one_thread)}) {
+    EXPECT_TRUE(other->glb == first.glb);
+    EXPECT_EQ(DumpJson(other->report), DumpJson(first.report));
+  }
 }
 
 TEST(BuildSurfaceFromPoints, ErrorBoundIsMetByTheMeasuredHausdorffDistance) {
