@@ -117,9 +117,9 @@ Placed Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector
     const Eigen::Vector3d p = mid + adjugate * residual / det;
     return p.allFinite() && (p - mid).squaredNorm() <= reach2 ? Placed{p, q.Error(p)} : BestOnSegment(q, a, b);
   };
-  // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
   // Newton's first step down from the trace towards the largest eigenvalue (below), when it is taken.
   double first_step = 0;
+  // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
   if (minors > 1e-9 * trace * trace) {
     if (det > rcond * trace * minors) return full_rank();
     // Tighter bounds, from Newton's method on the characteristic polynomial p(x) = x³ − trace x² +
@@ -519,7 +519,8 @@ std::vector<char> BorderVertices(size_t n, const std::vector<std::array<uint32_t
       }
     }
   }
-  // Each neighbour's count by a counter per vertex, set and cleared around each visit.
+  // v is interior when each neighbour appears exactly twice in its list: counted in `count` (indexed
+  // by neighbour), checked, then reset for the next vertex.
   std::vector<char> locked(n, 0);
   std::vector<uint32_t> count(n, 0);
   for (size_t v = 0; v < n; ++v) {
