@@ -11,6 +11,7 @@
 #include "cli/command.h"
 #include "cli/doc_pages.h"
 #include "core/error.h"
+#include "core/fatal_signal.h"
 #include "core/version.h"
 
 namespace {
@@ -103,6 +104,7 @@ int main(int argc, char** argv) {
   }
   for (const auto& info : Commands()) {
     if (info.name != first) continue;
+    cinepath::InstallFatalSignalReport(info.name.c_str());
     try {
       return RunCommand(info, argc, argv);
     } catch (const cinepath::Error& e) {

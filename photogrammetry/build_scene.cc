@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/fatal_signal.h"
 #include "photogrammetry/colmap_reader.h"
 #include "photogrammetry/colmap_runner.h"
 #include "photogrammetry/exif_gps.h"
@@ -236,6 +237,12 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
   }
   Json input_note = Json::object();
   SurfacePipelineResult built = BuildSurface(options, model, geo, surface, &inputs, &input_note);
+  for (const Json& step : built.report["steps"]) {
+    if (step.contains("fallback_from")) {
+      Tell(log.warning, "the surface step fell back from " + step["fallback_from"].get<std::string>() + " to " +
+                            step["step"].get<std::string>() + ": " + step["fallback_reason"].get<std::string>());
+    }
+  }
 
   // The texture from the photos, and scene.glb written again with it.
   Json texture_report = nullptr;
@@ -244,6 +251,7 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
     MeshTextureOptions texture_options = options.texture_options;
     texture_options.texture_px = options.texture_px.value_or(DefaultTexturePx(surface.quality));
     texture_options.report_times = options.timestamps;
+    const CurrentStep running("texture: from the photos");
     const TexturedMesh textured =
         TextureMeshFromPhotos(built.mesh, geo.model_enu, images.dir, texture_options, nullptr);
     GlbWriteOptions glb;

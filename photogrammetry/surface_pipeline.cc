@@ -10,6 +10,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/error.h"
+#include "core/fatal_signal.h"
 #include "photogrammetry/gltf_writer.h"
 #include "photogrammetry/mesh_clean.h"
 #include "photogrammetry/mesh_colors.h"
@@ -17,6 +18,7 @@
 #include "photogrammetry/mesh_distance.h"
 #include "photogrammetry/mesh_remesh.h"
 #include "photogrammetry/surface_height_field.h"
+#include "photogrammetry/surface_orient.h"
 #include "photogrammetry/surface_points.h"
 #include "photogrammetry/surface_poisson.h"
 
@@ -364,10 +366,24 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
   {
     StepTimer timer;
     Json step;
+    // Poisson is guarded before it is called: a cloud that spans no volume would crash CGAL's solver.
+    // Chosen by `auto`, the height field takes over and the report says why; asked for, it is refused.
+    if (method == SurfaceMethod::kPoisson) {
+      if (const auto problem = PoissonInputProblem(filtered)) {
+        if (options.method == SurfaceMethod::kPoisson) {
+          throw InputError("mesh: --surface poisson cannot mesh these points: " + *problem +
+                           " (CGAL's Poisson solver needs points that span a volume); use --surface height-field");
+        }
+        method = SurfaceMethod::kHeightField;
+        step["fallback_from"] = "poisson";
+        step["fallback_reason"] = *problem;
+      }
+    }
     if (method == SurfaceMethod::kHeightField) {
       HeightFieldOptions height_field;
       height_field.max_points = defaults.height_field_points;
       HeightFieldReport surface_report;
+      const CurrentStep running("surface: height field (CGAL)");
       mesh = HeightFieldSurface(filtered, height_field, &surface_report);
       step["step"] = "height_field";
       step.update(surface_report.ToJson());
@@ -377,6 +393,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
       poisson.seed = options.poisson_seed;
       if (options.trim) poisson.trim_factor = 0;  // the trim step below trims, against the local spacing
       PoissonReport surface_report;
+      const CurrentStep running("surface: Poisson reconstruction (CGAL)");
       mesh = PoissonSurface(filtered, poisson, &surface_report);
       // The mesher's facets are about this large: the trim cannot ask the surface to be closer.
       poisson_resolution_m = surface_report.average_spacing_m * poisson.spacing_factor * poisson.radius_factor;
@@ -417,6 +434,17 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
   }
   if (mesh.num_faces() == 0) {
     throw InfeasibleError("mesh: no surface is left after trimming it to the points (see the report's steps)");
+  }
+  if (method == SurfaceMethod::kPoisson) {
+    // Poisson's winding is its implicit function's sign, which an open surface does not fix; the height
+    // field's faces are counter-clockwise from above by construction.
+    StepTimer timer;
+    const OrientReport orient_report = OrientTowardCameras(&mesh, filtered);
+    Json step;
+    step["step"] = "orient";
+    step.update(orient_report.ToJson());
+    AddTime(step, timer, options);
+    steps.push_back(std::move(step));
   }
   return FinishSurface(std::move(mesh), &filtered, options, std::move(report));
 }

@@ -61,7 +61,33 @@ void SortCanonically(TriangleMesh* mesh) {
   std::sort(mesh->faces.begin(), mesh->faces.end());
 }
 
+// The cloud's finite points, as CGAL points.
+std::vector<Point> FinitePoints(const PointCloud& cloud) {
+  std::vector<Point> points;
+  points.reserve(cloud.size());
+  for (const auto& p : cloud.positions_m) {
+    if (p.allFinite()) points.emplace_back(p.x(), p.y(), p.z());
+  }
+  return points;
+}
+
 }  // namespace
+
+std::optional<std::string> PoissonInputProblem(const PointCloud& cloud) {
+  const std::vector<Point> points = FinitePoints(cloud);
+  if (points.size() < 10) return "fewer than 10 usable points (" + std::to_string(points.size()) + ")";
+  // The affine dimension, one witness at a time: a second point, a third off their line, a fourth off
+  // their plane.
+  const Point& a = points.front();
+  const auto b = std::find_if(points.begin(), points.end(), [&](const Point& p) { return p != a; });
+  if (b == points.end()) return "all " + std::to_string(points.size()) + " points coincide";
+  const auto c = std::find_if(points.begin(), points.end(), [&](const Point& p) { return !CGAL::collinear(a, *b, p); });
+  if (c == points.end()) return "all " + std::to_string(points.size()) + " points lie on one line";
+  const bool solid = std::any_of(points.begin(), points.end(),
+                                 [&](const Point& p) { return CGAL::orientation(a, *b, *c, p) != CGAL::COPLANAR; });
+  if (!solid) return "all " + std::to_string(points.size()) + " points lie on one plane";
+  return std::nullopt;
+}
 
 Json PoissonReport::ToJson() const {
   Json j;
@@ -91,8 +117,8 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     source.push_back(i);
   }
   report.points = static_cast<int64_t>(points.size());
-  if (points.size() < 10) {
-    throw InputError("poisson: fewer than 10 usable points (" + std::to_string(points.size()) + ")");
+  if (const auto problem = PoissonInputProblem(cloud)) {
+    throw InputError("poisson: " + *problem + ": CGAL's Poisson solver needs points that span a volume");
   }
   const int k = std::max(3, std::min<int>(options.normal_neighbours, static_cast<int>(points.size()) - 1));
 

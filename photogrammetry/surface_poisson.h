@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "core/json.h"
 #include "photogrammetry/point_cloud.h"
@@ -38,7 +40,14 @@ struct PoissonReport {
   Json ToJson() const;
 };
 
-// Throws InputError for fewer than 10 finite points, RuntimeError if the Poisson solver fails.
+// Why CGAL's Poisson solver cannot take these points, or nothing when it can: fewer than 10 finite points,
+// or points that span no volume (all on one plane, one line or one point). On such a cloud CGAL's Delaunay
+// refinement runs on a triangulation of dimension < 3 and fails a precondition, reads its infinite cell
+// out of bounds or divides by zero: a signal, not an error. Decided with exact predicates, as CGAL's
+// triangulation decides its own dimension, so every cloud this accepts gives a 3D triangulation.
+std::optional<std::string> PoissonInputProblem(const PointCloud& cloud);
+
+// Throws InputError when PoissonInputProblem names a problem, RuntimeError if the Poisson solver fails.
 // Colours: the vertices take the colour of their nearest input point.
 TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options, PoissonReport* report);
 

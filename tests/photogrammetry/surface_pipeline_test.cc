@@ -128,6 +128,38 @@ TEST(BuildSurfaceFromPoints, TooFewPointsIsBadInput) {
   EXPECT_THROW(BuildSurfaceFromPoints(cloud, SurfacePipelineOptions{}), InputError);
 }
 
+// A slope seen from the side: `auto` picks Poisson, whose solver cannot take points that span no volume
+// (all on one plane); the surface step falls back to the height field and says why. Asked for by name,
+// Poisson is refused with the cause and the switch to use.
+TEST(BuildSurfaceFromPoints, PointsOnOnePlaneFallBackFromPoissonToTheHeightField) {
+  PointCloud cloud;
+  cloud.camera_centers_m = {{-60, 0, 5}, {-60, 20, 5}, {-60, -20, 5}};
+  for (int i = 0; i <= 40; ++i) {
+    for (int j = 0; j <= 40; ++j) {
+      const double x = i * 0.5, y = j * 0.5 - 10;  // exact in binary: the points are exactly coplanar
+      cloud.positions_m.emplace_back(x, y, 0.5 * x);
+      cloud.colors_rgb.push_back({120, 120, 120});
+      cloud.observers.push_back({0, 1, 2});
+    }
+  }
+  SurfacePipelineOptions options;
+  options.report_times = false;
+  const SurfacePipelineResult result = BuildSurfaceFromPoints(cloud, options);
+  const Json* surface = FindStep(result.report, "height_field");
+  ASSERT_NE(surface, nullptr) << DumpJson(result.report);
+  EXPECT_EQ((*surface)["fallback_from"], "poisson");
+  EXPECT_NE((*surface)["fallback_reason"].get<std::string>().find("one plane"), std::string::npos);
+  EXPECT_GT(result.mesh.num_faces(), 100u);
+
+  options.method = SurfaceMethod::kPoisson;
+  try {
+    BuildSurfaceFromPoints(cloud, options);
+    ADD_FAILURE() << "--surface poisson accepted points on one plane";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--surface height-field"), std::string::npos) << e.what();
+  }
+}
+
 TEST(BuildSurfaceFromMesh, RecordsTheHausdorffSamplingAndThePresetsMethod) {
   const TriangleMesh mesh = testing::TerrainGrid(80, 80, 0.5);  // 12,482 faces
   int64_t draft_samples = 0, final_samples = 0;

@@ -146,5 +146,49 @@ TEST(PoissonSurface, RejectsTinyClouds) {
   EXPECT_THROW(PoissonSurface(cloud, PoissonOptions{}, nullptr), InputError);
 }
 
+// Clouds that span no volume: CGAL's Poisson solver, called on them, fails a precondition (a plane),
+// reads outside its triangulation (a line, one point: SIGSEGV, measured with CGAL 5.5) or divides by zero.
+// They are refused before the solver is called, with the cause named.
+PointCloud FlatCloud(int dimension) {
+  PointCloud cloud;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-10, 10);
+  for (int i = 0; i < 200; ++i) {
+    const double x = u(rng), y = u(rng);
+    if (dimension == 0) cloud.positions_m.emplace_back(1.5, -2.5, 3.0);
+    if (dimension == 1) cloud.positions_m.emplace_back(x, 2 * x + 1, -x);
+    // A tilted plane, exactly representable: z = x + 2y with x, y multiples of 1/8.
+    if (dimension == 2) {
+      const double a = std::round(8 * x) / 8, b = std::round(8 * y) / 8;
+      cloud.positions_m.emplace_back(a, b, a + 2 * b);
+    }
+    cloud.normals.emplace_back(0, 0, 1);
+  }
+  return cloud;
+}
+
+TEST(PoissonSurface, CloudsThatSpanNoVolumeAreRefusedBeforeTheSolver) {
+  const char* expected[] = {"coincide", "one line", "one plane"};
+  for (int dimension = 0; dimension < 3; ++dimension) {
+    const PointCloud cloud = FlatCloud(dimension);
+    const auto problem = PoissonInputProblem(cloud);
+    ASSERT_TRUE(problem.has_value()) << dimension;
+    EXPECT_NE(problem->find(expected[dimension]), std::string::npos) << *problem;
+    try {
+      PoissonSurface(cloud, PoissonOptions{}, nullptr);
+      ADD_FAILURE() << "no error for dimension " << dimension;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected[dimension]), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(PoissonSurface, APlaneOffByOneMillimetreIsAVolume) {
+  PointCloud cloud = FlatCloud(2);
+  cloud.positions_m[17].z() += 1e-3;
+  EXPECT_FALSE(PoissonInputProblem(cloud).has_value());
+  EXPECT_FALSE(PoissonInputProblem(SphereCloud(100, 2.0, Eigen::Vector3d(1, 2, 3))).has_value());
+}
+
 }  // namespace
 }  // namespace cinepath::photogrammetry
