@@ -103,7 +103,9 @@ struct State {
   std::vector<ControlPointPrior> control;
 };
 
-enum class FocalMode { kPrior, kFixed };
+// kPrior: free, with the prior at focal_prior_sigma_ratio; kMeasured: free, with the prior as the weak
+// measured_focal_prior_sigma_ratio; kFixed: held.
+enum class FocalMode { kPrior, kMeasured, kFixed };
 
 struct SolveResult {
   double reprojection_cost = 0;  // 1/2 sum of robustified squared residuals (px^2)
@@ -153,7 +155,9 @@ SolveResult Solve(State& s, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m
     const int model = s.camera_models[cam];
     const auto focal_idx = CameraModelFocalIndices(model);
     const auto prior = focal_prior_px.find(s.camera_ids[cam]);
-    const bool focal_free = options.refine_focal && mode == FocalMode::kPrior;
+    const bool focal_free = options.refine_focal && mode != FocalMode::kFixed;
+    const double prior_sigma_ratio =
+        mode == FocalMode::kMeasured ? options.measured_focal_prior_sigma_ratio : options.focal_prior_sigma_ratio;
     std::vector<int> constant;
     for (int i : CameraModelPrincipalPointIndices(model)) constant.push_back(i);
     if (!focal_free)
@@ -168,8 +172,8 @@ SolveResult Solve(State& s, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m
     }
     if (focal_free && prior != focal_prior_px.end()) {
       for (int i : focal_idx) {
-        problem.AddResidualBlock(
-            FocalPriorError::Create(i, prior->second, options.focal_prior_sigma_ratio * prior->second), nullptr, k);
+        problem.AddResidualBlock(FocalPriorError::Create(i, prior->second, prior_sigma_ratio * prior->second), nullptr,
+                                 k);
       }
     }
   }
@@ -300,6 +304,93 @@ void ScaleFocal(State& s, size_t cam, double ratio) {
   }
 }
 
+// The views' power to separate focal length from depth: depth relief per image (RMS depth spread over
+// the median depth, median over images) and the spread of the optical axes (the largest angle between
+// an axis and their mean).
+struct ViewGeometry {
+  double depth_relief_ratio = 0;
+  double view_axis_spread_deg = 0;
+  bool resolves_focal = false;
+};
+
+ViewGeometry MeasureViewGeometry(const State& state, const BundleAdjustOptions& options) {
+  ViewGeometry g;
+  std::vector<std::vector<double>> depths(state.image_ids.size());
+  for (const Observation& o : state.observations) {
+    const auto& r = state.rotations[o.image];
+    const Eigen::Quaterniond q(r[3], r[0], r[1], r[2]);
+    const Eigen::Vector3d c(state.centers[o.image][0], state.centers[o.image][1], state.centers[o.image][2]);
+    const Eigen::Vector3d p(state.points[o.point][0], state.points[o.point][1], state.points[o.point][2]);
+    depths[o.image].push_back((q * (p - c)).z());
+  }
+  std::vector<double> relief;
+  for (auto& d : depths) {
+    if (d.size() < 10) continue;
+    double mean = 0;
+    for (double v : d) mean += v;
+    mean /= static_cast<double>(d.size());
+    double var = 0;
+    for (double v : d) var += (v - mean) * (v - mean);
+    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+    relief.push_back(std::sqrt(var / static_cast<double>(d.size())) / std::max(d[d.size() / 2], 1e-9));
+  }
+  if (!relief.empty()) {
+    std::nth_element(relief.begin(), relief.begin() + relief.size() / 2, relief.end());
+    g.depth_relief_ratio = relief[relief.size() / 2];
+  }
+  Eigen::Vector3d mean_axis = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> axes;
+  for (const auto& r : state.rotations) {
+    axes.push_back(Eigen::Quaterniond(r[3], r[0], r[1], r[2]).conjugate() * Eigen::Vector3d::UnitZ());
+    mean_axis += axes.back();
+  }
+  if (mean_axis.norm() > 0) mean_axis.normalize();
+  for (const auto& a : axes) {
+    g.view_axis_spread_deg =
+        std::max(g.view_axis_spread_deg, std::acos(std::clamp(a.dot(mean_axis), -1.0, 1.0)) * 180 / M_PI);
+  }
+  g.resolves_focal = g.depth_relief_ratio >= options.min_depth_relief_ratio ||
+                     g.view_axis_spread_deg >= options.min_view_axis_spread_deg;
+  return g;
+}
+
+// The images' own constraint on the focal length about a solved state: the focal length moved by
+// ±profile_step (points moved along the valley), held, re-solved; the cost's parabola gives the standard
+// deviation and the minimum. Empty when the profile is off or the parabola opens downward.
+struct FocalProfile {
+  std::optional<double> sigma_ratio, preferred_ratio;
+};
+
+template <typename Log>
+FocalProfile ProfileFocal(const State& state, const SolveResult& at,
+                          const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
+                          const std::map<uint32_t, double>& focal_prior_px, const BundleAdjustOptions& options,
+                          const Log& log) {
+  FocalProfile profile;
+  if (!options.profile_focal || !options.refine_focal) return profile;
+  const double step = options.profile_step_ratio;
+  double cost[2];
+  for (int side = 0; side < 2; ++side) {
+    State moved = state;
+    for (size_t cam = 0; cam < moved.camera_ids.size(); ++cam) ScaleFocal(moved, cam, side == 0 ? 1 - step : 1 + step);
+    const SolveResult r =
+        Solve(moved, gps_enu_m, focal_prior_px, options, FocalMode::kFixed, options.profile_iterations);
+    cost[side] = r.reprojection_cost;
+    log(side == 0 ? "profile -" : "profile +", r);
+  }
+  // cost(x) ~ a x^2 + b x + c0 for a relative focal change x; cost = 1/2 sum r^2 (px^2), so the
+  // information about x is 2a / sigma_px^2.
+  const double c0 = at.reprojection_cost;
+  const double a = (cost[0] + cost[1] - 2 * c0) / (2 * step * step);
+  const double b = (cost[1] - cost[0]) / (2 * step);
+  const double sigma_px = std::max(RmsReprojection(state) / std::sqrt(2.0), 1e-3);
+  if (a > 0) {
+    profile.sigma_ratio = sigma_px / std::sqrt(2 * a);
+    profile.preferred_ratio = 1 - b / (2 * a);
+  }
+  return profile;
+}
+
 }  // namespace
 
 double RmsReprojectionErrorPx(const ColmapModel& model) { return RmsReprojection(StateFromModel(model)); }
@@ -331,100 +422,65 @@ BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32
   std::vector<double> focal_before;
   for (size_t cam = 0; cam < state.camera_ids.size(); ++cam) focal_before.push_back(MeanFocal(state, cam));
 
-  // 1. Start at the prior focal length, depths rescaled along the focal/depth valley, then solve with the
-  //    focal length held there.
+  // 0. The geometry, as COLMAP left it: can these views separate focal length from depth at all?
+  const ViewGeometry geometry = MeasureViewGeometry(state, options);
+  report.depth_relief_ratio = geometry.depth_relief_ratio;
+  report.view_axis_spread_deg = geometry.view_axis_spread_deg;
+  report.geometry_resolves_focal = geometry.resolves_focal;
   const bool all_priors = !focal_prior_px.empty() && [&] {
     for (uint32_t id : state.camera_ids)
       if (!focal_prior_px.contains(id)) return false;
     return true;
   }();
-  if (all_priors && options.refine_focal) {
-    State moved = state;
-    for (size_t cam = 0; cam < moved.camera_ids.size(); ++cam) {
-      ScaleFocal(moved, cam, focal_prior_px.at(moved.camera_ids[cam]) / MeanFocal(moved, cam));
-    }
-    state = std::move(moved);
-  }
-  const FocalMode first_mode = all_priors ? FocalMode::kFixed : FocalMode::kPrior;
-  SolveResult main = Solve(state, gps_enu_m, focal_prior_px, options, first_mode, options.max_iterations);
-  log(all_priors ? "focal held at the prior" : "focal free", main);
 
-  // 2. Profile the images' own constraint on the focal length (all cameras scaled together).
-  std::optional<double> sigma_ratio, preferred_ratio;
-  if (options.profile_focal && options.refine_focal) {
-    const double step = options.profile_step_ratio;
-    double cost[2];
-    for (int side = 0; side < 2; ++side) {
-      State moved = state;
-      for (size_t cam = 0; cam < moved.camera_ids.size(); ++cam)
-        ScaleFocal(moved, cam, side == 0 ? 1 - step : 1 + step);
-      const SolveResult r =
-          Solve(moved, gps_enu_m, focal_prior_px, options, FocalMode::kFixed, options.profile_iterations);
-      cost[side] = r.reprojection_cost;
-      log(side == 0 ? "profile -" : "profile +", r);
-    }
-    // cost(x) ~ a x^2 + b x + c0 for a relative focal change x; cost = 1/2 sum r^2 (px^2), so the
-    // information about x is 2a / sigma_px^2.
-    const double c0 = main.reprojection_cost;
-    const double a = (cost[0] + cost[1] - 2 * c0) / (2 * step * step);
-    const double b = (cost[1] - cost[0]) / (2 * step);
-    const double sigma_px = std::max(RmsReprojection(state) / std::sqrt(2.0), 1e-3);
-    if (a > 0) {
-      sigma_ratio = sigma_px / std::sqrt(2 * a);
-      preferred_ratio = 1 - b / (2 * a);
+  // 1. Where the geometry resolves it, the focal length the photos measure: solved free from COLMAP's, the
+  //    prior (EXIF 35 mm equivalents are rounded) a weak pull. Kept when the profile confirms that the
+  //    images determine it.
+  SolveResult main;
+  FocalProfile profile;
+  bool measured = false;
+  if (all_priors && options.refine_focal && options.keep_measured_focal && geometry.resolves_focal) {
+    State trial = state;
+    const SolveResult r =
+        Solve(trial, gps_enu_m, focal_prior_px, options, FocalMode::kMeasured, options.max_iterations);
+    log("focal measured by the images", r);
+    const FocalProfile p = ProfileFocal(trial, r, gps_enu_m, focal_prior_px, options, log);
+    if (p.sigma_ratio && *p.sigma_ratio <= options.resolvable_sigma_ratio) {
+      state = std::move(trial);
+      main = r;
+      profile = p;
+      measured = true;
     }
   }
 
-  // Geometry: depth relief per image and spread of the optical axes.
-  {
-    std::vector<std::vector<double>> depths(state.image_ids.size());
-    for (const Observation& o : state.observations) {
-      const auto& r = state.rotations[o.image];
-      const Eigen::Quaterniond q(r[3], r[0], r[1], r[2]);
-      const Eigen::Vector3d c(state.centers[o.image][0], state.centers[o.image][1], state.centers[o.image][2]);
-      const Eigen::Vector3d p(state.points[o.point][0], state.points[o.point][1], state.points[o.point][2]);
-      depths[o.image].push_back((q * (p - c)).z());
+  if (!measured) {
+    // 2. Otherwise start at the prior focal length with the points moved along the focal/depth valley,
+    //    and solve with the focal length held there.
+    if (all_priors && options.refine_focal) {
+      for (size_t cam = 0; cam < state.camera_ids.size(); ++cam) {
+        ScaleFocal(state, cam, focal_prior_px.at(state.camera_ids[cam]) / MeanFocal(state, cam));
+      }
     }
-    std::vector<double> relief;
-    for (auto& d : depths) {
-      if (d.size() < 10) continue;
-      double mean = 0;
-      for (double v : d) mean += v;
-      mean /= static_cast<double>(d.size());
-      double var = 0;
-      for (double v : d) var += (v - mean) * (v - mean);
-      std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-      relief.push_back(std::sqrt(var / static_cast<double>(d.size())) / std::max(d[d.size() / 2], 1e-9));
-    }
-    if (!relief.empty()) {
-      std::nth_element(relief.begin(), relief.begin() + relief.size() / 2, relief.end());
-      report.depth_relief_ratio = relief[relief.size() / 2];
-    }
-    Eigen::Vector3d mean_axis = Eigen::Vector3d::Zero();
-    std::vector<Eigen::Vector3d> axes;
-    for (const auto& r : state.rotations) {
-      axes.push_back(Eigen::Quaterniond(r[3], r[0], r[1], r[2]).conjugate() * Eigen::Vector3d::UnitZ());
-      mean_axis += axes.back();
-    }
-    if (mean_axis.norm() > 0) mean_axis.normalize();
-    for (const auto& a : axes) {
-      report.view_axis_spread_deg =
-          std::max(report.view_axis_spread_deg, std::acos(std::clamp(a.dot(mean_axis), -1.0, 1.0)) * 180 / M_PI);
-    }
-    report.geometry_resolves_focal = report.depth_relief_ratio >= options.min_depth_relief_ratio ||
-                                     report.view_axis_spread_deg >= options.min_view_axis_spread_deg;
+    const FocalMode first_mode = all_priors ? FocalMode::kFixed : FocalMode::kPrior;
+    main = Solve(state, gps_enu_m, focal_prior_px, options, first_mode, options.max_iterations);
+    log(all_priors ? "focal held at the prior" : "focal free", main);
+    // 3. Profile the images' own constraint on the focal length (all cameras scaled together).
+    profile = ProfileFocal(state, main, gps_enu_m, focal_prior_px, options, log);
   }
 
-  // 3. Free the focal length (with its prior) only when the images resolve it and agree with the prior.
-  bool resolve = report.geometry_resolves_focal && sigma_ratio && *sigma_ratio <= options.resolvable_sigma_ratio;
+  // 4. Free the focal length (with its prior) only when the images resolve it and agree with the prior.
+  bool resolve = measured || (geometry.resolves_focal && profile.sigma_ratio &&
+                              *profile.sigma_ratio <= options.resolvable_sigma_ratio);
   bool conflict = false;
-  if (all_priors && preferred_ratio) {
-    conflict = std::abs(*preferred_ratio - 1) > options.max_focal_disagreement_ratio;
+  if (all_priors && profile.preferred_ratio && !measured) {
+    conflict = std::abs(*profile.preferred_ratio - 1) > options.max_focal_disagreement_ratio;
   }
-  if (all_priors && resolve && !conflict && options.free_focal_when_resolved) {
+  if (!measured && all_priors && resolve && !conflict && options.free_focal_when_resolved) {
     main = Solve(state, gps_enu_m, focal_prior_px, options, FocalMode::kPrior, options.max_iterations);
     log("focal free with its prior", main);
   }
+  const std::optional<double>& sigma_ratio = profile.sigma_ratio;
+  const std::optional<double>& preferred_ratio = profile.preferred_ratio;
   report.iterations = main.iterations;
   report.converged = main.converged;
   report.rms_reprojection_after_px = RmsReprojection(state);
@@ -439,7 +495,8 @@ BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32
     if (preferred_ratio) f.images_preferred_px = f.after_px * *preferred_ratio;
     f.images_resolve_focal = resolve;
     f.images_conflict_with_prior = conflict;
-    f.held_at_prior = all_priors && !(resolve && !conflict && options.free_focal_when_resolved);
+    f.held_at_prior = all_priors && !measured && !(resolve && !conflict && options.free_focal_when_resolved);
+    f.measured_by_images = measured;
     report.focal.push_back(f);
   }
   StateToModel(state, model_enu);

@@ -17,18 +17,26 @@
 // the focal prior fixes the depth scale, which puts the ground back.
 //
 // Procedure, when every camera has a focal prior:
-//   1. Start at the prior focal length with the points moved along the focal/depth valley (each depth
+//   0. Measure the geometry as COLMAP left it: depth relief per image and the spread of the optical axes
+//      (`min_depth_relief_ratio`, `min_view_axis_spread_deg`). Below both, the views cannot separate
+//      focal length from depth (a near-planar scene under near-parallel views: the nadir survey).
+//   1. Where the geometry resolves it (a facade with relief seen from the ground, an oblique orbit), the
+//      focal length the photos measure: solve with it free from COLMAP's value and the prior as a weak
+//      pull (`measured_focal_prior_sigma_ratio`: an EXIF 35 mm equivalent is rounded by the camera, so it
+//      is a few per cent off), then profile it (step 3). Kept when the profile confirms that the images
+//      determine it (sigma below `resolvable_sigma_ratio`); otherwise steps 2-4 run from the start.
+//   2. Start at the prior focal length with the points moved along the focal/depth valley (each depth
 //      scaled by f_prior / f), and solve with the focal length held at the prior.
-//   2. Profile: move the focal length by ±profile_step (points moved along the valley again), hold it,
+//   3. Profile: move the focal length by ±profile_step (points moved along the valley again), hold it,
 //      re-solve; the reprojection cost's curvature over the three solutions gives the focal length's
 //      standard deviation from the images alone (sigma_f = sigma_px / sqrt(d²cost/df²)) and the focal
 //      they prefer (the parabola's minimum).
-//   3. Only with free_focal_when_resolved, and when the images resolve it (sigma below `resolvable_sigma_ratio`) AND
-//   agree with the prior
-//      (preferred focal within `max_focal_disagreement_ratio`) is the focal length freed (with its
-//      prior) and solved again. Otherwise it stays at the prior, and the report says why. (On Brighton
-//      Beach the images "prefer" +24 % with a formal sigma of 0.7 %: a systematic pull along the valley
-//      that the independent OpenDroneMap reference shows to be wrong.)
+//   4. Only with free_focal_when_resolved, and when the images resolve it (sigma below
+//      `resolvable_sigma_ratio`) AND agree with the prior (preferred focal within
+//      `max_focal_disagreement_ratio`) is the focal length freed (with its prior) and solved again.
+//      Otherwise it stays at the prior, and the report says why. (On Brighton Beach the images "prefer"
+//      +24 % with a formal sigma of 0.7 %: a systematic pull along the valley that the independent
+//      OpenDroneMap reference shows to be wrong; its geometry does not pass step 0.)
 // Without priors the focal length is free from the start and the profile only reports.
 //
 // Deterministic: one thread, fixed iteration order (ordered maps). CINEPATH_BA_VERBOSE=1 in the
@@ -68,7 +76,11 @@ struct BundleAdjustOptions {
   // whatever the statistics say (a near-planar scene under near-parallel views is exactly ambiguous).
   double min_depth_relief_ratio = 0.15;
   double min_view_axis_spread_deg = 20.0;
-  // Step 3 below is off by default: on Brighton Beach freeing the focal length (prior sigma 1 %) lets the
+  // Step 1: keep the focal length the photos measure where the geometry resolves it, with the prior at
+  // this relative sigma (a weak pull: EXIF 35 mm equivalents are rounded, 5 % off is common).
+  bool keep_measured_focal = true;
+  double measured_focal_prior_sigma_ratio = 0.10;
+  // Step 4 below is off by default: on Brighton Beach freeing the focal length (prior sigma 1 %) lets the
   // GPS heights pull it to +2.2 % and the ground 0.9 m lower, although the images agree with the prior.
   bool free_focal_when_resolved = false;
   bool profile_focal = true;
@@ -95,7 +107,8 @@ struct FocalReport {
   std::optional<double> images_preferred_px;
   bool images_resolve_focal = false;
   bool images_conflict_with_prior = false;
-  bool held_at_prior = false;  // the focal length was fixed at the prior
+  bool held_at_prior = false;       // the focal length was fixed at the prior
+  bool measured_by_images = false;  // step 1: the focal length the photos measure was kept
 };
 
 struct BundleAdjustReport {

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/fatal_signal.h"
 #include "core/geoid.h"
 #include "core/number_format.h"
 #include "photogrammetry/camera_models.h"
@@ -389,7 +390,12 @@ void AddFocalWarnings(const BundleAdjustReport& ba, double median_depth_m, const
                           FormatFixed(0.01 * median_depth_m, 2) + " m at the median depth of " +
                           FormatFixed(median_depth_m, 1) + " m)");
     }
-    if (f.prior_px && std::abs(f.before_px / *f.prior_px - 1) > 0.05) {
+    if (f.measured_by_images && f.prior_px && std::abs(f.after_px / *f.prior_px - 1) > 0.02) {
+      warnings->push_back(cam + "the focal length the photos measure (" + FormatFixed(f.after_px, 1) + " px; " + sigma +
+                          ") is kept; the prior (" + FormatFixed(*f.prior_px, 1) + " px, " +
+                          options.focal_prior_source + ") is " + FormatFixed(100 * (*f.prior_px / f.after_px - 1), 1) +
+                          " % off it (EXIF 35 mm equivalents are rounded)");
+    } else if (f.prior_px && std::abs(f.before_px / *f.prior_px - 1) > 0.05) {
       warnings->push_back(cam + "COLMAP's focal length (" + FormatFixed(f.before_px, 1) +
                           " px) differs from the prior (" + FormatFixed(*f.prior_px, 1) + " px) by " +
                           FormatFixed(100 * (f.before_px / *f.prior_px - 1), 1) + " %; adjusted to " +
@@ -428,6 +434,7 @@ void BundleAdjustAndRefit(ModelGeoreference& r, const FitPairs& pairs, const Mod
   std::vector<size_t> control_pair;
   const std::vector<ControlPointPrior> control = ControlPriors(r, pairs, options, &control_pair);
   std::vector<Eigen::Vector3d> control_adjusted;
+  const CurrentStep running("georeference: bundle adjustment (Ceres)");
   r.bundle_adjustment =
       BundleAdjustEnu(r.model_enu, gps, options.focal_prior_px, options.ba, control, &control_adjusted);
   AddFocalWarnings(*r.bundle_adjustment, MedianPointDepthM(r.model_enu), options, &r.warnings);
@@ -560,12 +567,14 @@ Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions
       item["after_px"] = Round(f.after_px, 3);
       item["prior_px"] = f.prior_px ? Json(Round(*f.prior_px, 3)) : Json(nullptr);
       if (f.prior_px) item["prior_source"] = options.focal_prior_source;
-      item["prior_sigma_ratio"] = options.ba.focal_prior_sigma_ratio;
+      item["prior_sigma_ratio"] =
+          f.measured_by_images ? options.ba.measured_focal_prior_sigma_ratio : options.ba.focal_prior_sigma_ratio;
       item["images_sigma_ratio"] = f.images_sigma_ratio ? Json(Round(*f.images_sigma_ratio, 5)) : Json(nullptr);
       item["images_preferred_px"] = f.images_preferred_px ? Json(Round(*f.images_preferred_px, 2)) : Json(nullptr);
       item["images_resolve_focal"] = f.images_resolve_focal;
       item["images_conflict_with_prior"] = f.images_conflict_with_prior;
       item["held_at_prior"] = f.held_at_prior;
+      item["measured_by_images"] = f.measured_by_images;
       focal.push_back(item);
     }
     b["focal_length"] = focal;

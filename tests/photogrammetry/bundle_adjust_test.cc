@@ -54,20 +54,17 @@ TEST(BundleAdjust, FocalPriorAndGpsPutTheGroundBackAfterAFocalDrift) {
   EXPECT_FALSE(r.geometry_resolves_focal);  // 3 m relief at 40 m, near-nadir
 }
 
-TEST(BundleAdjust, ObliqueViewsOfReliefAreRecognizedAsResolvingTheFocalLength) {
-  testing::SyntheticOptions o;
-  o.terrain_relief_m = 12;
-  const auto scene = testing::MakeSyntheticScene(o);
-  ColmapModel model = scene.model_enu;
-  // Tilt every other camera by 30 degrees about its x axis (oblique views), keeping its centre.
+// The synthetic survey's cameras turned about their x axes, the odd image ids by `odd_rad`, the even ones by
+// `even_rad`, their centres kept, the observations re-projected: oblique views.
+ColmapModel Tilted(const testing::SyntheticOptions& o, const ColmapModel& truth, double odd_rad, double even_rad) {
+  ColmapModel model = truth;
   for (auto& [id, im] : model.images) {
-    if (id % 2) continue;
     const Eigen::Vector3d c = im.ProjectionCenter();
+    const double angle = id % 2 ? odd_rad : even_rad;
     im.cam_from_world_rotation =
-        Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX())) * im.cam_from_world_rotation;
+        Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX())) * im.cam_from_world_rotation;
     im.cam_from_world_translation = -(im.cam_from_world_rotation * c);
   }
-  // Observations must match the new poses: re-project each track element.
   for (auto& [pid, p] : model.points3d) {
     for (const auto& e : p.track) {
       auto& im = model.images.at(e.image_id);
@@ -77,6 +74,14 @@ TEST(BundleAdjust, ObliqueViewsOfReliefAreRecognizedAsResolvingTheFocalLength) {
       im.points2d_px[e.point2d_idx] = {x, y};
     }
   }
+  return model;
+}
+
+TEST(BundleAdjust, ObliqueViewsOfReliefAreRecognizedAsResolvingTheFocalLength) {
+  testing::SyntheticOptions o;
+  o.terrain_relief_m = 12;
+  const auto scene = testing::MakeSyntheticScene(o);
+  ColmapModel model = Tilted(o, scene.model_enu, 0.0, 0.5);  // every other camera 30 degrees oblique
   std::map<uint32_t, Eigen::Vector3d> gps;
   for (const auto& [id, im] : model.images) gps[id] = im.ProjectionCenter();
   BundleAdjustOptions options;
@@ -85,6 +90,44 @@ TEST(BundleAdjust, ObliqueViewsOfReliefAreRecognizedAsResolvingTheFocalLength) {
   EXPECT_GT(r.view_axis_spread_deg, 14.0);
   EXPECT_NEAR(r.focal[0].after_px, 900, 9);
   ASSERT_TRUE(r.focal[0].images_sigma_ratio);
+}
+
+// Both sides of the focal-length rule, with an EXIF prior 6 % below the true 900 px (a 35 mm equivalent
+// rounded by the camera). Oblique views of relief measure the focal length: it is kept, the prior only a
+// weak pull. The flat nadir survey cannot: the focal length is held at the prior (the ambiguity of a
+// flat scene seen from above).
+TEST(BundleAdjust, TheFocalLengthThePhotosMeasureIsKeptWhereTheGeometryResolvesIt) {
+  testing::SyntheticOptions o;
+  o.terrain_relief_m = 12;
+  const auto scene = testing::MakeSyntheticScene(o);
+  std::map<uint32_t, Eigen::Vector3d> gps;
+  for (const auto& [id, im] : scene.model_enu.images) gps[id] = im.ProjectionCenter();
+  const std::map<uint32_t, double> rounded_exif = {{1, 0.94 * 900}};
+
+  ColmapModel oblique = Tilted(o, scene.model_enu, 0.6, -0.6);
+  const BundleAdjustReport measured = BundleAdjustEnu(oblique, gps, rounded_exif, BundleAdjustOptions());
+  EXPECT_TRUE(measured.geometry_resolves_focal);
+  EXPECT_GT(measured.view_axis_spread_deg, 20.0);
+  EXPECT_TRUE(measured.focal[0].measured_by_images);
+  EXPECT_FALSE(measured.focal[0].held_at_prior);
+  EXPECT_NEAR(measured.focal[0].after_px, 900, 4.5);  // within 0.5 % of the truth, 6 % from the prior
+  EXPECT_LT(measured.rms_reprojection_after_px, 0.5);
+
+  testing::SyntheticOptions flat;
+  const auto nadir_scene = testing::MakeSyntheticScene(flat);
+  ColmapModel nadir = nadir_scene.model_enu;
+  const BundleAdjustReport held = BundleAdjustEnu(nadir, gps, rounded_exif, BundleAdjustOptions());
+  EXPECT_FALSE(held.geometry_resolves_focal);
+  EXPECT_FALSE(held.focal[0].measured_by_images);
+  EXPECT_TRUE(held.focal[0].held_at_prior);
+  EXPECT_DOUBLE_EQ(held.focal[0].after_px, 0.94 * 900);
+
+  // Without the rule (the behaviour before it) the oblique views were held at the rounded prior too.
+  BundleAdjustOptions old_rule;
+  old_rule.keep_measured_focal = false;
+  ColmapModel oblique_held = Tilted(o, scene.model_enu, 0.6, -0.6);
+  const BundleAdjustReport forced = BundleAdjustEnu(oblique_held, gps, rounded_exif, old_rule);
+  EXPECT_DOUBLE_EQ(forced.focal[0].after_px, 0.94 * 900);
 }
 
 TEST(BundleAdjust, ControlPointsAloneHoldTheSceneWhereTheSurveySaysIt) {
