@@ -81,7 +81,12 @@ TexturedMesh TextureMesh(const TriangleMesh& mesh, const std::vector<TextureView
   scene_mesh.positions_enu_m = mesh.vertices_m;
   scene_mesh.faces = mesh.faces;
   const scene::RayCaster caster(scene_mesh);
-  const ViewSelection selection = SelectViews(mesh, views, caster, options.selection);
+  const FaceColorFn face_color = [&](uint32_t f, int v, Eigen::Vector3f* rgb) {
+    bool ok = false;
+    *rgb = FaceColor(mesh, f, views[size_t(v)], photos[size_t(v)], &ok);
+    return ok;
+  };
+  const ViewSelection selection = SelectViews(mesh, views, caster, options.selection, &face_color);
   times["view_selection_s"] = RoundToDecimals(timer.Seconds(), 3);
 
   // 2. Exposure gains from the faces two or more photos see.
@@ -177,7 +182,10 @@ TexturedMesh TextureMesh(const TriangleMesh& mesh, const std::vector<TextureView
                          {"seam_penalty", options.selection.seam_penalty},
                          {"iterations", selection.iterations_run},
                          {"seam_edges_best_view", selection.seam_edges_before},
-                         {"seam_edges", selection.seam_edges_after}};
+                         {"seam_edges", selection.seam_edges_after},
+                         {"photo_consistency", options.selection.consistency.enabled},
+                         {"views_inconsistent", selection.views_inconsistent},
+                         {"faces_with_inconsistent_views", selection.faces_with_inconsistent_views}};
   report["exposure"] = {{"leveled", options.level_exposure},
                         {"pairs_used", gains.pairs_used},
                         {"pairs_rejected", gains.pairs_rejected},

@@ -88,8 +88,52 @@ std::vector<std::pair<uint32_t, uint32_t>> FaceEdgeNeighbours(const TriangleMesh
   return pairs;
 }
 
+int RemoveInconsistentViews(uint32_t face, std::vector<FaceView>* candidates, const FaceColorFn& face_color,
+                            const PhotoConsistencyOptions& options) {
+  if (!options.enabled || static_cast<int>(candidates->size()) < std::max(options.min_views, 3)) return 0;
+  std::vector<Eigen::Vector3f> color(candidates->size());
+  std::vector<bool> sampled(candidates->size());
+  std::array<std::vector<float>, 3> channel;
+  for (size_t i = 0; i < candidates->size(); ++i) {
+    Eigen::Vector3f linear;
+    sampled[i] = face_color(face, (*candidates)[i].view, &linear);
+    if (!sampled[i]) continue;
+    color[i] = linear.cwiseMax(0.0f).cwiseSqrt();
+    for (int c = 0; c < 3; ++c) channel[size_t(c)].push_back(color[i][c]);
+  }
+  const size_t n = channel[0].size();
+  if (static_cast<int>(n) < std::max(options.min_views, 3)) return 0;
+  auto median = [](std::vector<float> v) {
+    const size_t mid = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + mid, v.end());
+    const float upper = v[mid];
+    if (v.size() % 2) return upper;
+    return 0.5f * (upper + *std::max_element(v.begin(), v.begin() + mid));
+  };
+  const Eigen::Vector3f consensus(median(channel[0]), median(channel[1]), median(channel[2]));
+  std::vector<float> distance;
+  for (size_t i = 0; i < candidates->size(); ++i) {
+    if (sampled[i]) distance.push_back((color[i] - consensus).norm());
+  }
+  const double spread = 1.4826 * median(distance);
+  const double limit = std::max(options.min_deviation, options.spread_factor * spread);
+  int dropped = 0;
+  std::vector<FaceView> kept;
+  for (size_t i = 0; i < candidates->size(); ++i) {
+    // A photo that cannot be sampled (its corner samples leave the image) keeps its place.
+    if (sampled[i] && (color[i] - consensus).norm() > limit) {
+      ++dropped;
+    } else {
+      kept.push_back((*candidates)[i]);
+    }
+  }
+  *candidates = std::move(kept);
+  return dropped;
+}
+
 ViewSelection SelectViews(const TriangleMesh& mesh, const std::vector<TextureView>& views,
-                          const scene::RayCaster& caster, const ViewSelectionOptions& options) {
+                          const scene::RayCaster& caster, const ViewSelectionOptions& options,
+                          const FaceColorFn* face_color) {
   const size_t n = mesh.num_faces();
   ViewSelection out;
   out.candidates.resize(n);
@@ -102,6 +146,18 @@ ViewSelection SelectViews(const TriangleMesh& mesh, const std::vector<TextureVie
       }
     }
   });
+  if (face_color != nullptr && options.consistency.enabled) {
+    std::vector<int> dropped(n, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t f = range.begin(); f < range.end(); ++f) {
+        dropped[f] = RemoveInconsistentViews(uint32_t(f), &out.candidates[f], *face_color, options.consistency);
+      }
+    });
+    for (int d : dropped) {
+      out.views_inconsistent += d;
+      out.faces_with_inconsistent_views += d > 0;
+    }
+  }
 
   std::vector<float> best(n, 0);
   for (size_t f = 0; f < n; ++f) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "photogrammetry/photo_image.h"
 #include "scene/ray_caster.h"
 #include "texture_test_scenes.h"
 
@@ -90,6 +91,67 @@ TEST(TextureViewSelection, SmoothingRemovesIsolatedSwitchesAndCountsSeams) {
   EXPECT_GT(s.seam_edges_before, 0);
   EXPECT_LT(s.seam_edges_after, s.seam_edges_before / 2);
   EXPECT_GE(s.iterations_run, 1);
+}
+
+// Four photos of a wall-like ground; the closest (the best by quality) has a "tree" in front of the middle
+// 4 x 4 m that the mesh does not hold. Occlusion by the mesh cannot see it; the photo-consistency check
+// does: no face under the tree is textured from that photo, and every face outside it still may be.
+TEST(TextureViewSelection, APhotoThatDisagreesWithTheOthersDoesNotTextureTheFace) {
+  const TriangleMesh mesh = GroundGrid(8, 1.0);
+  const scene::RayCaster caster(AsScene(mesh));
+  const std::vector<ColmapImage> images = {NadirImage({4, 4, 10}, "tree"), NadirImage({2, 3, 16}, "a"),
+                                           NadirImage({6, 5, 16}, "b"), NadirImage({4, 2, 18}, "c")};
+  const auto in_tree = [](const Eigen::Vector3d& p) { return p.x() > 2 && p.x() < 6 && p.y() > 2 && p.y() < 6; };
+  std::vector<TextureView> views;
+  std::vector<RgbImage> photos;
+  for (size_t i = 0; i < images.size(); ++i) {
+    views.emplace_back(images[i], kCamera);
+    photos.push_back(testing::RenderPlanePhoto(images[i], kCamera, 0.0, [&](const Eigen::Vector3d& p) {
+      if (i == 0 && in_tree(p)) return Eigen::Vector3f(40, 110, 30);  // foliage
+      return testing::Checker(p);
+    }));
+  }
+  const FaceColorFn face_color = [&](uint32_t f, int v, Eigen::Vector3f* rgb) {
+    const auto& t = mesh.faces[f];
+    const Eigen::Vector3d c = (mesh.vertices_m[t[0]] + mesh.vertices_m[t[1]] + mesh.vertices_m[t[2]]) / 3;
+    Eigen::Vector2d px;
+    if (!views[size_t(v)].Project(c, &px)) return false;
+    *rgb = SampleLinear(photos[size_t(v)], px.x(), px.y());
+    return true;
+  };
+  ViewSelectionOptions options;
+  options.smoothing_iterations = 0;
+  const ViewSelection without = SelectViews(mesh, views, caster, options);
+  const ViewSelection with = SelectViews(mesh, views, caster, options, &face_color);
+  int under_tree = 0;
+  for (size_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto& t = mesh.faces[f];
+    const Eigen::Vector3d c = (mesh.vertices_m[t[0]] + mesh.vertices_m[t[1]] + mesh.vertices_m[t[2]]) / 3;
+    ASSERT_EQ(without.candidates[f].size(), 4u) << f;
+    EXPECT_EQ(without.label[f], 0) << f;  // the closest photo wins everywhere on quality alone
+    if (in_tree(c)) {
+      ++under_tree;
+      EXPECT_NE(with.label[f], 0) << f;
+      EXPECT_EQ(with.candidates[f].size(), 3u) << f;
+    } else {
+      EXPECT_EQ(with.candidates[f].size(), 4u) << f;
+      EXPECT_EQ(with.label[f], 0) << f;
+    }
+  }
+  EXPECT_EQ(under_tree, 32);
+  EXPECT_EQ(with.views_inconsistent, 32);
+  EXPECT_EQ(with.faces_with_inconsistent_views, 32);
+}
+
+// With two photos there is no majority: nothing is dropped, whatever they show.
+TEST(TextureViewSelection, TwoDisagreeingPhotosAreBothKept) {
+  std::vector<FaceView> candidates = {{0, 1.0f}, {1, 1.0f}};
+  const FaceColorFn face_color = [](uint32_t, int v, Eigen::Vector3f* rgb) {
+    *rgb = v == 0 ? Eigen::Vector3f(0.9f, 0.9f, 0.9f) : Eigen::Vector3f(0.0f, 0.3f, 0.0f);
+    return true;
+  };
+  EXPECT_EQ(RemoveInconsistentViews(0, &candidates, face_color, PhotoConsistencyOptions{}), 0);
+  EXPECT_EQ(candidates.size(), 2u);
 }
 
 }  // namespace
