@@ -1,6 +1,7 @@
 #include "preview/preview_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <OpenImageIO/filesystem.h>
@@ -20,25 +21,46 @@ const Eigen::Vector3f kDefaultSurface(0.5f, 0.5f, 0.5f);  // a mesh without colo
 
 float SrgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
+// Linear light of each 8-bit sRGB value, as OpenImageIO's 8-bit to float conversion gives it (v times
+// 1/255 in float; measured: all 256 values equal) and then converted: the same texels as decoding to
+// floats first.
+const std::array<float, 256>& LinearFromSrgb8() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int v = 0; v < 256; ++v) t[size_t(v)] = SrgbToLinear(float(v) * (1.0f / 255.0f));
+    return t;
+  }();
+  return table;
+}
+
 Texture DecodeTexture(const scene::SceneImage& image, size_t index) {
   const std::string name = "texture" + std::to_string(index) + (image.mime_type == "image/jpeg" ? ".jpg" : ".png");
   OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(image.encoded.data()), image.encoded.size());
   auto input = OIIO::ImageInput::open(name, nullptr, &reader);
   if (!input) throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();
-  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-    throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + input->geterror());
-  }
   Texture texture;
   texture.width = spec.width;
   texture.height = spec.height;
-  texture.texels.resize(size_t(spec.width) * spec.height);
-  for (size_t i = 0; i < texture.texels.size(); ++i) {
-    const float* p = &pixels[i * spec.nchannels];
-    const float g = spec.nchannels >= 3 ? p[1] : p[0];
-    const float b = spec.nchannels >= 3 ? p[2] : p[0];
-    texture.texels[i] = Eigen::Vector3f(SrgbToLinear(p[0]), SrgbToLinear(g), SrgbToLinear(b));
+  const size_t count = size_t(spec.width) * spec.height;
+  if (spec.nchannels == 3) {
+    texture.srgb.resize(count * 3);
+    if (!input->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, texture.srgb.data())) {
+      throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + input->geterror());
+    }
+    return texture;
+  }
+  // Grey (1 channel) or with alpha: read as is, keep the colour.
+  std::vector<uint8_t> pixels(count * size_t(spec.nchannels));
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data())) {
+    throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + input->geterror());
+  }
+  texture.srgb.resize(count * 3);
+  for (size_t i = 0; i < count; ++i) {
+    const uint8_t* p = &pixels[i * size_t(spec.nchannels)];
+    texture.srgb[3 * i] = p[0];
+    texture.srgb[3 * i + 1] = spec.nchannels >= 3 ? p[1] : p[0];
+    texture.srgb[3 * i + 2] = spec.nchannels >= 3 ? p[2] : p[0];
   }
   return texture;
 }
@@ -46,14 +68,16 @@ Texture DecodeTexture(const scene::SceneImage& image, size_t index) {
 }  // namespace
 
 Eigen::Vector3f Texture::Sample(const Eigen::Vector2f& uv) const {
-  if (texels.empty()) return Eigen::Vector3f::Ones();
+  if (srgb.empty()) return Eigen::Vector3f::Ones();
   const float x = uv.x() * width - 0.5f, y = uv.y() * height - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
   const float wx = x - fx, wy = y - fy;
+  const std::array<float, 256>& linear = LinearFromSrgb8();
   auto at = [&](long i, long j) {
     i = ((i % width) + width) % width;
     j = ((j % height) + height) % height;
-    return texels[size_t(j) * width + size_t(i)];
+    const uint8_t* p = &srgb[(size_t(j) * width + size_t(i)) * 3];
+    return Eigen::Vector3f(linear[p[0]], linear[p[1]], linear[p[2]]);
   };
   const long i = long(fx), j = long(fy);
   return (1 - wy) * ((1 - wx) * at(i, j) + wx * at(i + 1, j)) + wy * ((1 - wx) * at(i, j + 1) + wx * at(i + 1, j + 1));

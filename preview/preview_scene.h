@@ -9,6 +9,7 @@
 //         surface under a 45 deg sun shows about its flat colour.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -22,12 +23,16 @@
 
 namespace cinepath::preview {
 
-// A decoded base-colour texture, linear RGB, rows from the top (glTF uv: u right, v down).
+// A decoded base-colour texture, rows from the top (glTF uv: u right, v down). The texels stay 8-bit sRGB,
+// as the image holds them (3 bytes a texel: 50 MB for a 4096² atlas, where linear floats took 201 MB and
+// a quarter of a second of pow() at load); each lookup turns its four texels into linear light through a
+// 256-entry table, then interpolates, as renderers do with sRGB textures. The same linear values as
+// decoding to floats first, so the same frames.
 struct Texture {
   int width = 0;
   int height = 0;
-  std::vector<Eigen::Vector3f> texels;
-  Eigen::Vector3f Sample(const Eigen::Vector2f& uv) const;  // bilinear, wrapping (glTF REPEAT)
+  std::vector<uint8_t> srgb;                                // width x height x RGB
+  Eigen::Vector3f Sample(const Eigen::Vector2f& uv) const;  // bilinear in linear light, wrapping (glTF REPEAT)
 };
 
 struct TraceHit {
