@@ -49,6 +49,9 @@ class RenderCommand : public Command {
     app.add_option("--exposure", exposure_, "fixed (default) | physical (t * ISO / N^2, 1 at 1/50 s ISO 100 f/4)")
         ->check(CLI::IsMember({"fixed", "physical"}));
     app.add_option("--iso", options_.iso, "ISO for --exposure physical")->check(PositiveFinite());
+    app.add_option("--backdrop", backdrop_,
+                   "ground (default: the ground continues past the mesh's edge as a hazed plane) | none")
+        ->check(CLI::IsMember({"ground", "none"}));
     app.add_option("--aov", aov_, "Extra EXR images per frame: depth (m), blur (blur-circle px), or depth,blur");
     app.add_flag("--overlay", options_.overlay, "Burn in the frame's time, shot and lens, and a rule-of-thirds guide");
     app.add_option("--contact-sheet", contact_sheet_, "Also write a labelled grid of the rendered frames (PNG/JPEG)");
@@ -75,6 +78,7 @@ class RenderCommand : public Command {
       options_.sun_time_unix_s = ParseUtcTime(sun_time_, "--sun-time");
       options_.shading = Shading::kSun;
     }
+    options_.backdrop = ParseBackdrop(backdrop_);
     options_.exposure = exposure_ == "physical" ? Exposure::kPhysical : Exposure::kFixed;
     if (!aov_.empty()) ParseAovs(aov_, &options_);
     if (!contact_sheet_.empty()) options_.contact_sheet = contact_sheet_;
@@ -100,7 +104,8 @@ class RenderCommand : public Command {
 
  private:
   std::string plan_path_, scene_path_, output_dir_;
-  std::string frames_, shard_, quality_ = "standard", format_ = "png", shading_ = "flat", sun_, exposure_ = "fixed";
+  std::string frames_, shard_, quality_ = "standard", format_ = "png", shading_ = "flat", backdrop_ = "ground", sun_,
+                               exposure_ = "fixed";
   std::string aov_, contact_sheet_, video_, sun_time_;
   CLI::Option* shading_option_ = nullptr;
   bool shading_given_ = false;

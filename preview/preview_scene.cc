@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <numeric>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -83,12 +85,99 @@ Eigen::Vector3f Texture::Sample(const Eigen::Vector2f& uv) const {
   return (1 - wy) * ((1 - wx) * at(i, j) + wx * at(i + 1, j)) + wy * ((1 - wx) * at(i, j + 1) + wx * at(i + 1, j + 1));
 }
 
-PreviewScene::PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun)
+PreviewScene::PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun,
+                           Backdrop backdrop)
     : mesh_(std::move(mesh)), subjects_(plan), shading_(shading) {
   caster_ = std::make_unique<scene::RayCaster>(mesh_);
   for (size_t i = 0; i < mesh_.images.size(); ++i) textures_.push_back(DecodeTexture(mesh_.images[i], i));
   const double az = sun.azimuth_deg * kDegToRad, el = sun.elevation_deg * kDegToRad;
   sun_direction_enu_ = Eigen::Vector3d(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el));
+  if (backdrop == Backdrop::kGround) ground_ = BorderGround();
+}
+
+// The plane and colour of the ground past the edge: the median height of the border's vertices (edges
+// of one face), and the mean colour of the faces that hold a border edge, at their centroids. A closed
+// mesh has no border: its lowest vertex and its mean face colour stand in.
+GroundBackdrop PreviewScene::BorderGround() const {
+  std::vector<std::array<uint32_t, 3>> edges;  // (smaller vertex, larger vertex, face)
+  edges.reserve(3 * mesh_.faces.size());
+  for (uint32_t f = 0; f < mesh_.faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = mesh_.faces[f][size_t(k)], b = mesh_.faces[f][size_t((k + 1) % 3)];
+      edges.push_back({std::min(a, b), std::max(a, b), f});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<double> heights;
+  std::vector<uint32_t> border_faces;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
+    if (j - i == 1) {
+      heights.push_back(mesh_.positions_enu_m[edges[i][0]].z());
+      heights.push_back(mesh_.positions_enu_m[edges[i][1]].z());
+      border_faces.push_back(edges[i][2]);
+    }
+    i = j;
+  }
+  GroundBackdrop ground;
+  if (heights.empty()) {
+    ground.height_m = std::numeric_limits<double>::infinity();
+    for (const auto& p : mesh_.positions_enu_m) ground.height_m = std::min(ground.height_m, p.z());
+    border_faces.resize(mesh_.faces.size());
+    std::iota(border_faces.begin(), border_faces.end(), 0u);
+  } else {
+    std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+    ground.height_m = heights[heights.size() / 2];
+  }
+  std::sort(border_faces.begin(), border_faces.end());
+  border_faces.erase(std::unique(border_faces.begin(), border_faces.end()), border_faces.end());
+  std::vector<Eigen::Vector2d> centroid(border_faces.size());
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (size_t i = 0; i < border_faces.size(); ++i) {
+    const auto& f = mesh_.faces[border_faces[i]];
+    centroid[i] =
+        ((mesh_.positions_enu_m[f[0]] + mesh_.positions_enu_m[f[1]] + mesh_.positions_enu_m[f[2]]) / 3.0).head<2>();
+    centre += centroid[i];
+  }
+  if (!border_faces.empty()) centre /= double(border_faces.size());
+  ground.centre_m = centre;
+  const int n = GroundBackdrop::kSectors;
+  std::vector<Eigen::Vector3d> sum(size_t(n), Eigen::Vector3d::Zero());
+  std::vector<int> count(size_t(n), 0);
+  for (size_t i = 0; i < border_faces.size(); ++i) {
+    scene::RayHit at_centroid;
+    at_centroid.face = border_faces[i];
+    at_centroid.u = at_centroid.v = 1.0 / 3.0;
+    const Eigen::Vector2d d = centroid[i] - centre;
+    const int sector = int(std::floor((std::atan2(d.y(), d.x()) + M_PI) / (2 * M_PI) * n)) % n;
+    sum[size_t(sector)] += SurfaceColor(at_centroid).cast<double>();
+    ++count[size_t(sector)];
+  }
+  // Empty sectors take the distance-weighted mean of the nearest filled one on each side.
+  for (int k = 0; k < n; ++k) {
+    if (count[size_t(k)] > 0) {
+      ground.sector_color[size_t(k)] = (sum[size_t(k)] / count[size_t(k)]).cast<float>();
+      continue;
+    }
+    int lo = 1, hi = 1;
+    while (lo < n && count[size_t((k - lo + n) % n)] == 0) ++lo;
+    while (hi < n && count[size_t((k + hi) % n)] == 0) ++hi;
+    if (lo >= n) break;  // no border face at all: the default grey stays
+    const Eigen::Vector3d a = sum[size_t((k - lo + n) % n)] / count[size_t((k - lo + n) % n)];
+    const Eigen::Vector3d b = sum[size_t((k + hi) % n)] / count[size_t((k + hi) % n)];
+    ground.sector_color[size_t(k)] = ((hi * a + lo * b) / double(lo + hi)).cast<float>();
+  }
+  return ground;
+}
+
+Eigen::Vector3f GroundBackdrop::ColorAt(const Eigen::Vector3d& position) const {
+  const Eigen::Vector2d d = position.head<2>() - centre_m;
+  const double s = (std::atan2(d.y(), d.x()) + M_PI) / (2 * M_PI) * kSectors - 0.5;  // between sector centres
+  const double k0 = std::floor(s);
+  const float w = float(s - k0);
+  const int a = (int(k0) % kSectors + kSectors) % kSectors, b = (a + 1) % kSectors;
+  return (1 - w) * sector_color[size_t(a)] + w * sector_color[size_t(b)];
 }
 
 PreviewScene::~PreviewScene() = default;
@@ -139,9 +228,23 @@ Eigen::Vector3f PreviewScene::Light(const Eigen::Vector3d& position, const Eigen
 Eigen::Vector3f PreviewScene::Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s,
                                        TraceHit* hit_out) const {
   const auto mesh_hit = caster_->Intersect(origin, direction);
-  const double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();
+  double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();
+  // The ground past the edge: only where the mesh is missed (under the mesh it is hidden anyway).
+  double ground_distance = std::numeric_limits<double>::infinity();
+  if (!mesh_hit && ground_ && direction.z() < 0 && origin.z() > ground_->height_m) {
+    ground_distance = (ground_->height_m - origin.z()) / direction.z();
+    mesh_distance = ground_distance;
+  }
   std::optional<ProxyHit> proxy;
   if (!subjects_.empty()) proxy = subjects_.Intersect(origin, direction, time_s, mesh_distance);
+  if (!mesh_hit && !proxy && std::isfinite(ground_distance)) {
+    const Eigen::Vector3d position = origin + ground_distance * direction;
+    if (hit_out) *hit_out = TraceHit{ground_distance, position, -1, kGroundFace};
+    Eigen::Vector3f color = ground_->ColorAt(position);
+    if (shading_ == Shading::kSun) color = color.cwiseProduct(Light(position, Eigen::Vector3d::UnitZ(), time_s));
+    const float haze = 1.0f - float(std::exp(-3.0 * ground_distance / ground_->visibility_m));
+    return color + haze * (Sky(Eigen::Vector3d(direction.x(), direction.y(), 0.0)) - color);
+  }
   if (!mesh_hit && !proxy) {
     if (hit_out) *hit_out = TraceHit{std::numeric_limits<double>::infinity(), {}, -1, 0};
     return Sky(direction);

@@ -35,6 +35,9 @@ struct Texture {
   Eigen::Vector3f Sample(const Eigen::Vector2f& uv) const;  // bilinear in linear light, wrapping (glTF REPEAT)
 };
 
+// TraceHit::face of the ground past the mesh's edge.
+constexpr uint32_t kGroundFace = 0xffffffffu;
+
 struct TraceHit {
   double distance_m = 0;
   Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
@@ -42,10 +45,25 @@ struct TraceHit {
   uint32_t face = 0;
 };
 
+// The ground past the mesh's edge (Backdrop::kGround): the plane z = height_m, the mesh's border ring
+// carried outward: seen from the border's centre, each 5-degree sector of azimuth takes the mean linear
+// colour of the border faces in it (an empty sector its nearest neighbours'), so the sand beyond the sand
+// and the grass beyond the grass; hazed toward the horizon's sky colour with distance (a visibility of
+// `visibility_m`: the haze takes 1 - exp(-3 d / visibility) of the colour).
+struct GroundBackdrop {
+  static constexpr int kSectors = 72;
+  double height_m = 0;
+  Eigen::Vector2d centre_m = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector3f> sector_color = std::vector<Eigen::Vector3f>(kSectors, Eigen::Vector3f::Constant(0.5f));
+  double visibility_m = 5000;
+  Eigen::Vector3f ColorAt(const Eigen::Vector3d& position) const;
+};
+
 class PreviewScene {
  public:
   // Builds the BVH and decodes the textures (OpenImageIO). InputError for an empty or broken mesh.
-  PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun);
+  PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun,
+               Backdrop backdrop = Backdrop::kNone);
   ~PreviewScene();
 
   // Radiance along a unit-direction ray at time t: the shade of the closest surface (mesh or subject
@@ -55,9 +73,11 @@ class PreviewScene {
   Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
 
   const scene::SceneMesh& mesh() const { return mesh_; }
+  const std::optional<GroundBackdrop>& ground() const { return ground_; }
 
  private:
   Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
+  GroundBackdrop BorderGround() const;
   Eigen::Vector3f Light(const Eigen::Vector3d& position, const Eigen::Vector3d& normal, double time_s) const;
 
   scene::SceneMesh mesh_;
@@ -66,6 +86,7 @@ class PreviewScene {
   std::vector<Texture> textures_;  // one per mesh image
   Shading shading_;
   Eigen::Vector3d sun_direction_enu_;  // towards the sun
+  std::optional<GroundBackdrop> ground_;
 };
 
 }  // namespace cinepath::preview

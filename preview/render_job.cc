@@ -322,7 +322,7 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::p
   size_t done = 0;
   for (size_t f = 0; f < team.flights.size(); ++f) {
     const Trajectory& plan = team.flights[f].plan;
-    const PreviewScene scene(mesh, plan, options.shading, sun);
+    const PreviewScene scene(mesh, plan, options.shading, sun, options.backdrop);
     auto render = [&](size_t k, const fs::path& path) {
       const auto start = std::chrono::steady_clock::now();
       const FrameImage frame = RenderFrame(scene, plan, k, settings);
@@ -434,7 +434,7 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   if (labels) RequireLabelFont();
   const SunDirection sun = SunForOptions(options, plan, scene_file);
   CheckWritableFolder(options.output_dir);
-  const PreviewScene scene(scene::ReadGlbFile(glb), plan, options.shading, sun);
+  const PreviewScene scene(scene::ReadGlbFile(glb), plan, options.shading, sun, options.backdrop);
   // Every frame allocates the same few image-sized buffers: keep freed ones in the heap instead of
   // returning them to the kernel, so the next frame does not page-fault them in again (measured: a
   // fifth of a draft frame's time went to page faults and zeroing).

@@ -51,6 +51,12 @@ Shading ParseShading(const std::string& text) {
   throw InputError("--shading: expected flat or sun, got '" + text + "'");
 }
 
+Backdrop ParseBackdrop(const std::string& text) {
+  if (text == "ground") return Backdrop::kGround;
+  if (text == "none") return Backdrop::kNone;
+  throw InputError("--backdrop: expected ground or none, got '" + text + "'");
+}
+
 void ParseAovs(const std::string& text, RenderOptions* options) {
   std::stringstream stream(text);
   std::string item;

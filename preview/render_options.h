@@ -16,6 +16,10 @@ enum class RenderQuality { kDraft, kStandard, kFinal };
 enum class Shading { kFlat, kSun };
 enum class ImageFormat { kPng, kExr, kJpg };
 enum class Exposure { kFixed, kPhysical };
+// Past the mesh's edge: kGround continues the ground as a plane at the height of the mesh's border,
+// in the border's colour, hazed with distance (docs/render.md, "The horizon"); kNone leaves the world
+// ending there (rays below the horizon that miss the mesh see a flat grey, at infinite depth).
+enum class Backdrop { kGround, kNone };
 
 // How many rays a pixel gets. A pinhole pre-pass finds each pixel's depth, and so its blur and its
 // motion in pixels; a pixel sharp and still gets one ray (edge_samples where the pre-pass sees an
@@ -51,6 +55,7 @@ struct RenderOptions {
   std::optional<int64_t> sun_time_unix_s;  // --sun-time: the sun of that moment at the scene's origin
   Exposure exposure = Exposure::kFixed;
   double iso = 100;  // --exposure physical: relative exposure t * ISO / N^2, 1 at 1/50 s, ISO 100, f/4
+  Backdrop backdrop = Backdrop::kGround;
   bool aov_depth = false;
   bool aov_blur = false;
   bool overlay = false;
@@ -62,6 +67,7 @@ struct RenderOptions {
 RenderQuality ParseRenderQuality(const std::string& text);
 ImageFormat ParseImageFormat(const std::string& text);
 Shading ParseShading(const std::string& text);
+Backdrop ParseBackdrop(const std::string& text);
 // "depth,blur" (either or both); InputError naming `--aov` for anything else.
 void ParseAovs(const std::string& text, RenderOptions* options);
 // "AZ,EL" in degrees; InputError naming `--sun`.

@@ -78,6 +78,62 @@ FrameImage Render(scene::SceneMesh mesh, const Trajectory& plan, const FrameSett
   return RenderFrame(scene, plan, k, settings);
 }
 
+// A 40 x 40 m green ground patch at z = 2 m, its near edge 5 m north of the origin, seen by the level still
+// camera 10 m up at the origin looking north: the patch fills part of the frame below the horizon; past its
+// far edge (and beside it) the frame looks over the edge of the world.
+scene::SceneMesh GroundPatch() {
+  scene::SceneMesh mesh;
+  for (const auto& [x, y] : {std::pair{-20.0, 5.0}, {20.0, 5.0}, {20.0, 45.0}, {-20.0, 45.0}}) {
+    mesh.positions_enu_m.emplace_back(x, y, 2.0);
+    mesh.colors_linear.emplace_back(0.1f, 0.6f, 0.1f);
+  }
+  mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+  return mesh;
+}
+
+// The horizon: with the ground backdrop every pixel below the horizon has a finite depth (the plane at the
+// border's height, 2 m, in the border's colour hazed toward the sky), and none above it; with
+// --backdrop none, the rays that miss the patch below the horizon see flat grey at infinite depth.
+TEST(FrameRenderer, TheGroundContinuesPastTheMeshToTheHorizon) {
+  const Trajectory plan = StillCamera({0, 0, 10}, 24, 8, 30);
+  FrameSettings settings = Settings(RenderQuality::kStandard, 4);
+  settings.height_px = 160;  // tall enough to see the patch, the ground past it and the sky
+  Trajectory tall = plan;
+  tall.camera.height_px = 160;
+  tall.camera.sensor_height_mm = 24.0;
+  tall.camera.sensor_width_mm = 36.0;
+  settings.width_px = 240;
+  for (Backdrop backdrop : {Backdrop::kGround, Backdrop::kNone}) {
+    const PreviewScene scene(GroundPatch(), tall, Shading::kFlat, SunDirection{}, backdrop);
+    if (backdrop == Backdrop::kGround) {
+      ASSERT_TRUE(scene.ground().has_value());
+      EXPECT_DOUBLE_EQ(scene.ground()->height_m, 2.0);
+      for (const Eigen::Vector3f& c : scene.ground()->sector_color) EXPECT_NEAR(c.y(), 0.6f, 1e-6);
+    }
+    const FrameImage image = RenderFrame(scene, tall, 1, settings);
+    int below_infinite = 0, below = 0, above_finite = 0;
+    for (int y = 0; y < image.height; ++y) {
+      // The camera is level: rows below the middle look down, rows above look up.
+      const bool looks_down = y + 0.5 > image.height / 2.0 + 1;
+      const bool looks_up = y + 0.5 < image.height / 2.0 - 1;
+      for (int x = 0; x < image.width; ++x) {
+        const double depth = image.depth_m[size_t(y) * image.width + x];
+        if (looks_down) {
+          ++below;
+          below_infinite += std::isinf(depth);
+        }
+        if (looks_up) above_finite += std::isfinite(depth);
+      }
+    }
+    EXPECT_EQ(above_finite, 0);
+    if (backdrop == Backdrop::kGround) {
+      EXPECT_EQ(below_infinite, 0) << "of " << below;
+    } else {
+      EXPECT_GT(below_infinite, below / 4) << "of " << below;
+    }
+  }
+}
+
 // The red channel averaged down each column.
 std::vector<double> ColumnProfile(const FrameImage& image) {
   std::vector<double> profile(image.width, 0.0);
