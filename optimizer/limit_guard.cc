@@ -58,6 +58,21 @@ std::string HintFor(const std::string& limit, double by) {
 
 LimitGuard::LimitGuard(const Trajectory& input, GuardSetup setup) : input_(input), setup_(std::move(setup)) {
   input_measure_ = Measure(input_);
+  // The input's worst excess of each limit over each shot; frame by frame for sight and crossings.
+  const size_t n = input_.samples.size();
+  for (const auto& series : input_measure_) {
+    std::vector<double>& allowed = allowed_.emplace_back(n, 0.0);
+    for (size_t k = 0; k < n; ++k) allowed[k] = series.Excess(k);
+    if (series.limit == "line_of_sight" || series.limit == "mesh_crossing") continue;
+    std::map<int, double> worst;  // per shot
+    for (size_t k = 0; k < n; ++k) {
+      const int shot = setup_.shot_of_sample[k];
+      if (shot >= 0) worst[shot] = std::max(worst[shot], allowed[k]);
+    }
+    for (size_t k = 0; k < n; ++k) {
+      if (setup_.shot_of_sample[k] >= 0) allowed[k] = worst[setup_.shot_of_sample[k]];
+    }
+  }
 }
 
 LimitMeasure LimitGuard::Measure(const Trajectory& plan) const {
@@ -99,10 +114,10 @@ LimitMeasure LimitGuard::Measure(const Trajectory& plan) const {
 std::vector<std::string> LimitGuard::WorseThanInput(const LimitMeasure& candidate) const {
   std::vector<std::string> worse;
   for (size_t i = 0; i < candidate.size(); ++i) {
-    const shots::LimitSeries &c = candidate[i], &in = input_measure_[i];
+    const shots::LimitSeries& c = candidate[i];
     const double slack = 1e-9 * std::max(1.0, std::fabs(c.limit_value));
     for (size_t k = 0; k < c.values.size(); ++k) {
-      if (c.Excess(k) > in.Excess(k) + slack) {
+      if (c.Excess(k) > allowed_[i][k] + slack) {
         worse.push_back(c.limit);
         break;
       }

@@ -3,8 +3,11 @@
 // limits as `plan`'s own check takes them (shots::MeasureLimits, with the terrain under the camera when
 // there is a scene), the deviation from the input against each shot's max_deviation_m, and with a scene:
 // the distance to the nearest surface against the clearance margin, the path between two samples passing
-// through a surface, and the subject hidden by the scene (ray casts). A candidate is never worse when, at
-// every sample and for every limit, it breaks the limit by no more than the input does there.
+// through a surface, and the subject hidden by the scene (ray casts). A candidate is never worse when, for
+// every limit and every sample, it breaks the limit by no more than the input breaks it anywhere in that
+// sample's shot: a limit the input meets throughout a shot is met throughout it, one it breaks is broken
+// nowhere in the shot by more than its worst there. A hidden subject and a step through a surface are
+// taken frame by frame: a frame whose subject was seen stays seen, a step that was clear stays clear.
 //
 // When the solver's output is worse, the plan returned is input + alpha (output - input) over every
 // optimized channel, with the largest alpha found never worse (1, else a fixed number of bisection steps
@@ -29,6 +32,7 @@ namespace cinepath::optimizer {
 // What the guard measures a plan with. Every vector has one entry per sample of the input.
 struct GuardSetup {
   std::vector<bool> cut_before;                           // as shots::CheckFeasibility takes it
+  std::vector<int> shot_of_sample;                        // -1: none (the sample is then taken alone)
   std::vector<Eigen::Vector3d> origin_enu_m;              // the plan as given to `optimize` (the reference may be a
                                                           // cheaper preset's result): deviation is measured from it
   std::vector<double> max_deviation_m;                    // how far each sample may leave it
@@ -56,6 +60,7 @@ class LimitGuard {
   const Trajectory& input_;
   GuardSetup setup_;
   LimitMeasure input_measure_;
+  std::vector<std::vector<double>> allowed_;  // per limit and sample: the excess a candidate may have there
 };
 
 struct GuardedPlan {

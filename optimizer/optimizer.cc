@@ -809,6 +809,7 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
 GuardSetup PlanOptimizer::GuardSetupFor() const {
   GuardSetup g;
   g.cut_before = split_.cut_before;
+  g.shot_of_sample = split_.shot_of_sample;
   const size_t n = plan_.samples.size();
   g.max_deviation_m.assign(n, options_.max_deviation_m);
   for (const auto& sample : input_.plan.samples) g.origin_enu_m.push_back(sample.position_enu_m);

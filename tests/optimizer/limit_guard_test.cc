@@ -39,6 +39,7 @@ Trajectory Flight(const std::function<double(double)>& speed_m_s) {
 GuardSetup SetupFor(const Trajectory& input, double max_deviation_m = 1e9) {
   GuardSetup g;
   g.cut_before.assign(input.samples.size(), false);
+  g.shot_of_sample.assign(input.samples.size(), 0);
   for (const auto& s : input.samples) g.origin_enu_m.push_back(s.position_enu_m);
   g.max_deviation_m.assign(input.samples.size(), max_deviation_m);
   g.aim_enu_m.resize(input.samples.size());
@@ -99,6 +100,24 @@ TEST(LimitGuard, ALimitTheInputBreaksMayBeBrokenNowhereMore) {
   EXPECT_EQ(still[0]["end_time_s"].get<double>(), 4.0);
   EXPECT_NE(still[0]["hint"].get<std::string>().find("slower"), std::string::npos);
   EXPECT_NE(message.find("horizontal_speed in shot \"shot\" from 0 s to 4 s"), std::string::npos) << message;
+}
+
+TEST(LimitGuard, WithinAShotALimitTheInputBreaksMayMoveButNotGrowNorSpreadToAnotherShot) {
+  // Two shots of 2 s. The input bursts to 14 m/s (the limit is 12) for half a second in the first; a
+  // candidate flying 13 m/s for a second around it breaks the limit at frames the input met, in that
+  // shot and by less: kept whole. The same in the second shot, where the input meets it: cut back.
+  const auto burst = [](double from_s, double to_s, double speed) {
+    return [=](double t) { return t >= from_s && t <= to_s ? speed : 6.0; };
+  };
+  const Trajectory input = Flight(burst(0.5, 1.0, 14.0));
+  GuardSetup setup = SetupFor(input);
+  for (size_t k = 61; k < input.samples.size(); ++k) setup.shot_of_sample[k] = 1;
+  const LimitGuard guard(input, setup);
+  const GuardedPlan spread = KeepNeverWorse(guard, Between(input, Flight(burst(0.3, 1.5, 13.0))));
+  EXPECT_EQ(spread.alpha, 1.0);
+  const GuardedPlan moved = KeepNeverWorse(guard, Between(input, Flight(burst(2.5, 3.5, 13.0))));
+  EXPECT_LT(moved.alpha, 1.0);
+  EXPECT_TRUE(guard.WorseThanInput(moved.measure).empty());
 }
 
 TEST(LimitGuard, TheDeviationAllowedIsALimitAndSaysWhatItNeeds) {
