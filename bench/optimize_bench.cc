@@ -1,8 +1,10 @@
 // `cinepath optimize` on a 60 s shot at 30 fps (1,801 samples) with the lens free and depth-of-field
 // goals: the time of each preset without a mesh, and against a 1 M-face terrain (the corridor crop and
-// both index builds included), with the final cost, the worst limit and the least clearance.
+// both index builds included), with the ladder's objective, the fraction of the change the guard kept,
+// the worst limit still broken, the final cost and the least clearance.
 //   optimize_bench [--faces N]
 // The shot and the terrain: bench/optimize_bench_scene.h.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -27,8 +29,10 @@ int main(int argc, char** argv) {
   std::printf("plan: %zu samples; terrain: %zu faces (generated in %.2f s, not counted)\n\n", plan.samples.size(),
               terrain.num_faces(), build_s);
   std::printf(
-      "| quality | mesh | wall (s) | faces indexed | cost before | cost after | feasible after | "
-      "min clearance after (m) | iterations |\n|---|---|---|---|---|---|---|---|---|\n");
+      "| quality | mesh | wall (s) | faces indexed | objective | stages kept | alpha | worst still broken | cost "
+      "before | "
+      "cost after | feasible after | min clearance after (m) | iterations |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto quality : {optimizer::OptimizeQuality::kDraft, optimizer::OptimizeQuality::kStandard,
                              optimizer::OptimizeQuality::kFinal}) {
     for (const bool with_mesh : {false, true}) {
@@ -41,9 +45,23 @@ int main(int argc, char** argv) {
       const auto r = optimizer::OptimizePlan(in, optimizer::OptimizeOptions::ForQuality(quality));
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const Json& rep = r.report;
-      std::printf("| %s | %s | %.3f | %s | %.4g | %.4g | %s | %s | %d |\n", optimizer::OptimizeQualityName(quality),
-                  with_mesh ? "1 M faces" : "none", s,
+      // The worst limit still broken, relative to its limit (a count for lines of sight and crossings).
+      std::string worst = "-", kept;
+      double worst_ratio = 0;
+      for (const auto& v : rep["guard"]["still_broken"]) {
+        const double ratio = v["by"].get<double>() / std::max(1.0, std::fabs(v["limit_value"].get<double>()));
+        if (ratio <= worst_ratio) continue;
+        worst_ratio = ratio;
+        worst = v["limit"].get<std::string>() + " " + v["worst"].dump() + " " + v["unit"].get<std::string>() + " (" +
+                v["start_time_s"].dump() + "-" + v["end_time_s"].dump() + " s)";
+      }
+      for (const auto& stage : rep["ladder"]) {
+        kept += std::string(kept.empty() ? "" : " ") + (stage["kept"].get<bool>() ? "y" : "n");
+      }
+      std::printf("| %s | %s | %.3f | %s | %.6g | %s | %.4g | %s | %.4g | %.4g | %s | %s | %d |\n",
+                  optimizer::OptimizeQualityName(quality), with_mesh ? "1 M faces" : "none", s,
                   with_mesh ? std::to_string(rep["clearance"]["faces_indexed"].get<size_t>()).c_str() : "-",
+                  rep["objective"].get<double>(), kept.c_str(), rep["guard"]["alpha"].get<double>(), worst.c_str(),
                   rep["total"]["before"].get<double>(), rep["total"]["after"].get<double>(),
                   rep["feasible_after"].get<bool>() ? "yes" : "no",
                   with_mesh && !rep["clearance"]["min_after_m"].is_null()

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include <ceres/ceres.h>
@@ -20,6 +21,7 @@
 #include "core/rotation.h"
 #include "optimizer/clearance_cost.h"
 #include "optimizer/cost_terms.h"
+#include "optimizer/limit_guard.h"
 #include "optimizer/plan_samples.h"
 #include "optimizer/visibility_targets.h"
 #include "scene/caster_ground.h"
@@ -53,12 +55,15 @@ struct ShotSettings {
   bool background = false;
 };
 
-// The corridor of the scene the flight can reach, and the query structures built on it.
+// The corridor of the scene the flight can reach, and the query structures built on it: built once from
+// the input plan, shared by every stage of the quality ladder.
 struct SceneIndex {
   size_t faces_in_scene = 0;
   scene::SceneMesh corridor;
-  std::unique_ptr<scene::SurfaceDistance> surface;
-  std::unique_ptr<scene::RayCaster> caster;  // null when the corridor has no faces
+  std::unique_ptr<scene::SurfaceDistance> surface;  // null without a scene
+  std::unique_ptr<scene::RayCaster> caster;         // null when the corridor has no faces
+  std::unique_ptr<scene::RayCaster> full_caster;    // background distances, only when a shot asks
+  double takeoff_up_m = 0;                          // the ground under the input's first sample
   double build_s = 0;
 };
 
@@ -77,15 +82,64 @@ double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
+// The corridor: the bounds of the input's samples and the subjects' aim points grown by the largest
+// deviation allowed plus the margin plus 1 m, down to the bottom of the mesh (the ground under the
+// take-off point).
+std::shared_ptr<const SceneIndex> IndexScene(const OptimizeInput& input, const OptimizeOptions& options) {
+  auto index = std::make_shared<SceneIndex>();
+  if (!input.mesh) return index;
+  const Trajectory& plan = input.plan;
+  const auto start = std::chrono::steady_clock::now();
+  index->faces_in_scene = input.mesh->num_faces();
+  double reach = options.clearance_margin_m + 1.0;
+  bool background_goal = false;
+  for (const auto& span : plan.shots) {
+    reach = std::max(reach,
+                     span.intent.max_deviation_m.value_or(options.max_deviation_m) + options.clearance_margin_m + 1.0);
+    background_goal = background_goal || span.intent.background_blur_px.has_value();
+  }
+  Eigen::AlignedBox3d box;
+  for (size_t k = 0; k < plan.samples.size(); ++k) {
+    box.extend(plan.samples[k].position_enu_m);
+    for (const auto& t : plan.subjects) box.extend(AimPoint(t, k));
+  }
+  box.min() -= Eigen::Vector3d::Constant(reach);
+  box.max() += Eigen::Vector3d::Constant(reach);
+  const Eigen::AlignedBox3d bounds = input.mesh->Bounds();
+  if (!bounds.isEmpty()) box.min().z() = std::min(box.min().z(), bounds.min().z() - 1.0);  // the ground under it
+  index->corridor = scene::CropToBox(*input.mesh, box);
+  index->surface = std::make_unique<scene::SurfaceDistance>(index->corridor);
+  if (index->corridor.num_faces() > 0) {
+    index->caster = std::make_unique<scene::RayCaster>(index->corridor);
+    const auto& first = plan.samples.front().position_enu_m;
+    if (const auto hit = index->caster->SurfaceBelow(first.x(), first.y()))
+      index->takeoff_up_m = hit->position_enu_m.z();
+  }
+  index->build_s = Seconds(start);
+  if (background_goal && input.mesh->num_faces() > 0)
+    index->full_caster = std::make_unique<scene::RayCaster>(*input.mesh);
+  return index;
+}
+
+// One stage of the ladder: the change to `base` (the input itself, or the cheaper preset's accepted result)
+// solved with `options`, its goals aimed where the input put them (`targets`: the first stage's samples,
+// null in the first stage itself). A stage that starts from a result is not refit: its change is zero
+// there, and the guard keeps it never worse than that result.
 class PlanOptimizer {
  public:
-  PlanOptimizer(const OptimizeInput& input, const OptimizeOptions& options)
-      : input_(input), plan_(input.plan), options_(options) {}
+  PlanOptimizer(const OptimizeInput& input, const Trajectory& base, const OptimizeOptions& options,
+                std::shared_ptr<const SceneIndex> scene, const PlanSamples* targets)
+      : input_(input), plan_(base), options_(options), scene_(std::move(scene)), targets_(targets) {}
   OptimizeResult Run();
+  // The ladder's objective of the base: its goal and limit terms (not the smoothness and adherence of a
+  // change, nor the occlusion targets), every change zero.
+  double Objective();
+  const PlanSamples& samples() const { return split_; }
 
  private:
+  void Prepare();
+  double GoalCost();
   void ReadShots();
-  void IndexScene();
   void MarkFreeChannels();
   void AddTerms();
   size_t AddVisibilityTargets();
@@ -93,10 +147,13 @@ class PlanOptimizer {
   static constexpr double kTargetOvershootM = 0.75;
   void Solve(bool ramp);
   SampleState<double> StateAt(const SampleBase& base) const;
-  Trajectory Apply() const;
+  // The plan with `alpha` of the change: input + alpha (output - input) over every optimized channel
+  // (alpha = 1 is the solver's output, 0 the input itself).
+  Trajectory Apply(double alpha) const;
   Json Report(const Trajectory& optimized, const Json& before_terms, const Json& after_terms, double total_before,
               double total_after) const;
   Json TermCosts(double* total);
+  GuardSetup GuardSetupFor() const;
   std::vector<Eigen::Vector3d> Positions(bool changed) const;
   double BlockedFraction(const Trajectory& plan, size_t* first_blocked) const;
 
@@ -122,13 +179,13 @@ class PlanOptimizer {
   const OptimizeInput& input_;
   const Trajectory& plan_;
   OptimizeOptions options_;
+  std::shared_ptr<const SceneIndex> scene_;
+  const PlanSamples* targets_;  // null: split_
+  bool warm() const { return targets_ != nullptr; }
   PlanSamples split_;
   std::vector<ShotSettings> shots_;
   std::vector<Knot> knots_;
   std::vector<std::array<bool, kNumChannels>> touched_, held_;
-  SceneIndex scene_;
-  std::unique_ptr<scene::RayCaster> full_caster_;  // background distances, only when a shot asks
-  double takeoff_up_m_ = 0;
   // Shared by every stiff block (the problem does not own it): a scale on their cost, ramped by Solve.
   std::unique_ptr<ceres::LossFunctionWrapper> stiffness_ =
       std::make_unique<ceres::LossFunctionWrapper>(nullptr, ceres::TAKE_OWNERSHIP);
@@ -179,38 +236,6 @@ void PlanOptimizer::ReadShots() {
   }
 }
 
-void PlanOptimizer::IndexScene() {
-  if (!input_.mesh) {
-    skipped_.push_back("clearance: no scene mesh");
-    skipped_.push_back("occlusion: no scene mesh");
-    return;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  scene_.faces_in_scene = input_.mesh->num_faces();
-  double reach = options_.clearance_margin_m + 1.0;
-  for (const auto& s : shots_) reach = std::max(reach, s.max_deviation_m + options_.clearance_margin_m + 1.0);
-  Eigen::AlignedBox3d box;
-  for (size_t k = 0; k < plan_.samples.size(); ++k) {
-    box.extend(plan_.samples[k].position_enu_m);
-    for (const auto& t : plan_.subjects) box.extend(AimPoint(t, k));
-  }
-  box.min() -= Eigen::Vector3d::Constant(reach);
-  box.max() += Eigen::Vector3d::Constant(reach);
-  const Eigen::AlignedBox3d bounds = input_.mesh->Bounds();
-  if (!bounds.isEmpty()) box.min().z() = std::min(box.min().z(), bounds.min().z() - 1.0);  // the ground under it
-  scene_.corridor = scene::CropToBox(*input_.mesh, box);
-  scene_.surface = std::make_unique<scene::SurfaceDistance>(scene_.corridor);
-  if (scene_.corridor.num_faces() > 0) {
-    scene_.caster = std::make_unique<scene::RayCaster>(scene_.corridor);
-    const auto& first = plan_.samples.front().position_enu_m;
-    if (const auto hit = scene_.caster->SurfaceBelow(first.x(), first.y())) takeoff_up_m_ = hit->position_enu_m.z();
-  }
-  scene_.build_s = Seconds(start);
-  bool background_goal = false;
-  for (const auto& s : shots_) background_goal = background_goal || s.background;
-  if (background_goal && input_.mesh->num_faces() > 0) full_caster_ = std::make_unique<scene::RayCaster>(*input_.mesh);
-}
-
 // Which channels each knot may change: some sample using it has a term on the channel, and no sample
 // using it belongs to a shot that holds it.
 void PlanOptimizer::MarkFreeChannels() {
@@ -247,9 +272,13 @@ void PlanOptimizer::AddTerms() {
   static const Knot kZero{};
   const double* zero[4] = {kZero.data(), kZero.data(), kZero.data(), kZero.data()};
 
+  const PlanSamples& targets = targets_ ? *targets_ : split_;
   for (size_t k = 0; k < plan_.samples.size(); ++k) {
     const SampleBase& base = split_.bases[k];
     const TrajectorySample& sample = plan_.samples[k];
+    // Goals are aimed where the input put them (in a later stage of the ladder too).
+    const SampleBase& target = targets.bases[k];
+    const TrajectorySample& planned_sample = input_.plan.samples[k];
     const int shot = split_.shot_of_sample[k];
     const ShotSettings* s = shot >= 0 ? &shots_[shot] : nullptr;
     const bool moves = !(s && s->held.count(kEast) && s->held.count(kYaw));
@@ -257,18 +286,18 @@ void PlanOptimizer::AddTerms() {
     // Framing: keep the subject where the plan put it, at the size the shot asks for.
     if (s && s->subject && moves) {
       const Eigen::Vector3d aim = AimPoint(*s->subject, k);
-      const SampleState<double> s0 = EvaluateSample(base, zero);
+      const SampleState<double> s0 = EvaluateSample(target, zero);
       const Framing<double> planned =
-          MeasureFraming(base, s0, aim, s->subject->height_m, image.width_mm, image.height_mm);
-      const Eigen::Vector3d in_camera = CameraPoint(base, s0, aim);
+          MeasureFraming(target, s0, aim, s->subject->height_m, image.width_mm, image.height_mm);
+      const Eigen::Vector3d in_camera = CameraPoint(target, s0, aim);
       if (in_camera.z() > 0.1 && std::fabs(planned.screen_x - 0.5) < 0.6 && std::fabs(planned.screen_y - 0.5) < 0.6) {
         auto* f = new FramingCost{
             base, aim,      s->subject->height_m, image.width_mm, image.height_mm, planned.screen_x, planned.screen_y,
             0.0,  w.framing};
         const ShotIntent& intent = s->span->intent;
         if (intent.frame_height_fraction) {
-          const bool clamped = sample.focal_length_mm <= camera.min_focal_length_mm + 1e-9 ||
-                               sample.focal_length_mm >= camera.max_focal_length_mm - 1e-9;
+          const bool clamped = planned_sample.focal_length_mm <= camera.min_focal_length_mm + 1e-9 ||
+                               planned_sample.focal_length_mm >= camera.max_focal_length_mm - 1e-9;
           if (!clamped) {
             f->target_fraction = planned.height_fraction;
           } else {
@@ -293,9 +322,9 @@ void PlanOptimizer::AddTerms() {
       if (s->background) {
         const Eigen::Vector3d aim = AimPoint(*s->subject, k);
         double behind = s->span->intent.background_distance_m.value_or(std::numeric_limits<double>::infinity());
-        if (full_caster_) {
-          const Eigen::Vector3d dir = (aim - sample.position_enu_m).normalized();
-          const auto hit = full_caster_->Intersect(aim, dir, 0.5);
+        if (scene_->full_caster) {
+          const Eigen::Vector3d dir = (aim - planned_sample.position_enu_m).normalized();
+          const auto hit = scene_->full_caster->Intersect(aim, dir, 0.5);
           behind = hit ? hit->distance_m : std::numeric_limits<double>::infinity();
         }
         auto* b = new BackgroundBlurCost{base,
@@ -308,14 +337,15 @@ void PlanOptimizer::AddTerms() {
       }
     } else if (s && s->subject && moves && !s->held.count(kDioptre)) {
       const Eigen::Vector3d aim = AimPoint(*s->subject, k);
-      const double depth = CameraPoint(base, EvaluateSample(base, zero), aim).z();
-      if (std::fabs(depth * base.dioptre - 1.0) < 1e-6) {
+      const double depth = CameraPoint(target, EvaluateSample(target, zero), aim).z();
+      if (std::fabs(depth * target.dioptre - 1.0) < 1e-6) {
         AddSampleTerm("depth_of_field", new SharpCost{base, aim, coc_mm * 1e-3, true, w.sharpness}, base, 1);
       }
     }
 
     // Limits, keep-out, clearance.
-    AddSampleTerm("limits", new LimitsCost{base, plan_.drone, camera, takeoff_up_m_, options_.limit_margin, w.limits},
+    AddSampleTerm("limits",
+                  new LimitsCost{base, plan_.drone, camera, scene_->takeoff_up_m, options_.limit_margin, w.limits},
                   base, LimitsCost::kNumResiduals);
     const double max_dev = s ? s->max_deviation_m : options_.max_deviation_m;
     for (const auto& t : plan_.subjects) {
@@ -328,11 +358,11 @@ void PlanOptimizer::AddTerms() {
           base, 1);
     }
     if (!input_.others.empty()) AddTeamTerms(k, max_dev);
-    if (scene_.surface && scene_.surface->num_faces() > 0) {
-      const auto closest = scene_.surface->Closest(sample.position_enu_m);
+    if (scene_->surface && scene_->surface->num_faces() > 0) {
+      const auto closest = scene_->surface->Closest(sample.position_enu_m);
       if (closest && closest->distance_m < options_.clearance_margin_m + max_dev + 0.5) {
         AddBlock("clearance",
-                 new ClearanceCost(base, scene_.surface.get(),
+                 new ClearanceCost(base, scene_->surface.get(),
                                    options_.clearance_margin_m * (1 + options_.limit_margin), w.clearance),
                  base.knots.first_knot);
       }
@@ -353,7 +383,9 @@ void PlanOptimizer::AddTerms() {
   std::vector<bool> seen(knots_.size(), false);
   for (size_t k = 0; k < plan_.samples.size(); ++k) {
     const int shot = split_.shot_of_sample[k];
-    const double dev = shot >= 0 ? shots_[shot].max_deviation_m : options_.max_deviation_m;
+    // What is left of the deviation allowed (a later stage starts where the cheaper one left the path).
+    const double used = (plan_.samples[k].position_enu_m - input_.plan.samples[k].position_enu_m).norm();
+    const double dev = std::max(0.0, (shot >= 0 ? shots_[shot].max_deviation_m : options_.max_deviation_m) - used);
     for (int j = 0; j < 4; ++j) {
       const int i = split_.bases[k].knots.first_knot + j;
       knot_deviation[i] = seen[i] ? std::min(knot_deviation[i], dev) : dev;
@@ -438,7 +470,7 @@ SampleState<double> PlanOptimizer::StateAt(const SampleBase& base) const {
 // (a sample still hidden after a round is re-targeted from where it got to). Returns how many targets
 // were set.
 size_t PlanOptimizer::AddVisibilityTargets() {
-  if (!scene_.caster) return 0;
+  if (!scene_->caster) return 0;
   occlusion_blocks_.resize(plan_.samples.size(), nullptr);
   size_t set = 0;
   for (size_t k = 0; k < plan_.samples.size(); ++k) {
@@ -447,10 +479,12 @@ size_t PlanOptimizer::AddVisibilityTargets() {
     const SampleBase& base = split_.bases[k];
     const Eigen::Vector3d camera = StateAt(base).position;
     const Eigen::Vector3d aim = AimPoint(*shots_[shot].subject, k);
-    if (!LineOfSightBlocked(*scene_.caster, camera, aim)) continue;
+    if (!LineOfSightBlocked(*scene_->caster, camera, aim)) continue;
     // Stay a quarter metre inside the deviation bound, whose hinge would otherwise hold the camera short.
-    const double reach = std::max(0.0, shots_[shot].max_deviation_m - 0.25 - (camera - base.position_enu_m).norm());
-    const auto target = NearestClearViewpoint(*scene_.caster, scene_.surface.get(), camera, aim, reach,
+    const double used = (plan_.samples[k].position_enu_m - input_.plan.samples[k].position_enu_m).norm();
+    const double reach =
+        std::max(0.0, shots_[shot].max_deviation_m - 0.25 - (camera - base.position_enu_m).norm() - used);
+    const auto target = NearestClearViewpoint(*scene_->caster, scene_->surface.get(), camera, aim, reach,
                                               options_.clearance_margin_m, kTargetOvershootM);
     if (!target) {
       ++frames_without_target_;
@@ -536,11 +570,24 @@ Json PlanOptimizer::TermCosts(double* total) {
   return out;
 }
 
-Trajectory PlanOptimizer::Apply() const {
+Trajectory PlanOptimizer::Apply(double alpha) const {
   Trajectory out = plan_;
   std::optional<EnuFrame> frame;
   if (out.origin) frame.emplace(*out.origin);
   const ImageExtentMm image = out.camera.image_extent_mm();
+  // The state at `alpha`: positions along the straight line from the input's (a refit group's base is not
+  // the input), every other channel a multiple of its change.
+  const auto scaled = [&](const SampleBase& base, const Eigen::Vector3d& input_position) {
+    SampleState<double> s = StateAt(base);
+    if (alpha == 1.0) return s;
+    s.position = input_position + alpha * (s.position - input_position);
+    s.yaw *= alpha;
+    s.tilt *= alpha;
+    s.log_focal *= alpha;
+    s.dioptre = base.dioptre + alpha * (s.dioptre - base.dioptre);
+    s.stops *= alpha;
+    return s;
+  };
   const auto apply = [&](const SampleBase& base, const SampleState<double>& s, Eigen::Vector3d* position,
                          Eigen::Quaterniond* world_from_camera, double* focal_mm, double* focus_m, double* f_number) {
     *position = s.position;
@@ -553,8 +600,8 @@ Trajectory PlanOptimizer::Apply() const {
   for (size_t k = 0; k < out.samples.size(); ++k) {
     TrajectorySample& sample = out.samples[k];
     const SampleBase& base = split_.bases[k];
-    const SampleState<double> s = StateAt(base);
-    const bool moved = s.yaw != 0 || s.tilt != 0 || s.log_focal != 0 || s.position != base.position_enu_m;
+    const SampleState<double> s = scaled(base, plan_.samples[k].position_enu_m);
+    const bool moved = s.yaw != 0 || s.tilt != 0 || s.log_focal != 0 || s.position != plan_.samples[k].position_enu_m;
     apply(base, s, &sample.position_enu_m, &sample.world_from_camera, &sample.focal_length_mm, &sample.focus_distance_m,
           &sample.f_number);
     if (s.yaw != 0 || s.tilt != 0) {
@@ -564,7 +611,8 @@ Trajectory PlanOptimizer::Apply() const {
       sample.gimbal_roll_deg = g.gimbal_roll_deg;
       sample.gimbal_yaw_deg = g.gimbal_yaw_deg;
     }
-    if (frame && s.position != base.position_enu_m) sample.geodetic = frame->GeodeticFromEnu(sample.position_enu_m);
+    if (frame && s.position != plan_.samples[k].position_enu_m)
+      sample.geodetic = frame->GeodeticFromEnu(sample.position_enu_m);
     if (moved) {
       sample.subjects_in_frame.clear();
       const Eigen::Quaterniond camera_from_world = sample.world_from_camera.conjugate();
@@ -593,11 +641,11 @@ Trajectory PlanOptimizer::Apply() const {
     base.focal_length_mm = key.focal_length_mm;
     base.dioptre = std::isinf(key.focus_distance_m) ? 0.0 : 1.0 / key.focus_distance_m;
     base.f_number = key.f_number;
-    apply(base, StateAt(base), &key.position_enu_m, &key.world_from_camera, &key.focal_length_mm, &key.focus_distance_m,
-          &key.f_number);
+    apply(base, scaled(base, key.position_enu_m), &key.position_enu_m, &key.world_from_camera, &key.focal_length_mm,
+          &key.focus_distance_m, &key.f_number);
   }
   std::unique_ptr<scene::CasterGround> ground;
-  if (scene_.caster) ground = std::make_unique<scene::CasterGround>(*scene_.caster, input_.scene_source);
+  if (scene_->caster) ground = std::make_unique<scene::CasterGround>(*scene_->caster, input_.scene_source);
   out.feasibility = shots::CheckFeasibility(out, split_.cut_before, {}, ground.get());
   return out;
 }
@@ -605,12 +653,12 @@ Trajectory PlanOptimizer::Apply() const {
 double PlanOptimizer::BlockedFraction(const Trajectory& plan, size_t* first_blocked) const {
   size_t blocked = 0, checked = 0;
   *first_blocked = plan.samples.size();
-  if (!scene_.caster) return 0;
+  if (!scene_->caster) return 0;
   for (size_t k = 0; k < plan.samples.size(); ++k) {
     const int shot = split_.shot_of_sample[k];
     if (shot < 0 || !shots_[shot].subject) continue;
     ++checked;
-    if (LineOfSightBlocked(*scene_.caster, plan.samples[k].position_enu_m, AimPoint(*shots_[shot].subject, k))) {
+    if (LineOfSightBlocked(*scene_->caster, plan.samples[k].position_enu_m, AimPoint(*shots_[shot].subject, k))) {
       ++blocked;
       *first_blocked = std::min(*first_blocked, k);
     }
@@ -651,8 +699,8 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
     return w;
   };
   std::unique_ptr<scene::CasterGround> ground;
-  if (scene_.caster) ground = std::make_unique<scene::CasterGround>(*scene_.caster, input_.scene_source);
-  const FeasibilityReport before = shots::CheckFeasibility(plan_, split_.cut_before, {}, ground.get());
+  if (scene_->caster) ground = std::make_unique<scene::CasterGround>(*scene_->caster, input_.scene_source);
+  const FeasibilityReport before = shots::CheckFeasibility(input_.plan, split_.cut_before, {}, ground.get());
   const auto wb = worst(before), wa = worst(optimized.feasibility);
   std::set<std::string> names;
   for (const auto& [n, v] : wb) names.insert(n);
@@ -673,31 +721,31 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
 
   // Deviation from the planned path.
   double max_dev = 0;
-  for (size_t k = 0; k < plan_.samples.size(); ++k) {
-    max_dev = std::max(max_dev, (optimized.samples[k].position_enu_m - plan_.samples[k].position_enu_m).norm());
+  for (size_t k = 0; k < input_.plan.samples.size(); ++k) {
+    max_dev = std::max(max_dev, (optimized.samples[k].position_enu_m - input_.plan.samples[k].position_enu_m).norm());
   }
   report["max_deviation_m"] = RoundToDecimals(max_dev, 6);
 
   // The scene: clearance and lines of sight, before and after.
-  if (scene_.surface) {
+  if (scene_->surface) {
     const auto min_clearance = [&](const Trajectory& p) {
       double m = std::numeric_limits<double>::infinity();
       for (const auto& s : p.samples) {
-        if (const auto c = scene_.surface->Closest(s.position_enu_m)) m = std::min(m, c->distance_m);
+        if (const auto c = scene_->surface->Closest(s.position_enu_m)) m = std::min(m, c->distance_m);
       }
       return std::isinf(m) ? Json(nullptr) : Json(RoundToDecimals(m, 6));
     };
     Json c = Json::object();
     c["margin_m"] = options_.clearance_margin_m;
-    c["min_before_m"] = min_clearance(plan_);
+    c["min_before_m"] = min_clearance(input_.plan);
     c["min_after_m"] = min_clearance(optimized);
-    c["faces_in_scene"] = scene_.faces_in_scene;
-    c["faces_indexed"] = scene_.corridor.num_faces();
-    c["index_s"] = RoundToDecimals(scene_.build_s, 4);
+    c["faces_in_scene"] = scene_->faces_in_scene;
+    c["faces_indexed"] = scene_->corridor.num_faces();
+    c["index_s"] = RoundToDecimals(scene_->build_s, 4);
     report["clearance"] = c;
     size_t first_b = 0, first_a = 0;
     Json o = Json::object();
-    o["blocked_fraction_before"] = RoundToDecimals(BlockedFraction(plan_, &first_b), 6);
+    o["blocked_fraction_before"] = RoundToDecimals(BlockedFraction(input_.plan, &first_b), 6);
     o["blocked_fraction_after"] = RoundToDecimals(BlockedFraction(optimized, &first_a), 6);
     o["first_blocked_time_s"] =
         first_a < optimized.samples.size() ? Json(optimized.samples[first_a].time_s) : Json(nullptr);
@@ -728,8 +776,8 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
           std::max(subject_blur, BlurCircleMm(t.focal_length_mm, t.f_number, t.focus_distance_m, depth) * px);
       if (s.background) {
         double behind = s.span->intent.background_distance_m.value_or(std::numeric_limits<double>::infinity());
-        if (full_caster_) {
-          const auto hit = full_caster_->Intersect(aim, (aim - t.position_enu_m).normalized(), 0.5);
+        if (scene_->full_caster) {
+          const auto hit = scene_->full_caster->Intersect(aim, (aim - t.position_enu_m).normalized(), 0.5);
           behind = hit ? hit->distance_m : std::numeric_limits<double>::infinity();
         }
         const double d = depth + behind;
@@ -758,44 +806,99 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
   return report;
 }
 
-OptimizeResult PlanOptimizer::Run() {
-  split_ = SplitPlan(plan_, options_.knot_spacing_s, input_.plan_source);
+GuardSetup PlanOptimizer::GuardSetupFor() const {
+  GuardSetup g;
+  g.cut_before = split_.cut_before;
+  g.shot_of_sample = split_.shot_of_sample;
+  const size_t n = plan_.samples.size();
+  g.max_deviation_m.assign(n, options_.max_deviation_m);
+  for (const auto& sample : input_.plan.samples) g.origin_enu_m.push_back(sample.position_enu_m);
+  g.aim_enu_m.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const int shot = split_.shot_of_sample[k];
+    if (shot < 0) continue;
+    g.max_deviation_m[k] = shots_[shot].max_deviation_m;
+    if (shots_[shot].subject) g.aim_enu_m[k] = AimPoint(*shots_[shot].subject, k);
+  }
+  g.caster = scene_->caster.get();
+  g.surface = scene_->surface.get();
+  g.clearance_margin_m = options_.clearance_margin_m;
+  g.scene_source = input_.scene_source;
+  return g;
+}
+
+void PlanOptimizer::Prepare() {
+  split_ = SplitPlan(plan_, options_.knot_spacing_s, input_.plan_source, !warm());
   ReadShots();
-  IndexScene();
+  if (!input_.mesh) {
+    skipped_.push_back("clearance: no scene mesh");
+    skipped_.push_back("occlusion: no scene mesh");
+  }
   MarkFreeChannels();
   AddTerms();
+}
+
+double PlanOptimizer::GoalCost() {
+  static const std::set<std::string> kRegularizers = {"smoothness", "adherence", "occlusion"};
+  std::vector<ceres::ResidualBlockId> ids;
+  for (const auto& [name, blocks] : terms_) {
+    if (!kRegularizers.count(name)) ids.insert(ids.end(), blocks.begin(), blocks.end());
+  }
+  if (ids.empty()) return 0;
+  ceres::Problem::EvaluateOptions eo;
+  eo.residual_blocks = ids;
+  eo.num_threads = 1;
+  double cost = 0;
+  problem_.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
+  return cost;
+}
+
+double PlanOptimizer::Objective() {
+  Prepare();
+  return GoalCost();
+}
+
+OptimizeResult PlanOptimizer::Run() {
+  Prepare();
   AddVisibilityTargets();
   // Later rounds re-target the frames still hidden and re-solve from where the last round ended, at full
-  // weight.
+  // weight. A stage that starts from a cheaper preset's result is at full weight from the start: the soft
+  // stages exist to reach the right region, and it starts there.
   for (int round = 0; round < std::max(1, options_.visibility_rounds); ++round) {
     if (round > 0 && AddVisibilityTargets() == 0) break;
-    Solve(round == 0);
+    Solve(round == 0 && !warm());
   }
   if (terms_.count("occlusion") && terms_["occlusion"].empty()) terms_.erase("occlusion");
 
-  // Costs before (every knot at zero: the plan as given) and after.
+  // Rule 2: the solver's output only if it is never worse than the input in any limit, else the largest
+  // fraction of its change that is (optimizer/limit_guard.h).
+  const LimitGuard guard(plan_, GuardSetupFor());
+  GuardedPlan kept = KeepNeverWorse(guard, [&](double alpha) { return Apply(alpha); });
+
+  // Costs before (every knot at zero: the plan as given) and after (the change kept; where a group was
+  // refit, alpha times its change about the refit path).
   const std::vector<Knot> solution = knots_;
   for (auto& k : knots_) k.fill(0.0);
   double total_before = 0, total_after = 0;
   const Json before = TermCosts(&total_before);
   knots_ = solution;
+  for (auto& k : knots_) {
+    for (double& v : k) v *= kept.alpha;
+  }
   const Json after = TermCosts(&total_after);
 
   OptimizeResult result;
-  result.plan = Apply();
-  // Frames still hidden after the last round.
-  size_t first_blocked = 0;
-  if (scene_.caster && BlockedFraction(result.plan, &first_blocked) > 0) {
-    for (size_t k = 0; k < result.plan.samples.size(); ++k) {
-      const int shot = split_.shot_of_sample[k];
-      if (shot >= 0 && shots_[shot].subject &&
-          LineOfSightBlocked(*scene_.caster, result.plan.samples[k].position_enu_m,
-                             AimPoint(*shots_[shot].subject, k))) {
-        ++unresolved_views_;
-      }
-    }
+  result.plan = std::move(kept.plan);
+  for (const auto& series : kept.measure) {  // frames still hidden
+    if (series.limit == "line_of_sight")
+      unresolved_views_ = std::count(series.values.begin(), series.values.end(), 1.0);
   }
   result.report = Report(result.plan, before, after, total_before, total_after);
+  Json g = Json::object();
+  g["alpha"] = kept.alpha;
+  g["raw_broke"] = kept.raw_broke;
+  g["still_broken"] = StillBroken(kept.measure, result.plan, &result.failure);
+  result.report["guard"] = g;
 
   Json record = Json::object();
   record["by"] = "cinepath optimize";
@@ -810,24 +913,72 @@ OptimizeResult PlanOptimizer::Run() {
   record["iterations"] = iterations_;
   result.plan.optimized = record;
 
-  if (!result.plan.feasibility.feasible()) {
-    const FeasibilityViolation& v = result.plan.feasibility.violations.front();
-    result.failure = v.limit + " in shot \"" + v.shot + "\" from " + FormatShortest(v.start_time_s) + " s to " +
-                     FormatShortest(v.end_time_s) + " s (worst " + FormatSignificant(v.worst_value) + " " + v.unit +
-                     ", limit " + FormatSignificant(v.limit_value) + " " + v.unit + ")";
-  } else if (unresolved_views_ > 0) {
-    result.failure = "the subject is hidden by the scene in " + std::to_string(unresolved_views_) +
-                     " frames (first at " + FormatShortest(result.plan.samples[first_blocked].time_s) +
-                     " s); is it inside the mesh?";
-  }
   return result;
 }
 
 }  // namespace
 
+// Rule 4, the quality ladder (docs/optimize.md): a preset runs the cheaper presets first and starts from
+// the result the last of them kept; it keeps its own result only when the objective (the goal and limit
+// terms of the result, one function of the plan whatever the preset) is no larger. Its guard holds it
+// never worse in any limit than the result it started from. So final <= standard <= draft in objective,
+// and no preset breaks a limit more than a cheaper one does, by construction.
 OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options) {
-  PlanOptimizer optimizer(input, options);
-  return optimizer.Run();
+  std::vector<OptimizeQuality> ladder = {OptimizeQuality::kDraft};
+  if (options.quality != OptimizeQuality::kDraft) ladder.push_back(OptimizeQuality::kStandard);
+  if (options.quality == OptimizeQuality::kFinal) ladder.push_back(OptimizeQuality::kFinal);
+  const std::shared_ptr<const SceneIndex> scene = IndexScene(input, options);
+  std::optional<PlanSamples> targets;  // the first stage's samples: where every stage aims the goals
+  OptimizeResult kept;
+  double kept_objective = 0;
+  Json first_report, stages = Json::array();
+  int iterations = 0;
+  double solve_s = 0;
+  for (size_t i = 0; i < ladder.size(); ++i) {
+    OptimizeOptions stage_options = options;  // the preset asked for, as given (its knobs too)
+    if (i + 1 < ladder.size()) {
+      const OptimizeOptions preset = OptimizeOptions::ForQuality(ladder[i]);
+      stage_options.quality = preset.quality;
+      stage_options.knot_spacing_s = preset.knot_spacing_s;
+      stage_options.max_iterations = preset.max_iterations;
+      stage_options.function_tolerance = preset.function_tolerance;
+      stage_options.visibility_rounds = preset.visibility_rounds;
+    }
+    PlanOptimizer stage(input, i == 0 ? input.plan : kept.plan, stage_options, scene, targets ? &*targets : nullptr);
+    OptimizeResult result = stage.Run();
+    if (i == 0) targets = stage.samples();
+    PlanOptimizer judge(input, result.plan, stage_options, scene, &*targets);
+    const double objective = judge.Objective();
+    iterations += result.report["solver"]["iterations"].get<int>();
+    solve_s += result.report["solver"]["time_s"].get<double>();
+    const bool keep = i == 0 || objective <= kept_objective;
+    Json entry = Json::object();
+    entry["quality"] = OptimizeQualityName(ladder[i]);
+    entry["objective"] = RoundToDecimals(objective, 9);
+    entry["alpha"] = result.report["guard"]["alpha"];
+    entry["kept"] = keep;
+    stages.push_back(entry);
+    if (i == 0) first_report = result.report;
+    if (!keep) continue;
+    kept = std::move(result);
+    kept_objective = objective;
+  }
+  // The report of the result kept, its costs before taken on the plan as given, the ladder and the work
+  // of every stage.
+  Json& report = kept.report;
+  report["quality"] = OptimizeQualityName(options.quality);
+  for (auto& [name, term] : report["terms"].items()) {
+    if (first_report["terms"].contains(name)) term["before"] = first_report["terms"][name]["before"];
+  }
+  report["total"]["before"] = first_report["total"]["before"];
+  report["solver"]["iterations"] = iterations;
+  report["solver"]["time_s"] = RoundToDecimals(solve_s, 4);
+  report["objective"] = RoundToDecimals(kept_objective, 9);
+  report["ladder"] = stages;
+  kept.plan.optimized["quality"] = OptimizeQualityName(options.quality);
+  kept.plan.optimized["cost_before"] = first_report["total"]["before"];
+  kept.plan.optimized["iterations"] = iterations;
+  return kept;
 }
 
 }  // namespace cinepath::optimizer

@@ -6,8 +6,10 @@
 // (optimizer/knot_spline.h); a plan with nothing to improve has zero cost and comes back unchanged.
 // Only what the plan asks for is modelled: no clearance or occlusion terms without a mesh, no depth of
 // field terms for a shot without goals, and a lens channel no term touches stays exactly as planned.
-// The output is a plan of the same schema, its feasibility recomputed with `plan`'s own check.
-// Deterministic: one solver thread, terms added in sample order.
+// The output is a plan of the same schema, its feasibility recomputed with `plan`'s own check. It is never
+// worse than the input in any hard limit at any sample (optimizer/limit_guard.h), and a dearer preset runs
+// the cheaper ones first and keeps its own result only when its objective is no larger (docs/optimize.md,
+// "The quality ladder"). Deterministic: one solver thread, terms added in sample order.
 #pragma once
 
 #include <string>
@@ -44,8 +46,9 @@ struct OptimizeInput {
 struct OptimizeResult {
   Trajectory plan;  // optimized, with `optimized` filled in and feasibility recomputed
   Json report;      // report.json (docs/optimize.md, "Report")
-  // Empty when every hard limit holds and every frame sees its subject; else what breaks, with its
-  // time range (what --strict refuses).
+  // Empty when every hard limit holds and every frame sees its subject; else the first limit still broken,
+  // with its shot, time range, worst value and a hint (report.json's guard.still_broken; what --strict
+  // refuses).
   std::string failure;
 };
 

@@ -28,7 +28,7 @@ void CheckFinite(const TrajectorySample& s, size_t k, const std::string& source)
 
 }  // namespace
 
-PlanSamples SplitPlan(const Trajectory& plan, double knot_spacing_s, const std::string& source) {
+PlanSamples SplitPlan(const Trajectory& plan, double knot_spacing_s, const std::string& source, bool allow_refit) {
   const size_t n = plan.samples.size();
   if (n == 0) throw InputError(source + ": samples: the plan has no samples");
   PlanSamples out;
@@ -113,7 +113,7 @@ PlanSamples SplitPlan(const Trajectory& plan, double knot_spacing_s, const std::
   }
   // Groups whose planned path breaks the acceleration or jerk limit start from their C2 fit.
   for (SampleGroup& g : out.groups) {
-    for (size_t i = g.first_sample; i < g.end_sample && !g.refit; ++i) {
+    for (size_t i = g.first_sample; i < g.end_sample && allow_refit && !g.refit; ++i) {
       const SampleBase& b = out.bases[i];
       g.refit = b.acceleration_m_s2.head<2>().norm() > plan.drone.max_acceleration_m_s2 ||
                 (b.has_jerk && b.jerk_m_s3.norm() > plan.drone.max_jerk_m_s3);

@@ -31,8 +31,10 @@ struct PlanSamples {
 };
 
 // InputError (naming `source`) for a plan the optimizer cannot read: no samples, a sample naming an
-// unknown shot, non-finite values.
-PlanSamples SplitPlan(const Trajectory& plan, double knot_spacing_s, const std::string& source);
+// unknown shot, non-finite values. Without `allow_refit` no group is refit: every base is the plan's own
+// sample (a stage that starts from a cheaper preset's result, whose change must be zero there).
+PlanSamples SplitPlan(const Trajectory& plan, double knot_spacing_s, const std::string& source,
+                      bool allow_refit = true);
 
 // Least-squares control points of the group's spline through the planned positions (with a tiny
 // third-difference penalty, so that knots no sample pins stay put): what a refit group starts from.

@@ -22,7 +22,9 @@ struct SurfacePoint {
   double distance_m = 0;
   Eigen::Vector3d normal_enu = Eigen::Vector3d::UnitZ();  // unit normal of the closest face (counter-clockwise front)
   // The query point lies behind the closest face ((p - q) . n < 0): inside a closed, outward-facing solid,
-  // or under terrain. A distance cost then pushes towards q, not away from it.
+  // or under terrain. A distance cost then pushes towards q, not away from it. Never for a face the mesh
+  // also holds with the other winding (double-sided geometry): such a sheet has no inside, and its
+  // normal is given on the point's side.
   bool behind = false;
 };
 

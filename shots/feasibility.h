@@ -9,6 +9,7 @@
 // last are not part of the plan.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/ground.h"
@@ -23,6 +24,20 @@ struct LensRequest {
   double f_number = 0;
 };
 
+// One limit measured at every sample: `values[k]` in `unit`, NaN where it is not measured (a rate across
+// a cut, the terrain off the mesh). A minimum (`is_minimum`) is broken below `limit_value`, a maximum
+// above it; Excess(k) is by how much (0 where it holds or is not measured, at most 1e300).
+struct LimitSeries {
+  std::string limit, unit;
+  double limit_value = 0;
+  bool is_minimum = false;
+  std::vector<double> values;
+  double Excess(size_t k) const;
+};
+
+// The samples where `series` is broken merged into time ranges within a shot, each with its worst value.
+std::vector<FeasibilityViolation> ViolationsOf(const LimitSeries& series, const Trajectory& plan);
+
 // `cut_before[i]` is true when sample i starts a shot joined by an explicit cut (no derivative
 // crosses it). `requests` may be empty (lens ranges are then checked on the samples themselves).
 // `ground` (the scene's mesh, or null) adds terrain_clearance: the camera at least the drone's
@@ -30,5 +45,8 @@ struct LensRequest {
 // FeasibilityReport::skipped.
 FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<bool>& cut_before,
                                    const std::vector<LensRequest>& requests, const Ground* ground = nullptr);
+// The same limits, in the same order, sample by sample (what the optimizer compares, input against output).
+std::vector<LimitSeries> MeasureLimits(const Trajectory& plan, const std::vector<bool>& cut_before,
+                                       const std::vector<LensRequest>& requests, const Ground* ground = nullptr);
 
 }  // namespace cinepath::shots

@@ -13,9 +13,13 @@
 #include "scene/surface_distance.h"
 #include "shots/planner.h"
 #include "shots/shot_list.h"
+#include "tests/optimizer/test_scenes.h"
 
 namespace cinepath::optimizer {
 namespace {
+
+using test_scenes::AddBox;
+using test_scenes::PlanFromShots;
 
 constexpr double kFps = 30;
 
@@ -83,23 +87,6 @@ OptimizeResult Optimize(const Trajectory& plan, const scene::SceneMesh* mesh = n
   in.mesh = mesh;
   in.scene_source = "test_scene.json";
   return OptimizePlan(in, OptimizeOptions::ForQuality(quality));
-}
-
-Trajectory PlanFromShots(const std::string& shots_json) {
-  return shots::PlanShots(shots::ParseShotList(Json::parse(shots_json), "test_shots.json"));
-}
-
-// An axis-aligned box as 12 triangles (outward faces).
-void AddBox(scene::SceneMesh* mesh, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  const uint32_t b = mesh->positions_enu_m.size();
-  for (int i = 0; i < 8; ++i) {
-    mesh->positions_enu_m.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
-  }
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : quads) {
-    mesh->faces.push_back({b + q[0], b + q[1], b + q[2]});
-    mesh->faces.push_back({b + q[0], b + q[2], b + q[3]});
-  }
 }
 
 const char* kOrbitShots = R"({"schema": "cinepath.shots/1", "frame_rate_hz": 30,

@@ -1,5 +1,8 @@
 #include "shots/feasibility.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/drone_profiles.h"
@@ -39,6 +42,44 @@ TEST(Feasibility, ClimbRateRangesSplitByShot) {
   EXPECT_EQ(report.violations[1].shot, "b");
   EXPECT_NEAR(report.violations[1].end_time_s, 2.0, 1e-12);
   EXPECT_TRUE(CheckFeasibility(Climb(2.9, 21), std::vector<bool>(21, false), {}).feasible());
+}
+
+TEST(Feasibility, EveryLimitSampleBySample) {
+  // From sample 5 to 10 it climbs at 4 m/s (over the 3 m/s limit), else at 1 m/s; a cut before sample 15.
+  Trajectory plan = Climb(1.0, 20);
+  for (size_t i = 5; i < 20; ++i) plan.samples[i].position_enu_m.z() += 0.3 * (std::min<size_t>(i, 10) - 5);
+  std::vector<bool> cut(20, false);
+  cut[15] = true;
+  const std::vector<LimitSeries> series = MeasureLimits(plan, cut, {});
+  const auto climb = std::find_if(series.begin(), series.end(), [](const auto& s) { return s.limit == "climb_rate"; });
+  ASSERT_NE(climb, series.end());
+  ASSERT_EQ(climb->values.size(), 20u);
+  for (size_t i = 0; i < 20; ++i) {
+    // Central differences: samples 6-9 see the fast climb on both sides, 5 and 10 on one side.
+    const double expected = i >= 6 && i <= 9 ? 4.0 : (i == 5 || i == 10 ? 2.5 : 1.0);
+    EXPECT_NEAR(climb->values[i], expected, 1e-9) << i;
+    EXPECT_NEAR(climb->Excess(i), std::max(0.0, expected - 3.0), 1e-9) << i;
+  }
+  // The terrain is not measured without a mesh: NaN, never broken.
+  const auto terrain =
+      std::find_if(series.begin(), series.end(), [](const auto& s) { return s.limit == "terrain_clearance"; });
+  ASSERT_NE(terrain, series.end());
+  EXPECT_TRUE(std::isnan(terrain->values[3]));
+  EXPECT_EQ(terrain->Excess(3), 0.0);
+  // The report is the series merged into ranges.
+  const auto ranges = ViolationsOf(*climb, plan);
+  ASSERT_EQ(ranges.size(), 1u);
+  EXPECT_NEAR(ranges[0].start_time_s, 0.6, 1e-12);
+  EXPECT_NEAR(ranges[0].end_time_s, 0.9, 1e-12);
+  int climbs = 0;
+  for (const auto& v : CheckFeasibility(plan, cut, {}).violations) {
+    if (v.limit != "climb_rate") continue;
+    ++climbs;
+    EXPECT_EQ(v.start_time_s, ranges[0].start_time_s);
+    EXPECT_EQ(v.end_time_s, ranges[0].end_time_s);
+    EXPECT_EQ(v.worst_value, ranges[0].worst_value);
+  }
+  EXPECT_EQ(climbs, 1);
 }
 
 TEST(Feasibility, NothingIsDifferentiatedAcrossACut) {
