@@ -154,6 +154,15 @@ GroundBackdrop PreviewScene::BorderGround() const {
     sum[size_t(sector)] += SurfaceColor(at_centroid).cast<double>();
     ++count[size_t(sector)];
   }
+  std::vector<double> radius;
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < border_faces.size(); ++i) radius.push_back((centroid[i] - centre).norm());
+  for (int k = 0; k < n; ++k) total += sum[size_t(k)];
+  if (!radius.empty()) {
+    std::nth_element(radius.begin(), radius.begin() + radius.size() / 2, radius.end());
+    ground.border_radius_m = radius[radius.size() / 2];
+    ground.mean_color = (total / double(border_faces.size())).cast<float>();
+  }
   // Empty sectors take the distance-weighted mean of the nearest filled one on each side.
   for (int k = 0; k < n; ++k) {
     if (count[size_t(k)] > 0) {
@@ -177,7 +186,9 @@ Eigen::Vector3f GroundBackdrop::ColorAt(const Eigen::Vector3d& position) const {
   const double k0 = std::floor(s);
   const float w = float(s - k0);
   const int a = (int(k0) % kSectors + kSectors) % kSectors, b = (a + 1) % kSectors;
-  return (1 - w) * sector_color[size_t(a)] + w * sector_color[size_t(b)];
+  const Eigen::Vector3f ring = (1 - w) * sector_color[size_t(a)] + w * sector_color[size_t(b)];
+  const float fade = float(1.0 - std::exp(-std::max(0.0, d.norm() - border_radius_m) / blend_m));
+  return ring + fade * (mean_color - ring);
 }
 
 PreviewScene::~PreviewScene() = default;

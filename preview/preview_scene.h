@@ -48,13 +48,18 @@ struct TraceHit {
 // The ground past the mesh's edge (Backdrop::kGround): the plane z = height_m, the mesh's border ring
 // carried outward: seen from the border's centre, each 5-degree sector of azimuth takes the mean linear
 // colour of the border faces in it (an empty sector its nearest neighbours'), so the sand beyond the sand
-// and the grass beyond the grass; hazed toward the horizon's sky colour with distance (a visibility of
-// `visibility_m`: the haze takes 1 - exp(-3 d / visibility) of the colour).
+// and the grass beyond the grass, fading into their mean farther out; hazed toward the horizon's sky colour with
+// distance (a visibility of `visibility_m`: the haze takes 1 - exp(-3 d / visibility) of the colour).
 struct GroundBackdrop {
   static constexpr int kSectors = 72;
   double height_m = 0;
   Eigen::Vector2d centre_m = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector3f> sector_color = std::vector<Eigen::Vector3f>(kSectors, Eigen::Vector3f::Constant(0.5f));
+  // Farther out than the border's median radius about the centre, the sectors' colours fade into their
+  // mean over `blend_m` (1 - exp(-(r - radius) / blend)), so the ring does not fan out to the horizon.
+  double border_radius_m = 0;
+  double blend_m = 150;
+  Eigen::Vector3f mean_color = Eigen::Vector3f::Constant(0.5f);
   double visibility_m = 5000;
   Eigen::Vector3f ColorAt(const Eigen::Vector3d& position) const;
 };
