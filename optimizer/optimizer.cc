@@ -12,6 +12,7 @@
 
 #include <ceres/ceres.h>
 
+#include "core/ceres_logging.h"
 #include "core/error.h"
 #include "core/geodesy.h"
 #include "core/ground.h"
@@ -826,6 +827,7 @@ OptimizeResult PlanOptimizer::Run() {
 }  // namespace
 
 OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options) {
+  QuietCeresLogging();
   PlanOptimizer optimizer(input, options);
   return optimizer.Run();
 }
