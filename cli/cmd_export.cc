@@ -92,6 +92,7 @@ class ExportCommand : public Command {
     options.Check();  // option errors before any file is read
 
     TeamPlan team = ReadTeamPlanFile(plan_path_);
+    PrintWarnings("export", TeamPlanNotes(team));
     if (!team.single) return RunTeam(team, options);
     const Trajectory plan = std::move(team.flights.front().plan);
     std::vector<std::string> inputs = {plan_path_};

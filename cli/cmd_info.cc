@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/command.h"
+#include "cli/common_options.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json.h"
@@ -28,6 +29,7 @@ class InfoCommand : public Command {
     const std::string text = ReadFileToString(path_);
     if (IsTeamPlan(text)) {
       const TeamPlan plan = ReadTeamPlanFile(path_);
+      PrintWarnings("info", TeamPlanNotes(plan));
       std::cout << (json_ ? DumpJson(TeamPlanSummaryJson(plan)) : TeamPlanSummaryText(plan));
       return 0;
     }

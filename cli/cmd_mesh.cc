@@ -138,6 +138,7 @@ class MeshCommand : public Command {
     options_.output_dir = output_dir_;
     if (!for_plan_path_.empty()) {
       options_.for_plan = ReadPlanFile(for_plan_path_);  // InputError naming the file
+      PrintWarnings("mesh", options_.for_plan->notes);
       options_.for_plan_path = for_plan_path_;
     }
 

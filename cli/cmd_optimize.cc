@@ -41,6 +41,7 @@ class OptimizeCommand : public Command {
     TeamOptimizeInput input;
     input.plan = ReadTeamPlanFile(plan_path_);
     input.plan_source = plan_path_;
+    PrintWarnings("optimize", TeamPlanNotes(input.plan));
     std::vector<std::string> inputs = {plan_path_};
     scene::SceneMesh mesh;
     if (!scene_path_.empty()) {

@@ -96,6 +96,7 @@ class RenderCommand : public Command {
     };
     const RenderSummary summary = RenderPlan(plan_path_, scene_path_, options_, log);
     if (progress) progress->Finish();
+    PrintWarnings("render", summary.notes);
     common_.WriteDepfileIfAsked(summary.outputs, summary.inputs);
     return 0;
   }

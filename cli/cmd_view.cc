@@ -32,6 +32,7 @@ class ViewCommand : public Command {
     if (!scene_path_.empty()) options.scene = scene_path_;
     if (!frames_dir_.empty()) options.frames_dir = frames_dir_;
     const viewer::PrevisPage page = viewer::BuildPrevisPage(options);
+    PrintWarnings("view", page.notes);
     WriteFileAtomic(output_path_, page.html);
     common_.WriteDepfileIfAsked({output_path_}, page.inputs);
     return 0;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,12 @@ inline const CLI::Validator& PositiveFinite() {
       },
       "POSITIVE");
   return v;
+}
+
+// "cinepath <command>: warning: <line>" on stderr for each line (a plan's drone field taken from its
+// profile, core/plan_file.h TeamPlanNotes).
+inline void PrintWarnings(const std::string& command, const std::vector<std::string>& lines) {
+  for (const auto& line : lines) std::cerr << "cinepath " << command << ": warning: " << line << "\n";
 }
 
 class CommonOptions {

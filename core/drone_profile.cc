@@ -1,6 +1,7 @@
 #include "core/drone_profile.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cinepath {
 
@@ -57,15 +58,21 @@ Json DroneProfileToJson(const DroneProfile& profile, bool team_fields) {
 
 namespace {
 
+// Every limit is metres, seconds or degrees of one aircraft: beyond 1e7 in magnitude, or a positive limit
+// (a divisor) under 1e-6, a value only overflows the costs and rates computed with it (docs/drones.md).
+constexpr double kMaxProfileValue = 1e7;
+constexpr double kMinPositiveProfileValue = 1e-6;
+
 FixedLens ReadLens(const JsonField& f) {
   f.RejectUnknownKeys(
       {"min_focal_length_mm", "max_focal_length_mm", "min_f_number", "max_f_number", "min_focus_distance_m"});
   FixedLens lens;
-  lens.min_focal_length_mm = f["min_focal_length_mm"].AsPositive();
-  lens.max_focal_length_mm = f["max_focal_length_mm"].AsPositive();
-  lens.min_f_number = f["min_f_number"].AsPositive();
-  lens.max_f_number = f["max_f_number"].AsPositive();
-  lens.min_focus_distance_m = f["min_focus_distance_m"].AsPositive();
+  // The ranges plan.json's camera block allows (docs/optics.md, "Domain of the inputs").
+  lens.min_focal_length_mm = f["min_focal_length_mm"].AsDoubleIn(0.1, 1e5);
+  lens.max_focal_length_mm = f["max_focal_length_mm"].AsDoubleIn(0.1, 1e5);
+  lens.min_f_number = f["min_f_number"].AsDoubleIn(0.1, 1000);
+  lens.max_f_number = f["max_f_number"].AsDoubleIn(0.1, 1000);
+  lens.min_focus_distance_m = f["min_focus_distance_m"].AsDoubleIn(1e-3, 1e7);
   if (lens.max_focal_length_mm < lens.min_focal_length_mm)
     f["max_focal_length_mm"].Fail("must be >= min_focal_length_mm");
   if (lens.max_f_number < lens.min_f_number) f["max_f_number"].Fail("must be >= min_f_number");
@@ -96,9 +103,12 @@ void ApplyDroneProfileJson(const JsonField& object, DroneProfile* profile,
     if (!field) continue;
     using C = DroneProfileField::Check;
     if (f.number) {
-      profile->*f.number = f.check == C::kPositive      ? field->AsPositive()
-                           : f.check == C::kNonNegative ? field->AsNonNegative()
-                                                        : field->AsDouble();
+      const double v = f.check == C::kPositive      ? field->AsPositive()
+                       : f.check == C::kNonNegative ? field->AsNonNegative()
+                                                    : field->AsDouble();
+      if (!(std::fabs(v) <= kMaxProfileValue)) field->Fail("must lie within [-1e7, 1e7]");
+      if (f.check == C::kPositive && !(v >= kMinPositiveProfileValue)) field->Fail("must be at least 1e-6");
+      profile->*f.number = v;
     } else {
       const int64_t v = field->AsInt();
       if (v < (f.check == C::kPositive ? 1 : 0) || v > 1'000'000) field->Fail("out of range");

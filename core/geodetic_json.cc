@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/number_format.h"
+
 namespace cinepath {
 
 Geodetic GeodeticFromJson(const JsonField& f) {
@@ -14,6 +16,19 @@ Geodetic GeodeticFromJson(const JsonField& f) {
   if (g.lon_deg < -180 || g.lon_deg > 180) f["lon_deg"].Fail("must be in [-180, 180]");
   if (g.height_m < -12000 || g.height_m > 100000) f["height_m"].Fail("must be in [-12000, 100000] m");
   return g;
+}
+
+double EnuCoordinateFromJson(const JsonField& f) {
+  const double v = f.AsDouble();
+  if (!(std::fabs(v) <= kMaxEnuCoordinateM)) {
+    f.Fail("must lie within 1e7 m of the origin, got " + FormatSignificant(v));
+  }
+  return v;
+}
+
+Eigen::Vector3d EnuPositionFromJson(const JsonField& f) {
+  if (!f.IsArray() || f.size() != 3) f.Fail("expected [x, y, z]");
+  return {EnuCoordinateFromJson(f.At(0)), EnuCoordinateFromJson(f.At(1)), EnuCoordinateFromJson(f.At(2))};
 }
 
 Json GeodeticToJson(const Geodetic& g, int latlon_decimals, int height_decimals) {

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/geodetic_json.h"
+#include "core/number_format.h"
 #include "core/version.h"
 
 namespace cinepath {
@@ -63,26 +64,67 @@ Json CameraJson(const CameraSpec& c) {
 
 // ---- reading -------------------------------------------------------------------------------
 
-Eigen::Vector3d ReadVec3(const JsonField& f) {
-  if (!f.IsArray() || f.size() != 3) f.Fail("expected [x, y, z]");
-  return {f.At(0).AsDouble(), f.At(1).AsDouble(), f.At(2).AsDouble()};
+// The domains every number read here must lie in (docs/plan-format.md, "Domains"), so that no stage
+// computes with a value that overflows, divides by zero or has no thin-lens image (docs/optics.md,
+// "Domain of the inputs"). A number outside is refused where it is read, naming its JSON path.
+constexpr double kMaxCoordinateM = kMaxEnuCoordinateM;  // positions, heights (core/geodetic_json.h), lengths
+constexpr double kMaxTimeS = 1e6;                       // times in [0, 1e6] s (11.6 days)
+constexpr double kMinTimeStepS = 1e-6;                  // samples at least 1 us apart (1000 Hz is 1 ms)
+constexpr double kMaxAngleDeg = 360;                    // headings and gimbal angles: |v| <= 360 deg
+constexpr double kQuaternionTolerance = 1e-3;           // | |q| - 1 | above this is not a rotation
+constexpr double kMinFocalLengthMm = 0.1, kMaxFocalLengthMm = 1e5;
+constexpr double kMinFNumber = 0.1, kMaxFNumber = 1000;
+constexpr double kMinFocusM = 1e-3, kMaxFocusM = 1e7;  // kMaxFocusM: the camera's min_focus_distance_m
+constexpr double kInfiniteFocusM = 1e15;               // a focus distance beyond is read as infinity
+constexpr double kMinShutterS = 1e-6, kMaxShutterS = 60;
+constexpr double kMinCocMm = 1e-4, kMaxCocMm = 10;
+
+// A positive length, count or rate up to the coordinate bound.
+double ReadPositive(const JsonField& f) {
+  const double v = f.AsPositive();
+  if (!(v <= kMaxCoordinateM)) f.Fail("must be in (0, 1e7], got " + FormatSignificant(v));
+  return v;
 }
 
+double ReadTime(const JsonField& f) { return f.AsDoubleIn(0, kMaxTimeS); }
+
+double ReadAngle(const JsonField& f) { return f.AsDoubleIn(-kMaxAngleDeg, kMaxAngleDeg); }
+
+// Unit norm within kQuaternionTolerance: renormalized (values rounded to 1e-9 stay as written), refused
+// beyond it.
 Eigen::Quaterniond ReadQuat(const JsonField& f) {
   if (!f.IsArray() || f.size() != 4) f.Fail("expected [w, x, y, z]");
   Eigen::Quaterniond q(f.At(0).AsDouble(), f.At(1).AsDouble(), f.At(2).AsDouble(), f.At(3).AsDouble());
   const double n = q.norm();
-  if (!(n > 0.5 && n < 1.5)) f.Fail("not a unit quaternion (norm " + std::to_string(n) + ")");
-  if (std::fabs(n - 1.0) > 1e-8) q.coeffs() /= n;  // values rounded to 1e-9 stay as written
+  if (!(std::fabs(n - 1.0) <= kQuaternionTolerance)) {
+    f.Fail("not a unit quaternion (norm " + FormatSignificant(n) + "; must be within 0.001 of 1)");
+  }
+  if (std::fabs(n - 1.0) > 1e-8) q.coeffs() /= n;
   return q;
 }
 
-double ReadFocus(const JsonField& parent, const char* key) {
+double ReadFocalLength(const JsonField& f) { return f.AsDoubleIn(kMinFocalLengthMm, kMaxFocalLengthMm); }
+double ReadFNumber(const JsonField& f) { return f.AsDoubleIn(kMinFNumber, kMaxFNumber); }
+
+// Focus distance (null = infinity), beyond the focal length: s <= f has no real image (docs/optics.md).
+// Beyond kInfiniteFocusM it is infinity: `plan` interpolates focus in dioptres, so a rack to infinity
+// passes through distances as large as the last step's 1/d (1.6e8 m in examples/keyframes_shots.json),
+// and no blur differs from infinity's there by 1e-12 px, while a product with such a distance (a ray to
+// the plane of focus) would overflow.
+double ReadFocus(const JsonField& parent, const char* key, double focal_length_mm) {
   if (!parent.Has(key)) {
     if (!parent.node().contains(key)) parent[key];   // throws "missing"
     return std::numeric_limits<double>::infinity();  // null = infinity
   }
-  return parent[key].AsPositive();
+  const JsonField field = parent[key];
+  const double s = field.AsDouble();
+  if (s > kInfiniteFocusM) return std::numeric_limits<double>::infinity();
+  if (!(s >= kMinFocusM)) field.Fail("must be at least 0.001 m (null for infinity), got " + FormatSignificant(s));
+  if (!(s * 1e3 > focal_length_mm)) {
+    field.Fail(FormatSignificant(s) + " m is inside the focal length " + FormatSignificant(focal_length_mm) +
+               " mm (no real image)");
+  }
+  return s;
 }
 
 CameraSpec ReadCamera(const JsonField& f) {
@@ -97,23 +139,45 @@ CameraSpec ReadCamera(const JsonField& f) {
   };
   c.width_px = pixels("width_px");
   c.height_px = pixels("height_px");
-  c.min_focal_length_mm = f["min_focal_length_mm"].AsDoubleIn(0.1, 1e5);
-  c.max_focal_length_mm = f["max_focal_length_mm"].AsDoubleIn(0.1, 1e5);
-  c.min_f_number = f["min_f_number"].AsDoubleIn(0.1, 1000);
-  c.max_f_number = f["max_f_number"].AsDoubleIn(0.1, 1000);
-  c.min_focus_distance_m = f["min_focus_distance_m"].AsDoubleIn(1e-3, 1e7);
-  c.coc_mm = f.DoubleOr("coc_mm", c.coc_mm);
-  c.max_focal_rate_mm_s = f.DoubleOr("max_focal_rate_mm_s", c.max_focal_rate_mm_s);
-  c.max_focus_rate_m_s = f.DoubleOr("max_focus_rate_m_s", c.max_focus_rate_m_s);
-  c.max_aperture_rate_stops_s = f.DoubleOr("max_aperture_rate_stops_s", c.max_aperture_rate_stops_s);
+  c.min_focal_length_mm = ReadFocalLength(f["min_focal_length_mm"]);
+  c.max_focal_length_mm = ReadFocalLength(f["max_focal_length_mm"]);
+  if (c.max_focal_length_mm < c.min_focal_length_mm) f["max_focal_length_mm"].Fail("must be >= min_focal_length_mm");
+  c.min_f_number = ReadFNumber(f["min_f_number"]);
+  c.max_f_number = ReadFNumber(f["max_f_number"]);
+  if (c.max_f_number < c.min_f_number) f["max_f_number"].Fail("must be >= min_f_number");
+  c.min_focus_distance_m = f["min_focus_distance_m"].AsDoubleIn(kMinFocusM, kMaxFocusM);
+  if (auto coc = f.Find("coc_mm")) {  // 0 = from the filmback
+    c.coc_mm = coc->AsDoubleIn(0, kMaxCocMm);
+    if (c.coc_mm != 0 && c.coc_mm < kMinCocMm) coc->Fail("must be 0 (from the filmback) or in [0.0001, 10]");
+  }
+  if (auto r = f.Find("max_focal_rate_mm_s")) c.max_focal_rate_mm_s = ReadPositive(*r);
+  if (auto r = f.Find("max_focus_rate_m_s")) c.max_focus_rate_m_s = ReadPositive(*r);
+  if (auto r = f.Find("max_aperture_rate_stops_s")) c.max_aperture_rate_stops_s = ReadPositive(*r);
   return c;
 }
 
-// The drone block: the registry's profile of that name (or the default one) with every field the
-// file gives applied, so plans written before a field existed read the same limits.
-DroneProfile ReadDrone(const JsonField& f) {
+// The drone block: the registry's profile of that name with every field the file gives applied, so
+// plans written before a field existed read the same limits. A field the block lacks is the profile's,
+// and `notes` says so; a block naming no registry profile must give every field (InputError naming the
+// first it lacks): there is no profile to take it from, and no default is a safe limit. The team fields
+// are only in "cinepath.plan/2" blocks (`team_fields`).
+DroneProfile ReadDrone(const JsonField& f, bool team_fields, std::vector<std::string>* notes) {
+  if (!f.IsObject()) f.Fail("expected an object");
   const std::string name = f.StringOr("name", DefaultDroneProfile().name);
   const std::optional<DroneProfile> found = FindDroneProfile(name);  // an old name reads as its new one
+  if (!f.Has("name")) notes->push_back(Located(f.Where() + ".name", "missing; the profile \"" + name + "\" is used"));
+  for (const DroneProfileField& field : DroneProfileFields()) {
+    if ((field.team && !team_fields) || f.Has(field.key)) continue;
+    const std::string where = f.Where() + "." + field.key;
+    if (!found) {
+      throw InputError(Located(where, "missing, and \"" + name +
+                                          "\" is not a drone profile to take it from (docs/drones.md lists the "
+                                          "profiles and the fields)"));
+    }
+    const double value = field.number ? (*found).*field.number : (*found).*field.integer;
+    notes->push_back(Located(
+        where, "missing; the profile \"" + found->name + "\"'s value " + FormatSignificant(value) + " is used"));
+  }
   DroneProfile d = found.value_or(DroneProfile{});
   ApplyDroneProfileJson(f, &d);
   d.name = found ? found->name : name;
@@ -149,9 +213,9 @@ ShotIntent ReadIntent(const JsonField& f) {
   f.RejectUnknownKeys({"frame_height_fraction", "frame_height_fraction_end", "screen_position", "sharp",
                        "background_blur_px", "background_distance_m", "hold", "max_deviation_m"});
   ShotIntent intent;
-  if (f.Has("frame_height_fraction")) intent.frame_height_fraction = f["frame_height_fraction"].AsPositive();
+  if (f.Has("frame_height_fraction")) intent.frame_height_fraction = ReadPositive(f["frame_height_fraction"]);
   if (f.Has("frame_height_fraction_end"))
-    intent.frame_height_fraction_end = f["frame_height_fraction_end"].AsPositive();
+    intent.frame_height_fraction_end = ReadPositive(f["frame_height_fraction_end"]);
   if (auto sp = f.Find("screen_position")) {
     if (sp->size() != 2) sp->Fail("expected [x, y]");
     intent.screen_position = {sp->At(0).AsDoubleIn(0, 1), sp->At(1).AsDoubleIn(0, 1)};
@@ -159,10 +223,10 @@ ShotIntent ReadIntent(const JsonField& f) {
   if (auto sharp = f.Find("sharp")) {
     for (const auto& e : sharp->Elements()) intent.sharp.push_back(e.AsString());
   }
-  if (f.Has("background_blur_px")) intent.background_blur_px = f["background_blur_px"].AsPositive();
-  if (f.Has("background_distance_m")) intent.background_distance_m = f["background_distance_m"].AsPositive();
+  if (f.Has("background_blur_px")) intent.background_blur_px = ReadPositive(f["background_blur_px"]);
+  if (f.Has("background_distance_m")) intent.background_distance_m = ReadPositive(f["background_distance_m"]);
   if (auto hold = f.Find("hold")) intent.hold = ReadHoldList(*hold);
-  if (f.Has("max_deviation_m")) intent.max_deviation_m = f["max_deviation_m"].AsNonNegative();
+  if (f.Has("max_deviation_m")) intent.max_deviation_m = f["max_deviation_m"].AsDoubleIn(0, kMaxCoordinateM);
   return intent;
 }
 
@@ -291,9 +355,15 @@ namespace {
 
 // A flight's keys after the header (camera, drone, shots, samples, ...), into `plan` (origin and frame
 // rate already set).
-void ReadFlight(const JsonField& root, Trajectory& plan) {
+void ReadFlight(const JsonField& root, bool team_fields, Trajectory& plan) {
   plan.camera = ReadCamera(root["camera"]);
-  if (auto d = root.Find("drone")) plan.drone = ReadDrone(*d);
+  if (auto d = root.Find("drone")) {
+    plan.drone = ReadDrone(*d, team_fields, &plan.notes);
+  } else {
+    plan.drone = DefaultDroneProfile();
+    const std::string where = Located(root.source(), root.path().empty() ? "drone" : root.path() + ".drone");
+    plan.notes.push_back(Located(where, "missing; the profile \"" + plan.drone.name + "\" is used"));
+  }
 
   for (const auto& f : root["shots"].Elements()) {
     ShotSpan s;
@@ -301,34 +371,38 @@ void ReadFlight(const JsonField& root, Trajectory& plan) {
     s.type = f["type"].AsString();
     if (auto subj = f.Find("subject")) s.subject = subj->AsString();
     s.transition = f.StringOr("transition", "continuous");
-    s.start_time_s = f["start_time_s"].AsDouble();
-    s.end_time_s = f["end_time_s"].AsDouble();
+    s.start_time_s = ReadTime(f["start_time_s"]);
+    s.end_time_s = ReadTime(f["end_time_s"]);
     if (s.end_time_s < s.start_time_s) f["end_time_s"].Fail("must be >= start_time_s");
     if (auto intent = f.Find("intent")) s.intent = ReadIntent(*intent);
     plan.shots.push_back(std::move(s));
   }
 
-  const auto samples = root["samples"].Elements();
+  const JsonField samples_field = root["samples"];
+  const auto samples = samples_field.Elements();
+  if (samples.empty()) samples_field.Fail("must hold at least one sample");
   plan.samples.reserve(samples.size());
   for (const auto& f : samples) {
     TrajectorySample s;
-    s.time_s = f["time_s"].AsDouble();
-    if (!plan.samples.empty() && !(s.time_s > plan.samples.back().time_s)) f["time_s"].Fail("times must increase");
-    s.position_enu_m = ReadVec3(f["position_enu_m"]);
+    s.time_s = ReadTime(f["time_s"]);
+    if (!plan.samples.empty() && !(s.time_s - plan.samples.back().time_s >= kMinTimeStepS)) {
+      f["time_s"].Fail("times must increase (by at least 1e-6 s)");
+    }
+    s.position_enu_m = EnuPositionFromJson(f["position_enu_m"]);
     if (plan.origin) {
-      s.geodetic.lat_deg = f["lat_deg"].AsDouble();
-      s.geodetic.lon_deg = f["lon_deg"].AsDouble();
-      s.geodetic.height_m = f["height_m"].AsDouble();
+      s.geodetic.lat_deg = f["lat_deg"].AsDoubleIn(-90, 90);
+      s.geodetic.lon_deg = f["lon_deg"].AsDoubleIn(-180, 180);
+      s.geodetic.height_m = EnuCoordinateFromJson(f["height_m"]);
     }
     s.world_from_camera = ReadQuat(f["world_from_camera"]);
-    s.drone_heading_deg = f["drone_heading_deg"].AsDouble();
-    s.gimbal_pitch_deg = f["gimbal_pitch_deg"].AsDouble();
-    s.gimbal_roll_deg = f.DoubleOr("gimbal_roll_deg", 0.0);
-    s.gimbal_yaw_deg = f.DoubleOr("gimbal_yaw_deg", 0.0);
-    s.focal_length_mm = f["focal_length_mm"].AsDoubleIn(0.1, 1e5);
-    s.focus_distance_m = ReadFocus(f, "focus_distance_m");
-    s.f_number = f["f_number"].AsDoubleIn(0.1, 1000);
-    s.shutter_s = f["shutter_s"].AsDoubleIn(1e-6, 60);
+    s.drone_heading_deg = ReadAngle(f["drone_heading_deg"]);
+    s.gimbal_pitch_deg = ReadAngle(f["gimbal_pitch_deg"]);
+    if (auto a = f.Find("gimbal_roll_deg")) s.gimbal_roll_deg = ReadAngle(*a);
+    if (auto a = f.Find("gimbal_yaw_deg")) s.gimbal_yaw_deg = ReadAngle(*a);
+    s.focal_length_mm = ReadFocalLength(f["focal_length_mm"]);
+    s.focus_distance_m = ReadFocus(f, "focus_distance_m", s.focal_length_mm);
+    s.f_number = ReadFNumber(f["f_number"]);
+    s.shutter_s = f["shutter_s"].AsDoubleIn(kMinShutterS, kMaxShutterS);
     s.shot = f.StringOr("shot", "");
     if (auto subj = f.Find("subjects_in_frame")) {
       for (const auto& e : subj->Elements()) s.subjects_in_frame.push_back(e.AsString());
@@ -340,12 +414,12 @@ void ReadFlight(const JsonField& root, Trajectory& plan) {
     for (const auto& f : subjects->Elements()) {
       SubjectTrack t;
       t.name = f["name"].AsString();
-      t.height_m = f["height_m"].AsPositive();
+      t.height_m = ReadPositive(f["height_m"]);
       const auto positions = f["positions_enu_m"];
       if (positions.size() != plan.samples.size()) {
         positions.Fail("expected one position per sample (" + std::to_string(plan.samples.size()) + ")");
       }
-      for (const auto& p : positions.Elements()) t.positions_enu_m.push_back(ReadVec3(p));
+      for (const auto& p : positions.Elements()) t.positions_enu_m.push_back(EnuPositionFromJson(p));
       plan.subjects.push_back(std::move(t));
     }
   }
@@ -354,12 +428,12 @@ void ReadFlight(const JsonField& root, Trajectory& plan) {
     for (const auto& f : keys->Elements()) {
       Keyframe k;
       k.shot = f.StringOr("shot", "");
-      k.time_s = f["time_s"].AsDouble();
-      k.position_enu_m = ReadVec3(f["position_enu_m"]);
+      k.time_s = ReadTime(f["time_s"]);
+      k.position_enu_m = EnuPositionFromJson(f["position_enu_m"]);
       k.world_from_camera = ReadQuat(f["world_from_camera"]);
-      k.focal_length_mm = f["focal_length_mm"].AsPositive();
-      k.focus_distance_m = ReadFocus(f, "focus_distance_m");
-      k.f_number = f["f_number"].AsPositive();
+      k.focal_length_mm = ReadFocalLength(f["focal_length_mm"]);
+      k.focus_distance_m = ReadFocus(f, "focus_distance_m", k.focal_length_mm);
+      k.f_number = ReadFNumber(f["f_number"]);
       plan.keyframes.push_back(std::move(k));
     }
   }
@@ -403,7 +477,7 @@ Trajectory PlanFromJson(const Json& document, const std::string& source) {
   Trajectory plan;
   if (auto o = root.Find("origin")) plan.origin = GeodeticFromJson(*o);
   plan.frame_rate_hz = root["frame_rate_hz"].AsDoubleIn(0.01, 1000);
-  ReadFlight(root, plan);
+  ReadFlight(root, false, plan);
   return plan;
 }
 
@@ -508,16 +582,16 @@ TeamPlan TeamPlanFromJson(const Json& document, const std::string& source) {
     flight.name = f["name"].AsString();
     if (flight.name.empty()) f["name"].Fail("must not be empty");
     if (team.FindFlight(flight.name) >= 0) f["name"].Fail("duplicate drone name \"" + flight.name + "\"");
-    if (auto h = f.Find("home_enu_m")) flight.home_enu_m = ReadVec3(*h);
+    if (auto h = f.Find("home_enu_m")) flight.home_enu_m = EnuPositionFromJson(*h);
     flight.plan.origin = team.origin;
     flight.plan.frame_rate_hz = team.frame_rate_hz;
-    ReadFlight(f, flight.plan);
+    ReadFlight(f, true, flight.plan);
     team.flights.push_back(std::move(flight));
   }
   if (auto edit = root.Find("edit")) {
     for (const auto& e : edit->Elements()) {
       EditCut cut;
-      cut.at_s = e["at_s"].AsNonNegative();
+      cut.at_s = ReadTime(e["at_s"]);
       cut.drone = e["drone"].AsString();
       cut.match_focus = e.BoolOr("match_focus", false);
       if (team.FindFlight(cut.drone) < 0) e["drone"].Fail("no flight is named \"" + cut.drone + "\"");
@@ -526,7 +600,7 @@ TeamPlan TeamPlanFromJson(const Json& document, const std::string& source) {
     }
   }
   if (auto t = root.Find("team")) {
-    team.team.min_separation_m = t->DoubleOr("min_separation_m", 0.0);
+    if (auto m = t->Find("min_separation_m")) team.team.min_separation_m = m->AsDoubleIn(0, kMaxCoordinateM);
     if (auto conflicts = t->Find("conflicts")) {
       for (const auto& f : conflicts->Elements()) {
         TeamConflict c;
@@ -563,6 +637,12 @@ TeamPlan TeamPlanFromJson(const Json& document, const std::string& source) {
 
 TeamPlan ReadTeamPlanFile(const std::filesystem::path& path) {
   return TeamPlanFromJson(ParseJsonFile(path), path.string());
+}
+
+std::vector<std::string> TeamPlanNotes(const TeamPlan& plan) {
+  std::vector<std::string> notes;
+  for (const auto& flight : plan.flights) notes.insert(notes.end(), flight.plan.notes.begin(), flight.plan.notes.end());
+  return notes;
 }
 
 std::string PlanSamplesToCsv(const Trajectory& plan) {

@@ -33,6 +33,8 @@ Trajectory ReadPlanFile(const std::filesystem::path& path);
 // named after its profile); TeamPlanToJson writes such a plan back as version 1, byte for byte.
 TeamPlan TeamPlanFromJson(const Json& document, const std::string& source);
 TeamPlan ReadTeamPlanFile(const std::filesystem::path& path);
+// Every flight's Trajectory::notes, in order: what the reader took from elsewhere than the file.
+std::vector<std::string> TeamPlanNotes(const TeamPlan& plan);
 Json TeamPlanToJson(const TeamPlan& plan);
 std::string TeamPlanToText(const TeamPlan& plan);
 

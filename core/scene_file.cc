@@ -34,6 +34,14 @@ SceneFile ParseSceneFile(const Json& document, const std::string& source, const 
   scene.source = source;
   scene.document = document;
   if (auto origin = root.Find("origin")) scene.origin = GeodeticFromJson(*origin);
+  // `cameras` (where the photos were taken, which view shows) is optional and its entries are free-form,
+  // but a position given is one in the scene's frame, and bounded as plan.json's are.
+  if (auto cameras = root.Find("cameras"); cameras && cameras->IsArray()) {
+    for (const auto& camera : cameras->Elements()) {
+      if (!camera.IsObject()) continue;
+      if (auto p = camera.Find("position_enu_m")) EnuPositionFromJson(*p);
+    }
+  }
   if (auto mesh = root.Find("mesh")) {
     const std::string name = mesh->AsString();
     if (name.empty()) mesh->Fail("must name the GLB file");

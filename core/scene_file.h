@@ -5,7 +5,9 @@
 //   "origin": {"lat_deg", "lon_deg", "height_m"}   the WGS84 origin of the ENU frame (ellipsoidal)
 //   "mesh":   "scene.glb"                          the GLB, relative to scene.json's folder
 // "format" ("cinepath.scene") and "version" (1) are checked when present; other keys are kept in
-// `document` for the stages that use them (georeferencing report, surface report, cameras).
+// `document` for the stages that use them (georeferencing report, surface report, cameras), and the
+// numbers a stage reads from them are checked here: each camera's `position_enu_m` lies within 1e7 m of
+// the origin (core/geodetic_json.h).
 // The mesh itself is read by scene/glb_reader.h (Draco, textures), out of the start-up path.
 #pragma once
 

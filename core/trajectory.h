@@ -144,6 +144,9 @@ struct Trajectory {
   // Written by `cinepath optimize`: how the plan was optimized ({quality, scene, terms, ...}); null for a
   // plan straight from `plan`.
   Json optimized;
+  // What the reader filled in that the file did not give (a drone field taken from the named profile),
+  // one "<file>: <path>: ..." line each, for the command to print as a warning. Never written.
+  std::vector<std::string> notes;
 };
 
 }  // namespace cinepath

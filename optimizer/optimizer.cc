@@ -13,6 +13,7 @@
 
 #include <ceres/ceres.h>
 
+#include "core/ceres_logging.h"
 #include "core/error.h"
 #include "core/geodesy.h"
 #include "core/ground.h"
@@ -924,6 +925,7 @@ OptimizeResult PlanOptimizer::Run() {
 // never worse in any limit than the result it started from. So final <= standard <= draft in objective,
 // and no preset breaks a limit more than a cheaper one does, by construction.
 OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options) {
+  QuietCeresLogging();
   std::vector<OptimizeQuality> ladder = {OptimizeQuality::kDraft};
   if (options.quality != OptimizeQuality::kDraft) ladder.push_back(OptimizeQuality::kStandard);
   if (options.quality == OptimizeQuality::kFinal) ladder.push_back(OptimizeQuality::kFinal);

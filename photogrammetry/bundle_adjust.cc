@@ -10,6 +10,7 @@
 
 #include <ceres/ceres.h>
 
+#include "core/ceres_logging.h"
 #include "core/error.h"
 #include "photogrammetry/camera_models.h"
 
@@ -187,6 +188,7 @@ SolveResult Solve(State& s, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m
   solver_options.gradient_tolerance = 1e-12;
   solver_options.parameter_tolerance = 1e-10;
   solver_options.logging_type = ceres::SILENT;
+  QuietCeresLogging();
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
 

@@ -7,6 +7,7 @@
 #include <ceres/ceres.h>
 #include <Eigen/Dense>
 
+#include "core/ceres_logging.h"
 #include "core/number_format.h"
 #include "photogrammetry/camera_models.h"
 
@@ -84,6 +85,7 @@ bool Solve(const ColmapModel& model, const std::vector<PixelObservation>& obs, c
   options.max_num_iterations = 20;
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;
+  QuietCeresLogging();
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
   const Eigen::Vector3d refined(xyz[0], xyz[1], xyz[2]);

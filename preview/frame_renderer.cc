@@ -208,7 +208,10 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   const ThinLensCamera camera(plan.camera, settings.width_px, settings.height_px, sample.focal_length_mm,
                               sample.f_number, sample.focus_distance_m);
   const SamplingPreset& preset = settings.preset;
-  const auto [t0, t1] = ShutterInterval(plan, k);
+  // Not a structured binding: the per-pixel lambda below uses both, and clang before 16 (the fuzz
+  // build's) cannot capture a structured binding.
+  const std::pair<double, double> shutter = ShutterInterval(plan, k);
+  const double t0 = shutter.first, t1 = shutter.second;
   const bool motion = preset.motion_blur && t1 > t0;
   const int w = settings.width_px, h = settings.height_px;
 

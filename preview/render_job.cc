@@ -412,7 +412,12 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   // Everything that can be refused, before anything is written.
   const SceneFile scene_file = ReadSceneFile(scene_json);
   TeamPlan team = ReadTeamPlanFile(plan_json);
-  if (!team.single) return RenderTeam(std::move(team), scene_file, plan_json, scene_json, options, log);
+  summary.notes = TeamPlanNotes(team);
+  if (!team.single) {
+    RenderSummary team_summary = RenderTeam(std::move(team), scene_file, plan_json, scene_json, options, log);
+    team_summary.notes = std::move(summary.notes);
+    return team_summary;
+  }
   // A plan planned about another origin than the mesh's is moved into the mesh's frame (exact).
   const Trajectory plan = scene_file.origin ? ReframeToOrigin(std::move(team.flights.front().plan), *scene_file.origin)
                                             : std::move(team.flights.front().plan);

@@ -31,6 +31,7 @@ struct RenderSummary {
   std::vector<std::string> inputs;   // what was read (for --depfile)
   std::vector<std::string> outputs;  // what was written
   std::vector<RenderedFrame> frames;
+  std::vector<std::string> notes;  // the plan reader's (core/plan_file.h TeamPlanNotes), for warnings
 };
 
 // "t 12.400 s  orbit  35 mm  focus 12.3 m  f/4" (focus "inf" at infinity): the label of overlays and

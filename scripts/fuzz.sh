@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, preset "fuzz") and runs each for SECONDS from its seed corpus in
-# tests/fuzz/corpus/<target>/ (copied, so the repository's corpus is not modified).
+# tests/fuzz/corpus/<target>/ (copied, so the repository's corpus is not modified), plus the files its
+# seeds.txt names (globs relative to the repository, e.g. the golden plans).
 #   scripts/fuzz.sh [SECONDS] [TARGET ...]     default: 60 s each, every target
 # Exit status: non-zero when a target crashes, leaks or times out (its reproducer is left in
 # build-fuzz/fuzz-artifacts/).
@@ -18,6 +19,16 @@ mkdir -p build-fuzz/fuzz-artifacts
 for t in "${TARGETS[@]}"; do
   work=$(mktemp -d)
   cp -r "tests/fuzz/corpus/$t/." "$work/"
+  # seeds.txt: globs of repository files to seed from as well (the golden plans), not an input itself.
+  if [[ -f "$work/seeds.txt" ]]; then
+    while read -r pattern; do
+      [[ -z $pattern || $pattern == \#* ]] && continue
+      for f in $pattern; do
+        if [[ -f $f ]]; then cp "$f" "$work/seed_${f//\//_}"; fi
+      done
+    done < "$work/seeds.txt"
+    rm "$work/seeds.txt"
+  fi
   echo "fuzz: $t for ${SECONDS_EACH} s" >&2
   start=$(date +%s)
   "build-fuzz/tests/fuzz/$t" -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 \

@@ -126,6 +126,7 @@ std::string JsonForScriptElement(const std::string& json_text) {
 PrevisPage BuildPrevisPage(const ViewOptions& options) {
   PrevisPage page;
   TeamPlan team = ReadTeamPlanFile(options.plan);
+  page.notes = TeamPlanNotes(team);
   // Several drones: the page is drawn about the longest flight (the first of the longest), and the team
   // code shows every flight over it.
   size_t primary = 0;

@@ -22,6 +22,7 @@ struct PrevisPage {
   std::vector<std::string> inputs;  // every file read, for --depfile
   size_t mesh_triangles = 0;
   size_t frames_inlined = 0;
+  std::vector<std::string> notes;  // the plan reader's (core/plan_file.h TeamPlanNotes), for warnings
 };
 
 // InputError naming the file and key for a bad plan or scene, a scene whose mesh is missing, or a

@@ -38,6 +38,16 @@ TEST(SceneFile, BadInputNamesTheFileAndTheKey) {
   EXPECT_EQ(testing::InputErrorMessage([&] { parse(R"({"origin": {"lat_deg": 91, "lon_deg": 0, "height_m": 0}})"); }),
             "scene.json: origin.lat_deg: must be in [-90, 90]");
   EXPECT_EQ(testing::InputErrorMessage([&] { parse(R"([1])"); }), "scene.json: expected a scene (a JSON object)");
+  // Every number a stage reads: the origin's height, the photos' positions (view draws them).
+  EXPECT_EQ(
+      testing::InputErrorMessage([&] { parse(R"({"origin": {"lat_deg": 1, "lon_deg": 0, "height_m": -1e308}})"); }),
+      "scene.json: origin.height_m: must be in [-12000, 100000] m");
+  EXPECT_EQ(testing::InputErrorMessage(
+                [&] { parse(R"({"cameras": [{"image": "a.jpg", "position_enu_m": [0, 1e300, 0]}]})"); }),
+            "scene.json: cameras[0].position_enu_m[1]: must lie within 1e7 m of the origin, got 1e+300");
+  EXPECT_EQ(testing::InputErrorMessage([&] { parse(R"({"cameras": [{"position_enu_m": [0, "x", 0]}]})"); }),
+            "scene.json: cameras[0].position_enu_m[1]: expected a number, found a string");
+  EXPECT_NO_THROW(parse(R"({"cameras": [{"image": "a.jpg", "position_enu_m": [1e7, -1e7, 0]}, "not an object"]})"));
 }
 
 TEST(SceneFile, AMissingMeshIsNamed) {
