@@ -62,6 +62,10 @@ OrientReport OrientTowardCameras(TriangleMesh* mesh, const PointCloud& cloud) {
   }
   const std::vector<Eigen::Vector3d> toward = DirectionsToObservers(cloud);
   const internal::PointSearch search(cloud.positions_m);
+  if (search.size() == 0) {  // no finite point to ask
+    report.faces_without_observers = static_cast<int64_t>(mesh->num_faces());
+    return report;
+  }
   // Votes in face order, one sum per piece: the same sums whatever the threads.
   std::vector<double> vote(roots.size(), 0.0);
   for (size_t k = 0; k < mesh->num_faces(); ++k) {
