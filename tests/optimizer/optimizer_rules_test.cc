@@ -97,7 +97,8 @@ std::string Replace(std::string text, const std::string& from, const std::string
 std::string Head(const std::string& profile) {
   std::string lens =
       R"("min_focal_length_mm": 24, "max_focal_length_mm": 200, "min_f_number": 2.8, "max_f_number": 16)";
-  if (const auto& fixed = FindDroneProfile(profile)->lens) {
+  const auto drone = FindDroneProfile(profile);  // held: a reference into the returned profile must outlive it
+  if (const auto& fixed = drone->lens) {
     lens = "\"min_focal_length_mm\": " + std::to_string(fixed->min_focal_length_mm) +
            ", \"max_focal_length_mm\": " + std::to_string(fixed->max_focal_length_mm) +
            ", \"min_f_number\": " + std::to_string(fixed->min_f_number) +
