@@ -335,6 +335,35 @@ void SurfacePipelineOptions::Check() const {
   }
 }
 
+namespace {
+
+// Poisson is guarded before it is called: a cloud that spans no volume would crash CGAL's solver. Chosen by
+// `auto`, the height field takes over and `step` says why; asked for by name, it is refused.
+SurfaceMethod GuardPoisson(SurfaceMethod method, SurfaceMethod requested, const PointCloud& points, Json* step) {
+  if (method != SurfaceMethod::kPoisson) return method;
+  const auto problem = PoissonInputProblem(points);
+  if (!problem) return method;
+  if (requested == SurfaceMethod::kPoisson) {
+    throw InputError("mesh: --surface poisson cannot mesh these points: " + *problem +
+                     " (CGAL's Poisson solver needs points that span a volume); use --surface height-field");
+  }
+  (*step)["fallback_from"] = "poisson";
+  (*step)["fallback_reason"] = *problem;
+  return SurfaceMethod::kHeightField;
+}
+
+// The "orient" step: each piece turned to face the cameras that saw its points (surface_orient.h).
+Json OrientStep(TriangleMesh* mesh, const PointCloud& points, const SurfacePipelineOptions& options) {
+  StepTimer timer;
+  Json step;
+  step["step"] = "orient";
+  step.update(OrientTowardCameras(mesh, points).ToJson());
+  AddTime(step, timer, options);
+  return step;
+}
+
+}  // namespace
+
 SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const SurfacePipelineOptions& options) {
   options.Check();
   const QualityDefaults defaults = DefaultsFor(options.quality);
@@ -366,19 +395,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
   {
     StepTimer timer;
     Json step;
-    // Poisson is guarded before it is called: a cloud that spans no volume would crash CGAL's solver.
-    // Chosen by `auto`, the height field takes over and the report says why; asked for, it is refused.
-    if (method == SurfaceMethod::kPoisson) {
-      if (const auto problem = PoissonInputProblem(filtered)) {
-        if (options.method == SurfaceMethod::kPoisson) {
-          throw InputError("mesh: --surface poisson cannot mesh these points: " + *problem +
-                           " (CGAL's Poisson solver needs points that span a volume); use --surface height-field");
-        }
-        method = SurfaceMethod::kHeightField;
-        step["fallback_from"] = "poisson";
-        step["fallback_reason"] = *problem;
-      }
-    }
+    method = GuardPoisson(method, options.method, filtered, &step);
     if (method == SurfaceMethod::kHeightField) {
       HeightFieldOptions height_field;
       height_field.max_points = defaults.height_field_points;
@@ -435,17 +452,9 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
   if (mesh.num_faces() == 0) {
     throw InfeasibleError("mesh: no surface is left after trimming it to the points (see the report's steps)");
   }
-  if (method == SurfaceMethod::kPoisson) {
-    // Poisson's winding is its implicit function's sign, which an open surface does not fix; the height
-    // field's faces are counter-clockwise from above by construction.
-    StepTimer timer;
-    const OrientReport orient_report = OrientTowardCameras(&mesh, filtered);
-    Json step;
-    step["step"] = "orient";
-    step.update(orient_report.ToJson());
-    AddTime(step, timer, options);
-    steps.push_back(std::move(step));
-  }
+  // Poisson's winding is its implicit function's sign, which an open surface does not fix; the height
+  // field's faces are counter-clockwise from above by construction.
+  if (method == SurfaceMethod::kPoisson) steps.push_back(OrientStep(&mesh, filtered, options));
   return FinishSurface(std::move(mesh), &filtered, options, std::move(report));
 }
 
