@@ -196,6 +196,14 @@ std::string CsvNumber(double v) {
 // Only the keys a shot sets (ShotIntent::empty() shots carry no "intent").
 Json IntentJson(const ShotIntent& intent) {
   Json j = Json::object();
+  if (!intent.focus.empty()) j["focus"] = intent.focus;
+  if (!intent.rack.empty()) {
+    Json rack = Json::array();
+    for (const RackIntent& r : intent.rack) {
+      rack.push_back(Json{{"at_s", r.at_s}, {"duration_s", r.duration_s}, {"subject", r.subject}});
+    }
+    j["rack"] = rack;
+  }
   if (intent.frame_height_fraction) j["frame_height_fraction"] = *intent.frame_height_fraction;
   if (intent.frame_height_fraction_end) j["frame_height_fraction_end"] = *intent.frame_height_fraction_end;
   if (intent.screen_position != Eigen::Vector2d(0.5, 0.5)) {
@@ -210,9 +218,27 @@ Json IntentJson(const ShotIntent& intent) {
 }
 
 ShotIntent ReadIntent(const JsonField& f) {
-  f.RejectUnknownKeys({"frame_height_fraction", "frame_height_fraction_end", "screen_position", "sharp",
-                       "background_blur_px", "background_distance_m", "hold", "max_deviation_m"});
+  f.RejectUnknownKeys({"focus", "rack", "frame_height_fraction", "frame_height_fraction_end", "screen_position",
+                       "sharp", "background_blur_px", "background_distance_m", "hold", "max_deviation_m"});
   ShotIntent intent;
+  if (auto focus = f.Find("focus")) {
+    intent.focus = focus->AsString();
+    if (std::find(kFocusModes.begin(), kFocusModes.end(), intent.focus) == kFocusModes.end()) {
+      focus->Fail("unknown focus \"" + intent.focus + "\" (follow, fixed, infinity, keys, rack)");
+    }
+  }
+  if (auto rack = f.Find("rack")) {
+    if (intent.focus != "rack") rack->Fail("a rack needs \"focus\": \"rack\"");
+    for (const auto& e : rack->Elements()) {
+      e.RejectUnknownKeys({"at_s", "duration_s", "subject"});
+      RackIntent r;
+      r.at_s = e["at_s"].AsDoubleIn(0, kMaxTimeS);
+      r.duration_s = e["duration_s"].AsDoubleIn(1e-3, kMaxTimeS);
+      r.subject = e["subject"].AsString();
+      if (!intent.rack.empty() && r.at_s < intent.rack.back().at_s) e["at_s"].Fail("racks must be in time order");
+      intent.rack.push_back(r);
+    }
+  }
   if (f.Has("frame_height_fraction")) intent.frame_height_fraction = ReadPositive(f["frame_height_fraction"]);
   if (f.Has("frame_height_fraction_end"))
     intent.frame_height_fraction_end = ReadPositive(f["frame_height_fraction_end"]);

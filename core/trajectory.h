@@ -63,7 +63,22 @@ struct TrajectorySample {
 
 // What a shot asks of the picture beyond its samples: the targets `optimize` keeps to (docs/plan.md,
 // "lens" and "optimize"). Absent keys keep their defaults and are not written.
+// A rack focus of a shot's intent: from `at_s` (shot-local) the focus blends in dioptres (smoothstep)
+// over `duration_s` to `subject`.
+struct RackIntent {
+  double at_s = 0;
+  double duration_s = 1;
+  std::string subject;
+};
+
+// How a shot sets its focus (plan.json "focus"): the subject's distance along the optical axis, a
+// fixed distance, infinity, free keyframes, or the subject's distance with racks to other actors.
+// "" in a plan written before the key existed.
+inline const std::vector<std::string> kFocusModes = {"follow", "fixed", "infinity", "keys", "rack"};
+
 struct ShotIntent {
+  std::string focus;                                // out of kFocusModes, or "" (not recorded)
+  std::vector<RackIntent> rack;                     // focus == "rack": in time order
   std::optional<double> frame_height_fraction;      // subject height / frame height, at the start
   std::optional<double> frame_height_fraction_end;  // at the end (log-interpolated), when it changes
   Eigen::Vector2d screen_position{0.5, 0.5};        // where the subject's aim point sits: x right, y down
@@ -74,8 +89,9 @@ struct ShotIntent {
   std::optional<double> max_deviation_m;            // from the planned path (optimize's default: 5 m)
 
   bool empty() const {
-    return !frame_height_fraction && !frame_height_fraction_end && screen_position == Eigen::Vector2d(0.5, 0.5) &&
-           sharp.empty() && !background_blur_px && !background_distance_m && hold.empty() && !max_deviation_m;
+    return focus.empty() && rack.empty() && !frame_height_fraction && !frame_height_fraction_end &&
+           screen_position == Eigen::Vector2d(0.5, 0.5) && sharp.empty() && !background_blur_px &&
+           !background_distance_m && hold.empty() && !max_deviation_m;
   }
 };
 // The names `hold` accepts.

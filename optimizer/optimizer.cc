@@ -54,7 +54,22 @@ struct ShotSettings {
   const SubjectTrack* subject = nullptr;
   std::vector<const SubjectTrack*> sharp;  // DoF goals (empty: none)
   bool background = false;
+  // The focus follows an actor (the intent's "follow" or "rack"): the actor at each time, racks in order.
+  bool focus_follows = false;
+  std::vector<std::pair<RackIntent, const SubjectTrack*>> racks;
 };
+
+// The actor the focus follows at `time_s` in a shot whose focus follows one; none in the middle of a rack.
+const SubjectTrack* FollowedActor(const ShotSettings& s, double time_s) {
+  const double tau = time_s - s.span->start_time_s;
+  const SubjectTrack* current = s.subject;
+  for (const auto& [rack, track] : s.racks) {
+    if (tau <= rack.at_s) break;
+    if (tau < rack.at_s + rack.duration_s) return nullptr;
+    current = track;
+  }
+  return current;
+}
 
 // The corridor of the scene the flight can reach, and the query structures built on it: built once from
 // the input plan, shared by every stage of the quality ladder.
@@ -228,6 +243,14 @@ void PlanOptimizer::ReadShots() {
       }
     }
     for (const auto& name : span.intent.sharp) s.sharp.push_back(FindTrack(plan_, name, where + ".sharp"));
+    // The focus mode as the plan records it; a plan written before it was recorded follows the subject
+    // wherever the planned focus lies on it (below).
+    s.focus_follows =
+        s.subject && (span.intent.focus.empty() || span.intent.focus == "follow" || span.intent.focus == "rack");
+    for (size_t r = 0; r < span.intent.rack.size(); ++r) {
+      const RackIntent& rack = span.intent.rack[r];
+      s.racks.emplace_back(rack, FindTrack(plan_, rack.subject, where + ".rack[" + std::to_string(r) + "].subject"));
+    }
     s.background = span.intent.background_blur_px.has_value();
     if (s.background && s.sharp.empty()) {
       if (!s.subject) throw InputError(where + ".background_blur_px: the shot has no subject to keep sharp");
@@ -253,7 +276,7 @@ void PlanOptimizer::MarkFreeChannels() {
       const bool size_goal = s.span->intent.frame_height_fraction.has_value();
       touched[kLogFocal] = size_goal || !s.sharp.empty();
       touched[kStops] = !s.sharp.empty();
-      touched[kDioptre] = !s.sharp.empty() || s.subject != nullptr;  // DoF goals, or focus following
+      touched[kDioptre] = !s.sharp.empty() || s.focus_follows;  // DoF goals, or focus following
     }
     for (int j = 0; j < 4; ++j) {
       for (int c = 0; c < kNumChannels; ++c) {
@@ -336,8 +359,11 @@ void PlanOptimizer::AddTerms() {
                                          w.background};
         AddSampleTerm("background_blur", b, base, 1);
       }
-    } else if (s && s->subject && moves && !s->held.count(kDioptre)) {
-      const Eigen::Vector3d aim = AimPoint(*s->subject, k);
+    } else if (const SubjectTrack* followed = s && s->focus_follows ? FollowedActor(*s, sample.time_s) : nullptr;
+               followed && moves && !s->held.count(kDioptre)) {
+      // Followed where the plan's focus lies on the actor: a focus the plan moved off it (a matched cut of a
+      // team's edit, the lens's closest focus) is kept as planned.
+      const Eigen::Vector3d aim = AimPoint(*followed, k);
       const double depth = CameraPoint(target, EvaluateSample(target, zero), aim).z();
       if (std::fabs(depth * target.dioptre - 1.0) < 1e-6) {
         AddSampleTerm("depth_of_field", new SharpCost{base, aim, coc_mm * 1e-3, true, w.sharpness}, base, 1);

@@ -384,6 +384,21 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
 // What the shot asks of the picture, as plan.json carries it for `optimize`.
 ShotIntent Planner::IntentOf(const ShotSpec& shot) const {
   ShotIntent intent;
+  const bool focus_keys = std::any_of(shot.keys.begin(), shot.keys.end(),
+                                      [](const CameraKey& k) { return k.focus_distance_m.has_value(); });
+  if (focus_keys) {
+    intent.focus = "keys";
+  } else if (shot.lens.focus == LensSpec::Focus::kFixed) {
+    intent.focus = "fixed";
+  } else if (shot.lens.focus == LensSpec::Focus::kInfinity || shot.subject < 0) {
+    intent.focus = "infinity";
+  } else if (shot.lens.rack.empty()) {
+    intent.focus = "follow";
+  } else {
+    intent.focus = "rack";
+    for (const RackFocus& r : shot.lens.rack)
+      intent.rack.push_back({r.at_s, r.duration_s, list_.actors[r.actor].name()});
+  }
   if (shot.type != ShotType::kDollyZoom || shot.lens.frame_height_fraction) {
     intent.frame_height_fraction = shot.lens.frame_height_fraction;
     intent.frame_height_fraction_end = shot.lens.frame_height_fraction_end;

@@ -198,6 +198,35 @@ TEST(PlanFileDomains, AnglesAndIntentBounded) {
   EXPECT_EQ(ReadError(j), "plan.json: shots[0].intent.background_blur_px: must be in (0, 1e7], got 1e+300");
 }
 
+TEST(PlanFile, TheFocusModeAndItsRacksRoundTrip) {
+  Trajectory plan = SmallPlan();
+  plan.shots[0].intent.focus = "rack";
+  plan.shots[0].intent.rack = {{0.5, 1.0, "b"}, {2.0, 0.5, "c"}};
+  const Json j = PlanToJson(plan);
+  EXPECT_EQ(j["shots"][0]["intent"]["focus"], "rack");
+  const Trajectory read = PlanFromJson(j, "plan.json");
+  ASSERT_EQ(read.shots[0].intent.rack.size(), 2u);
+  EXPECT_EQ(read.shots[0].intent.rack[1].subject, "c");
+  EXPECT_EQ(read.shots[0].intent.rack[1].at_s, 2.0);
+  EXPECT_EQ(read.shots[0].intent.rack[1].duration_s, 0.5);
+  EXPECT_EQ(PlanToJson(read).dump(), j.dump());
+  Json bad = j;
+  bad["shots"][0]["intent"]["focus"] = "auto";
+  EXPECT_EQ(ReadError(bad),
+            "plan.json: shots[0].intent.focus: unknown focus \"auto\" (follow, fixed, infinity, keys, rack)");
+  bad = j;
+  bad["shots"][0]["intent"]["focus"] = "follow";
+  EXPECT_EQ(ReadError(bad), "plan.json: shots[0].intent.rack: a rack needs \"focus\": \"rack\"");
+  bad = j;
+  bad["shots"][0]["intent"]["rack"][1]["at_s"] = 0.1;
+  EXPECT_EQ(ReadError(bad), "plan.json: shots[0].intent.rack[1].at_s: racks must be in time order");
+  // A plan written before the focus was recorded still reads, with the mode unknown.
+  bad = j;
+  bad["shots"][0]["intent"].erase("focus");
+  bad["shots"][0]["intent"].erase("rack");
+  EXPECT_TRUE(PlanFromJson(bad, "plan.json").shots[0].intent.focus.empty());
+}
+
 TEST(PlanFileDrone, AMissingFieldIsTheNamedProfilesAndSaysSo) {
   Trajectory plan = SmallPlan();
   plan.drone = *FindDroneProfile("dji-m30");

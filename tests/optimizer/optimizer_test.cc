@@ -3,6 +3,7 @@
 // extremes. Every figure the tests hold it to is derived in docs/optimize.md.
 #include "optimizer/optimizer.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -142,7 +143,7 @@ TEST(Optimizer, TwoActorsSharpOpenTheApertureAsFarAsBothAllow) {
   EXPECT_EQ(s.focal_length_mm, f_mm);  // held
 }
 
-TEST(Optimizer, BackgroundBlurGoalMovesTheCameraBackAndZoomsIn) {
+TEST(Optimizer, BackgroundBlurGoalMovesTheCameraBackAndZoomsInAtEveryPreset) {
   // The dolly-zoom family: the subject keeps its size (frame_height_fraction) while the camera backs
   // off and zooms in until the background 50 m behind blurs by the goal. Aperture held at f/2.8.
   const double h = 1.8, fraction = 0.5, behind = 50, n_stop = 2.8;
@@ -170,21 +171,56 @@ TEST(Optimizer, BackgroundBlurGoalMovesTheCameraBackAndZoomsIn) {
   plan.shots[0].intent.background_blur_px = goal_px;
   double lo = d0, hi = 1000;  // the analytic minimal distance: blur_px(d) = goal
   for (int i = 0; i < 100; ++i) (blur_px((lo + hi) / 2) < goal_px ? lo : hi) = (lo + hi) / 2;
-  const OptimizeResult r = Optimize(plan);
-  const TrajectorySample& s = r.plan.samples[15];
-  const double d = (s.position_enu_m - Eigen::Vector3d(0, 0, 0.9)).norm();
-  // It backs off and zooms in, to the analytic minimal distance.
-  EXPECT_NEAR(d, lo, 0.05 * lo);
-  EXPECT_GT(s.focal_length_mm, f0 * 1.2);
-  const double fraction_now = h * s.focal_length_mm / (d * image_h_mm);
-  EXPECT_NEAR(fraction_now, fraction, 0.05 * fraction);
-  const double achieved =
-      BlurCircleMm(s.focal_length_mm, s.f_number, s.focus_distance_m, d + behind) * cam.width_px / cam.sensor_width_mm;
-  EXPECT_GE(achieved, goal_px * 0.98);
-  const DepthOfField dof = DepthOfFieldLimits(s.focal_length_mm, s.f_number, s.focus_distance_m, coc_m * 1e3);
-  EXPECT_LE(dof.near_m, d * 1.005);  // the subject stays sharp
-  EXPECT_GE(dof.far_m, d * 0.995);
-  EXPECT_EQ(s.f_number, n_stop);
+  for (OptimizeQuality quality : {OptimizeQuality::kDraft, OptimizeQuality::kStandard, OptimizeQuality::kFinal}) {
+    SCOPED_TRACE(OptimizeQualityName(quality));
+    const OptimizeResult r = Optimize(plan, nullptr, quality);
+    const TrajectorySample& s = r.plan.samples[15];
+    const double d = (s.position_enu_m - Eigen::Vector3d(0, 0, 0.9)).norm();
+    // It backs off and zooms in, to the analytic minimal distance.
+    EXPECT_NEAR(d, lo, 0.05 * lo);
+    EXPECT_GT(s.focal_length_mm, f0 * 1.2);
+    const double fraction_now = h * s.focal_length_mm / (d * image_h_mm);
+    EXPECT_NEAR(fraction_now, fraction, 0.05 * fraction);
+    const double achieved = BlurCircleMm(s.focal_length_mm, s.f_number, s.focus_distance_m, d + behind) * cam.width_px /
+                            cam.sensor_width_mm;
+    EXPECT_GE(achieved, goal_px * 0.98);
+    const DepthOfField dof = DepthOfFieldLimits(s.focal_length_mm, s.f_number, s.focus_distance_m, coc_m * 1e3);
+    EXPECT_LE(dof.near_m, d * 1.005);  // the subject stays sharp
+    EXPECT_GE(dof.far_m, d * 0.995);
+    EXPECT_EQ(s.f_number, n_stop);
+  }
+}
+
+TEST(Optimizer, TheFocusFollowsWhatThePlanRecordsItFollows) {
+  // The camera starts 1.5 m from actor "a", inside the drone's 2 m keep-out, so it must back off. The
+  // focus racks from "a" to "b", 5 m behind "a", during [0.5, 1] s. Recorded as a rack, the focus follows
+  // "b" wherever the camera goes after the rack (from 1.5 s on: the focus is a spline with knots every
+  // 0.5 s); recorded as fixed, it stays exactly as planned.
+  const Eigen::Vector3d a(0, 0, 0.9), b(0, 5, 0.9), camera(0, -1.5, 0.9);
+  Trajectory plan = StillPlan(camera, a, 91, 35, 4, 1.5);
+  for (auto& s : plan.samples) {
+    const double w = std::clamp((s.time_s - 0.5) / 0.5, 0.0, 1.0);
+    s.focus_distance_m = 1 / ((1 - w) / 1.5 + w / 6.5);  // the planner's blend in dioptres (linear here)
+  }
+  AddStillActor(&plan, "a", a, 1.8);
+  AddStillActor(&plan, "b", b, 1.8);
+  plan.shots[0].intent.focus = "rack";
+  plan.shots[0].intent.rack = {{0.5, 0.5, "b"}};
+  const OptimizeResult racked = Optimize(plan);
+  bool moved = false;
+  for (size_t k = 45; k < racked.plan.samples.size(); ++k) {
+    const TrajectorySample& s = racked.plan.samples[k];
+    const double depth_b = (s.world_from_camera.conjugate() * (b - s.position_enu_m)).z();
+    EXPECT_NEAR(s.focus_distance_m, depth_b, 0.03 * depth_b) << "t=" << s.time_s;  // the plan's 6.5 m is 12 % off
+    moved = moved || std::fabs(depth_b - 6.5) > 0.3;
+  }
+  EXPECT_TRUE(moved);  // the camera did back off, so following "b" is not the plan's focus
+  plan.shots[0].intent.focus = "fixed";
+  plan.shots[0].intent.rack.clear();
+  const OptimizeResult fixed = Optimize(plan);
+  for (size_t k = 0; k < fixed.plan.samples.size(); ++k) {
+    EXPECT_EQ(fixed.plan.samples[k].focus_distance_m, plan.samples[k].focus_distance_m) << k;
+  }
 }
 
 // The wall asks for a climb of about 4 m for a few seconds of a 12 s orbit. With the default profile's
