@@ -52,6 +52,19 @@ double GroundUpM(const JsonField& where, const Ground* ground, double east_m, do
   return *up;
 }
 
+// The height above the ground a position gives, when it gives one: [e, n] (with "above_ground_m"
+// beside it, default 0) or {lat, lon, "above_ground_m"}; none for an absolute height.
+std::optional<double> GroundOffsetM(const JsonField& parent, const char* enu_key, const char* geo_key) {
+  if (auto f = parent.Find(enu_key)) {
+    if (!f->IsArray() || f->size() != 2) return std::nullopt;
+    return parent.Has("above_ground_m") ? parent["above_ground_m"].AsDouble() : 0.0;
+  }
+  if (auto g = parent.Find(geo_key)) {
+    if (g->Has("above_ground_m")) return (*g)["above_ground_m"].AsDouble();
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, const char* geo_key,
@@ -115,6 +128,10 @@ Actor ParseActor(const JsonField& f, const PositionContext& context) {
   }
   std::vector<double> times;
   std::vector<Eigen::Vector3d> points;
+  // Whether every key stands at one height above the ground: such an actor stays on the ground between
+  // its keys too (a path spline through points on uneven ground floats over the ground between them).
+  std::optional<double> keys_above_ground_m;
+  bool keys_on_ground = true;
   if (auto keys = f.Find("keyframes")) {
     if (f.Has("position_enu_m") || f.Has("position")) f.Fail("give either a position or keyframes, not both");
     if (keys->size() == 0) keys->Fail("must hold at least one keyframe");
@@ -125,6 +142,9 @@ Actor ParseActor(const JsonField& f, const PositionContext& context) {
         k["time_s"].Fail("keyframe times must increase (by 1 ms or more)");
       times.push_back(t);
       points.push_back(ParsePosition(k, "position_enu_m", "position", context));
+      const std::optional<double> above = GroundOffsetM(k, "position_enu_m", "position");
+      if (!above || (keys_above_ground_m && *keys_above_ground_m != *above)) keys_on_ground = false;
+      keys_above_ground_m = above;
     }
   } else {
     times.push_back(0.0);
@@ -134,6 +154,9 @@ Actor ParseActor(const JsonField& f, const PositionContext& context) {
   if (f.BoolOr("on_ground", false)) {
     if (!context.ground) f["on_ground"].Fail("needs the scene's mesh (`scene_mesh`)");
     return Actor(name, height_m, heading_deg, std::move(path), context.ground, f.DoubleOr("above_ground_m", 0.0));
+  }
+  if (!f.Has("on_ground") && f.Has("keyframes") && keys_on_ground && path.times().size() > 1) {
+    return Actor(name, height_m, heading_deg, std::move(path), context.ground, *keys_above_ground_m);
   }
   return Actor(name, height_m, heading_deg, std::move(path));
 }

@@ -59,7 +59,9 @@ class Actor {
 };
 
 // Parses one element of shots.json "actors" (docs/plan.md): a position or timed keyframes, and
-// "on_ground": true to keep the actor on the surface at every sample (needs the scene's mesh).
+// "on_ground": true to keep the actor on the surface at every sample (needs the scene's mesh). Keyframes
+// that all stand at one height above the ground keep the actor at that height between them as well,
+// unless "on_ground": false says otherwise.
 Actor ParseActor(const JsonField& field, const PositionContext& context);
 
 // Reads a position: [e, n, u] ENU metres under `enu_key`, or {"lat_deg", "lon_deg", and "height_m"

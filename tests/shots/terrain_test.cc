@@ -59,6 +59,34 @@ TEST(Terrain, AnActorOnTheGroundFollowsItAtEverySample) {
   }
 }
 
+TEST(Terrain, KeysAllOnTheGroundKeepTheActorOnItBetweenThem) {
+  // The same keys without "on_ground": every key stands 0.3 m above the ground, so the actor does too at
+  // every sample (the line between the keys passes under the plateau). "on_ground": false keeps the line.
+  const std::string keys = R"("interpolation": "linear", "keyframes": [
+      {"time_s": 0, "position_enu_m": [0, 0], "above_ground_m": 0.3},
+      {"time_s": 8, "position_enu_m": [80, 0], "above_ground_m": 0.3}]}])";
+  const std::string shots = R"([{"type": "CHASE", "subject": "walker", "duration_s": 8, "distance_m": 10,
+      "height_m": 6}])";
+  const Trajectory implied =
+      PlanShots(ParseShotList(Doc(R"([{"name": "walker", )" + keys, shots), "shots.json", std::nullopt, kGround));
+  const Trajectory line = PlanShots(ParseShotList(Doc(R"([{"name": "walker", "on_ground": false, )" + keys, shots),
+                                                  "shots.json", std::nullopt, kGround));
+  double most_below = 0;
+  for (size_t k = 0; k < implied.samples.size(); ++k) {
+    const Eigen::Vector3d p = implied.subjects[0].positions_enu_m[k];
+    EXPECT_NEAR(p.z(), *kGround->SurfaceUpM(p.x(), p.y()) + 0.3, 1e-9) << "t=" << implied.samples[k].time_s;
+    const Eigen::Vector3d q = line.subjects[0].positions_enu_m[k];
+    most_below = std::max(most_below, *kGround->SurfaceUpM(q.x(), q.y()) + 0.3 - q.z());
+  }
+  EXPECT_GT(most_below, 1.0);  // the line cuts under the plateau, as asked
+  // Keys at different heights above the ground, or one absolute key, keep the spline.
+  const Trajectory mixed = PlanShots(ParseShotList(Doc(R"([{"name": "walker", "interpolation": "linear", "keyframes": [
+          {"time_s": 0, "position_enu_m": [0, 0]}, {"time_s": 8, "position_enu_m": [80, 0, 13]}]}])",
+                                                       shots),
+                                                   "shots.json", std::nullopt, kGround));
+  EXPECT_NEAR(mixed.subjects[0].positions_enu_m[mixed.samples.size() / 2].z(), 6.5, 1e-6);
+}
+
 TEST(Terrain, CameraHeightAboveTheGroundUnderTheCamera) {
   const ShotList list =
       ParseShotList(Doc(R"([{"name": "a", "position_enu_m": [0, 0, 0]}])",
