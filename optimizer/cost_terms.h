@@ -143,6 +143,37 @@ struct LimitsCost {
   double takeoff_up_m = 0;
   double margin = 0.02;  // aim at (1 - margin) of each limit
   double weight = 1;
+  bool raw = false;  // the hinges' arguments instead of the hinges (Headroom)
+
+  // The channel each residual moves with (kEast standing for the position).
+  static constexpr int kChannelOf[kNumResiduals] = {kEast,     kEast,  kEast,  kEast,    kEast,   kYaw, kTilt,
+                                                    kLogFocal, kStops, kTilt,  kTilt,    kUp,     kUp,  kLogFocal,
+                                                    kLogFocal, kStops, kStops, kDioptre, kDioptre};
+
+  // How near the sample, with the change `k`, is to a limit it can move towards: the largest hinge
+  // argument (how far past the aimed value, per unit of the limit; per 10 units for the focus, whose
+  // arguments are dioptres over the closest focus's) among the residuals whose channel is free. Negative:
+  // those limits hold with room to spare, and their residuals and derivatives are zero.
+  double Headroom(const double* const* k, const std::array<bool, kNumChannels>& free) const {
+    LimitsCost measure = *this;
+    measure.raw = true;
+    measure.weight = 1;
+    double r[kNumResiduals];
+    measure(k[0], k[1], k[2], k[3], r);
+    double most = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < kNumResiduals; ++i) {
+      if (free[kChannelOf[i]]) most = std::max(most, kChannelOf[i] == kDioptre ? 10 * r[i] : r[i]);
+    }
+    return most;
+  }
+  // Its cost (half the sum of the squared residuals, as Ceres counts it) with the change `k`.
+  double Cost(const double* const* k) const {
+    double r[kNumResiduals];
+    (*this)(k[0], k[1], k[2], k[3], r);
+    double cost = 0;
+    for (double v : r) cost += 0.5 * v * v;
+    return cost;
+  }
 
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
@@ -150,11 +181,12 @@ struct LimitsCost {
     const T* k[4] = {k0, k1, k2, k3};
     const SampleState<T> s = EvaluateSample(base, k);
     const double m = 1.0 - margin;
-    const auto over = [&](const T& value, double limit) { return Hinge((value - T(limit * m)) / limit); };
+    const auto hinge = [&](const T& x) { return raw ? x : Hinge(x); };
+    const auto over = [&](const T& value, double limit) { return hinge((value - T(limit * m)) / limit); };
     const auto under = [&](const T& value, double limit, double scale) {
-      return Hinge((T(limit) - value) / scale + T(margin));
+      return hinge((T(limit) - value) / scale + T(margin));
     };
-    for (int i = 0; i < kNumResiduals; ++i) r[i] = T(0);
+    for (int i = 0; i < kNumResiduals; ++i) r[i] = T(raw ? -std::numeric_limits<double>::infinity() : 0.0);
     if (base.has_rates) {
       const Vec3T<T> v = base.velocity_m_s.cast<T>() + s.velocity;
       const Vec3T<T> a = base.acceleration_m_s2.cast<T>() + s.acceleration;
@@ -174,7 +206,7 @@ struct LimitsCost {
     }
     const T pitch = T(base.pitch_deg) + s.tilt * kDeg;
     r[9] = under(pitch, drone.min_gimbal_pitch_deg, 90.0);
-    r[10] = Hinge((pitch - T(drone.max_gimbal_pitch_deg)) / 90.0 + T(margin));
+    r[10] = hinge((pitch - T(drone.max_gimbal_pitch_deg)) / 90.0 + T(margin));
     const T altitude = s.position[2] - T(takeoff_up_m);
     r[11] = under(altitude, drone.min_altitude_m, std::max(drone.min_altitude_m, 10.0));
     r[12] = over(altitude, drone.max_altitude_m);
@@ -186,7 +218,7 @@ struct LimitsCost {
     r[16] = over(f_number, camera.max_f_number);
     const double max_dioptre = 1.0 / camera.min_focus_distance_m;
     r[17] = over(s.dioptre, max_dioptre);
-    r[18] = Hinge(-s.dioptre / max_dioptre);  // focus beyond infinity
+    r[18] = hinge(-s.dioptre / max_dioptre);  // focus beyond infinity
     for (int i = 0; i < kNumResiduals; ++i) r[i] *= weight;
     return true;
   }

@@ -158,6 +158,17 @@ class PlanOptimizer {
   void ReadShots();
   void MarkFreeChannels();
   void AddTerms();
+  // Adds the limits of every sample left out of the problem that a solve brought within kLimitRecheck of a
+  // limit; returns how many.
+  size_t AddLimitsNearTheirBounds();
+  // The channels the change may move at a sample (kEast: any of the position's).
+  std::array<bool, kNumChannels> FreeChannels(const SampleBase& base) const;
+  // The limits cost of the samples left out: a constant (their free limits hold with room; the others do
+  // not move), counted where costs are reported so that leaving them out changes no figure.
+  double ScreenedLimitsCost() const;
+  // A sample's limits join the problem from the start when a limit is within this fraction of its aimed
+  // value, and after a solve when one is within kLimitRecheck (docs/optimize.md, "Limits left out").
+  static constexpr double kLimitScreen = 0.25, kLimitRecheck = 0.1;
   size_t AddVisibilityTargets();
   // How far past the first clear viewpoint a target is set: the pull stops just short of its target.
   static constexpr double kTargetOvershootM = 0.75;
@@ -212,7 +223,8 @@ class PlanOptimizer {
     return o;
   }
   std::map<std::string, std::vector<ceres::ResidualBlockId>> terms_;
-  std::vector<ceres::ResidualBlockId> occlusion_blocks_;  // per sample, null when it has no target
+  std::vector<ceres::ResidualBlockId> occlusion_blocks_;      // per sample, null when it has no target
+  std::vector<std::unique_ptr<LimitsCost>> screened_limits_;  // limits not (yet) in the problem
   size_t unresolved_views_ = 0;
   size_t frames_without_target_ = 0;  // blocked, and no clear viewpoint within reach (summed over rounds)
   int iterations_ = 0;
@@ -370,10 +382,17 @@ void PlanOptimizer::AddTerms() {
       }
     }
 
-    // Limits, keep-out, clearance.
-    AddSampleTerm("limits",
-                  new LimitsCost{base, plan_.drone, camera, scene_->takeoff_up_m, options_.limit_margin, w.limits},
-                  base, LimitsCost::kNumResiduals);
+    // Limits, keep-out, clearance. A sample whose every limit holds with room to spare has a zero limits
+    // residual, and so does every change that keeps it so: it joins the problem only when a solve brings
+    // it near a limit (AddLimitsNearTheirBounds).
+    terms_["limits"];  // reported even when every sample's limits are left out
+    auto limits = std::make_unique<LimitsCost>(
+        LimitsCost{base, plan_.drone, camera, scene_->takeoff_up_m, options_.limit_margin, w.limits});
+    if (limits->Headroom(zero, FreeChannels(base)) > -kLimitScreen) {
+      AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
+    } else {
+      screened_limits_.push_back(std::move(limits));
+    }
     const double max_dev = s ? s->max_deviation_m : options_.max_deviation_m;
     for (const auto& t : plan_.subjects) {
       const Eigen::Vector3d& foot = t.positions_enu_m[k];
@@ -582,15 +601,56 @@ void PlanOptimizer::Solve(bool ramp) {
   }
 }
 
+std::array<bool, kNumChannels> PlanOptimizer::FreeChannels(const SampleBase& base) const {
+  std::array<bool, kNumChannels> free{};
+  for (int j = 0; j < 4; ++j) {
+    const int i = base.knots.first_knot + j;
+    for (int c = 0; c < kNumChannels; ++c) free[c] = free[c] || (touched_[i][c] && !held_[i][c]);
+  }
+  free[kEast] = free[kEast] || free[kNorth] || free[kUp];
+  return free;
+}
+
+double PlanOptimizer::ScreenedLimitsCost() const {
+  double cost = 0;
+  for (const auto& limits : screened_limits_) {
+    if (!limits) continue;
+    const int first = limits->base.knots.first_knot;
+    const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
+                          knots_[first + 3].data()};
+    cost += limits->Cost(k);
+  }
+  return cost;
+}
+
+size_t PlanOptimizer::AddLimitsNearTheirBounds() {
+  size_t added = 0;
+  for (auto& limits : screened_limits_) {
+    if (!limits) continue;
+    const int first = limits->base.knots.first_knot;
+    const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
+                          knots_[first + 3].data()};
+    if (limits->Headroom(k, FreeChannels(limits->base)) <= -kLimitRecheck) continue;
+    const SampleBase base = limits->base;
+    AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
+    ++added;
+  }
+  return added;
+}
+
 Json PlanOptimizer::TermCosts(double* total) {
   Json out = Json::object();
   *total = 0;
   for (const auto& [name, ids] : terms_) {
-    ceres::Problem::EvaluateOptions eo;
-    eo.residual_blocks = ids;
-    eo.num_threads = 1;
-    double cost = 0;
-    problem_.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
+    double cost = name == "limits" ? ScreenedLimitsCost() : 0.0;
+    if (!ids.empty()) {  // (an empty list would evaluate every block)
+      ceres::Problem::EvaluateOptions eo;
+      eo.residual_blocks = ids;
+      eo.num_threads = 1;
+      double blocks = 0;
+      problem_.Evaluate(eo, &blocks, nullptr, nullptr, nullptr);
+      cost += blocks;
+    }
     out[name] = RoundToDecimals(cost, 9);
     *total += cost;
   }
@@ -871,13 +931,14 @@ double PlanOptimizer::GoalCost() {
   for (const auto& [name, blocks] : terms_) {
     if (!kRegularizers.count(name)) ids.insert(ids.end(), blocks.begin(), blocks.end());
   }
-  if (ids.empty()) return 0;
-  ceres::Problem::EvaluateOptions eo;
-  eo.residual_blocks = ids;
-  eo.num_threads = 1;
   double cost = 0;
-  problem_.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
-  return cost;
+  if (!ids.empty()) {
+    ceres::Problem::EvaluateOptions eo;
+    eo.residual_blocks = ids;
+    eo.num_threads = 1;
+    problem_.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
+  }
+  return cost + ScreenedLimitsCost();
 }
 
 double PlanOptimizer::Objective() {
@@ -894,6 +955,7 @@ OptimizeResult PlanOptimizer::Run() {
   for (int round = 0; round < std::max(1, options_.visibility_rounds); ++round) {
     if (round > 0 && AddVisibilityTargets() == 0) break;
     Solve(round == 0 && !warm());
+    while (AddLimitsNearTheirBounds() > 0) Solve(false);
   }
   if (terms_.count("occlusion") && terms_["occlusion"].empty()) terms_.erase("occlusion");
 
