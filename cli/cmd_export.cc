@@ -187,12 +187,7 @@ class ExportCommand : public Command {
         list += (list.empty() ? "" : ", ") + file.file_name;
         out.files.push_back(file);
       }
-      long frame_start = first.keys.front().frame;
-      long frame_end = first.keys.back().frame;
-      for (const auto& t : tracks) {
-        frame_start = std::min(frame_start, t.keys.front().frame);
-        frame_end = std::max(frame_end, t.keys.back().frame);
-      }
+      const auto [frame_start, frame_end] = exporter::FrameRange(tracks);
       const bool mesh = format == exporter::Format::kGltfCamera && !glb.empty();
       const std::string mesh_name = std::filesystem::path(glb_source).filename().string();
       Json notes = Json::array();

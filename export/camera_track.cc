@@ -1,5 +1,6 @@
 #include "export/camera_track.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -43,6 +44,16 @@ CameraTrack TrackOfFlight(const Trajectory& flight, const std::string& name, con
     track.keys.push_back(key);
   }
   return track;
+}
+
+std::pair<long, long> FrameRange(const std::vector<CameraTrack>& tracks) {
+  CINEPATH_CHECK(!tracks.empty());
+  std::pair<long, long> range{tracks.front().keys.front().frame, tracks.front().keys.back().frame};
+  for (const CameraTrack& t : tracks) {
+    range.first = std::min(range.first, t.keys.front().frame);
+    range.second = std::max(range.second, t.keys.back().frame);
+  }
+  return range;
 }
 
 }  // namespace cinepath::exporter

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,5 +41,8 @@ struct CameraTrack {
 // `source` and the sample ("plan.json: flights[north].samples[3].time_s: ..." when `in_team`) for a
 // flight without samples or a sample off the frame grid.
 CameraTrack TrackOfFlight(const Trajectory& flight, const std::string& name, const std::string& source, bool in_team);
+
+// The first and last frame over every track (each has at least one key).
+std::pair<long, long> FrameRange(const std::vector<CameraTrack>& tracks);
 
 }  // namespace cinepath::exporter

@@ -167,12 +167,7 @@ std::string WriteGltfCamera(const std::vector<CameraTrack>& tracks, std::string_
     scene_json["nodes"] = scene_nodes;
     glb.Array("animations").push_back(Json{{"name", "previs"}, {"channels", channels}, {"samplers", samplers}});
 
-    long frame_start = tracks.front().keys.front().frame;
-    long frame_end = tracks.front().keys.back().frame;
-    for (const CameraTrack& t : tracks) {
-      frame_start = std::min(frame_start, t.keys.front().frame);
-      frame_end = std::max(frame_end, t.keys.back().frame);
-    }
+    const auto [frame_start, frame_end] = FrameRange(tracks);
     Json& extras = scene_json["extras"];
     if (!extras.is_object()) extras = Json::object();
     extras["frame_rate_hz"] = tracks.front().frame_rate_hz;
