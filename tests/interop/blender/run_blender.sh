@@ -2,7 +2,7 @@
 # Runs check.py in Blender headless; exit 77 (CTest: skipped) with a message when Blender is absent.
 #   run_blender.sh gltf|chan OUT_DIR PLAN_JSON [--scene SCENE_JSON]
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
+here=${0%/*}
 if ! command -v blender > /dev/null 2>&1; then
   echo "SKIP: blender not found (scripts/install-deps.sh installs Debian's blender)"
   exit 77
