@@ -1,4 +1,5 @@
-// cinepath export: plan.json -> drone missions (docs/export.md).
+// cinepath export: plan.json -> drone missions and camera tracks (docs/export.md).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -15,11 +16,14 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/geoid.h"
+#include "core/glb_container.h"
 #include "core/ground.h"
 #include "core/json.h"
 #include "core/number_format.h"
 #include "core/plan_file.h"
+#include "core/reframe.h"
 #include "core/scene_file.h"
+#include "export/camera_track.h"
 #include "export/exporter.h"
 #include "export/formats.h"
 #include "export/takeoff.h"
@@ -35,10 +39,11 @@ class ExportCommand : public Command {
     app.add_option("plan", plan_path_, "plan.json from `cinepath plan` / `cinepath optimize`")->required();
     app.add_option("--scene", scene_path_,
                    "scene.json: its WGS84 origin when the plan has none, and its mesh's ground under the first "
-                   "sample as home (take-off), or to check --home against");
+                   "sample as home (take-off), or to check --home against; for gltf-camera and nuke-chan the "
+                   "frame the cameras are written in, and gltf-camera's mesh");
     app.add_option("--format", format_names_,
                    "Output format (repeatable): qgc-plan, qgc-wpl, mavlink-bin, dji-wpml, dji-msdk-json, "
-                   "litchi-csv")
+                   "litchi-csv (missions); gltf-camera, nuke-chan (camera tracks)")
         ->required();
     app.add_option("--firmware", firmware_name_, "MAVLink target firmware: px4 (default) or ardupilot");
     app.add_option("--drone", drone_name_,
@@ -90,10 +95,18 @@ class ExportCommand : public Command {
     options.build.selection.max_angle_deg = max_angle_deg_;
     if (!home_text_.empty()) options.build.home = exporter::ParseHomeSpec(home_text_, "--home");
     options.Check();  // option errors before any file is read
+    std::vector<exporter::Format> camera_formats;
+    std::erase_if(options.formats, [&](exporter::Format f) {
+      if (!exporter::IsCameraTrackFormat(f)) return false;
+      camera_formats.push_back(f);
+      return true;
+    });
 
     TeamPlan team = ReadTeamPlanFile(plan_path_);
     PrintWarnings("export", TeamPlanNotes(team));
-    if (!team.single) return RunTeam(team, options);
+    const CameraTracks cameras = WriteCameraTracks(team, camera_formats);
+    if (options.formats.empty()) return RunCamerasOnly(cameras);
+    if (!team.single) return RunTeam(team, options, cameras);
     const Trajectory plan = std::move(team.flights.front().plan);
     std::vector<std::string> inputs = {plan_path_};
     if (!scene_path_.empty()) {
@@ -107,25 +120,129 @@ class ExportCommand : public Command {
     }
     const exporter::ExportResult result = exporter::ExportMission(plan, options);
 
-    const Json report = exporter::ReportJson(result, options);
+    Json report = exporter::ReportJson(result, options);
+    if (!cameras.files.empty()) report["camera_tracks"] = cameras.report;
     EnsureDirectory(output_dir_);
     AtomicOutputs outputs;
-    for (const auto& file : result.files)
+    std::vector<std::string> targets;
+    for (const auto& file : result.files) {
       outputs.Add(std::filesystem::path(output_dir_) / file.file_name, file.contents);
+      targets.push_back((std::filesystem::path(output_dir_) / file.file_name).string());
+    }
+    AddCameraFiles(cameras, outputs, targets, inputs);
     outputs.Add(std::filesystem::path(output_dir_) / "export_report.json", DumpJson(report));
     outputs.Commit();
-    std::cout << (json_ ? DumpJson(report) : exporter::ReportText(result, options));
-    std::vector<std::string> targets;
-    for (const auto& file : result.files)
-      targets.push_back((std::filesystem::path(output_dir_) / file.file_name).string());
+    std::cout << (json_ ? DumpJson(report) : exporter::ReportText(result, options) + cameras.text);
     targets.push_back((std::filesystem::path(output_dir_) / "export_report.json").string());
+    common_.WriteDepfileIfAsked(targets, inputs);
+    return 0;
+  }
+
+  // The camera-track formats' files (into OUTPUT itself, for one drone or several), their report, and
+  // the files they read.
+  struct CameraTracks {
+    std::vector<exporter::CameraFile> files;
+    Json report = Json::array();
+    std::string text;
+    std::vector<std::string> inputs;
+  };
+
+  // Every drone's track, in --scene's frame when it has an origin (core/reframe.h: exact, through ECEF,
+  // so a plan about another origin, across the antimeridian or kilometres away, lands on the mesh), with
+  // --scene's mesh in the GLB.
+  CameraTracks WriteCameraTracks(const TeamPlan& plan, const std::vector<exporter::Format>& formats) const {
+    CameraTracks out;
+    if (formats.empty()) return out;
+    const TeamPlan* team = &plan;
+    TeamPlan reframed;
+    std::string glb;
+    std::string glb_source;
+    if (!scene_path_.empty()) {
+      const SceneFile scene = ReadSceneFile(scene_path_);
+      out.inputs.push_back(scene_path_);
+      if (scene.origin && plan.origin) {
+        reframed = ReframeToOrigin(plan, *scene.origin);
+        team = &reframed;
+      }
+      const bool gltf = std::find(formats.begin(), formats.end(), exporter::Format::kGltfCamera) != formats.end();
+      if (scene.mesh && gltf) {
+        glb_source = scene.RequireMesh().string();
+        glb = ReadFileToString(scene.RequireMesh());
+        out.inputs.push_back(glb_source);
+      }
+    }
+    std::vector<exporter::CameraTrack> tracks;
+    for (const auto& flight : team->flights) {
+      CheckDroneFolderName(flight.name, plan_path_);
+      tracks.push_back(exporter::TrackOfFlight(flight.plan, flight.name, plan_path_, !team->single));
+    }
+    const exporter::CameraTrack& first = tracks.front();
+    for (exporter::Format format : formats) {
+      const exporter::FormatInfo& info = exporter::InfoOf(format);
+      const std::vector<exporter::CameraFile> files = info.write_cameras({tracks, glb, glb_source});
+      Json names = Json::array();
+      std::string list;
+      for (const auto& file : files) {
+        names.push_back(file.file_name);
+        list += (list.empty() ? "" : ", ") + file.file_name;
+        out.files.push_back(file);
+      }
+      const auto [frame_start, frame_end] = exporter::FrameRange(tracks);
+      const bool mesh = format == exporter::Format::kGltfCamera && !glb.empty();
+      const std::string mesh_name = std::filesystem::path(glb_source).filename().string();
+      Json notes = Json::array();
+      if (mesh && SplitGlb(glb, glb_source).json.find("KHR_draco_mesh_compression") != std::string_view::npos) {
+        notes.push_back(mesh_name +
+                        " is Draco-compressed: Debian's Blender 3.4 has no Draco decoder and cannot import it (a "
+                        "scene built without --draco can)");
+      }
+      out.report.push_back(Json{{"format", info.name},
+                                {"files", names},
+                                {"cameras", tracks.size()},
+                                {"frame_rate_hz", first.frame_rate_hz},
+                                {"frame_start", frame_start},
+                                {"frame_end", frame_end},
+                                {"scene_mesh", mesh ? Json(mesh_name) : Json(nullptr)},
+                                {"notes", notes}});
+      out.text += std::string(info.name) + ": " + list + " (" + std::to_string(tracks.size()) +
+                  (tracks.size() == 1 ? " camera" : " cameras") + ", frames " + std::to_string(frame_start) + "-" +
+                  std::to_string(frame_end) + " at " + FormatShortest(first.frame_rate_hz) + " fps" +
+                  (mesh ? ", with the mesh of " + mesh_name : std::string()) + ")\n";
+      for (const auto& note : notes) out.text += "  note: " + note.get<std::string>() + "\n";
+    }
+    return out;
+  }
+
+  void AddCameraFiles(const CameraTracks& cameras, AtomicOutputs& outputs, std::vector<std::string>& targets,
+                      std::vector<std::string>& inputs) const {
+    for (const auto& file : cameras.files) {
+      outputs.Add(std::filesystem::path(output_dir_) / file.file_name, file.contents);
+      targets.push_back((std::filesystem::path(output_dir_) / file.file_name).string());
+    }
+    for (const auto& input : cameras.inputs) {
+      if (std::find(inputs.begin(), inputs.end(), input) == inputs.end()) inputs.push_back(input);
+    }
+  }
+
+  // Only camera tracks: no mission, no home, no origin needed.
+  int RunCamerasOnly(const CameraTracks& cameras) const {
+    std::vector<std::string> inputs = {plan_path_};
+    std::vector<std::string> targets;
+    const Json report = Json{{"camera_tracks", cameras.report}};
+    EnsureDirectory(output_dir_);
+    AtomicOutputs outputs;
+    AddCameraFiles(cameras, outputs, targets, inputs);
+    outputs.Add(std::filesystem::path(output_dir_) / "export_report.json", DumpJson(report));
+    targets.push_back((std::filesystem::path(output_dir_) / "export_report.json").string());
+    outputs.Commit();
+    std::cout << (json_ ? DumpJson(report) : cameras.text);
     common_.WriteDepfileIfAsked(targets, inputs);
     return 0;
   }
 
   // A plan for several drones: one mission per drone into OUTPUT/<drone>/ (the file names of a one-drone
   // export), each with its own home and checked against its own profile (--drone overrides for all).
-  int RunTeam(const TeamPlan& team, const exporter::ExportOptions& shared) const {
+  int RunTeam(const TeamPlan& team, const exporter::ExportOptions& shared, const CameraTracks& cameras) const {
     if (!home_text_.empty()) {
       throw InputError("--home: " + plan_path_ + " holds " + std::to_string(team.flights.size()) +
                        " drones, and one --home cannot be every drone's take-off point; give each drone its "
@@ -199,7 +316,10 @@ class ExportCommand : public Command {
               ", " + FormatFixed(e.result.mission.home.amsl_m, 2) + " m AMSL)\n";
       for (const auto& line : SplitLines(exporter::ReportText(e.result, e.options))) text += "  " + line + "\n";
     }
-    const Json report = Json{{"drones", drones}};
+    Json report = Json{{"drones", drones}};
+    if (!cameras.files.empty()) report["camera_tracks"] = cameras.report;
+    AddCameraFiles(cameras, outputs, targets, inputs);
+    text += cameras.text;
     outputs.Add(std::filesystem::path(output_dir_) / "export_report.json", DumpJson(report));
     targets.push_back((std::filesystem::path(output_dir_) / "export_report.json").string());
     outputs.Commit();

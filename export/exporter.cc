@@ -47,7 +47,12 @@ ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& op
   // One Mission per flight model, in the order the formats ask for them (formats.h).
   const bool roi_auto = options.roi == RoiMode::kAuto;
   std::vector<FlightModel> models;
+  std::vector<Format> formats;  // the missions (camera tracks are written by the caller, camera_track.h)
   for (Format format : options.formats) {
+    if (!IsCameraTrackFormat(format)) formats.push_back(format);
+  }
+  if (formats.empty()) throw InputError("formats: no mission format (gltf-camera and nuke-chan are camera tracks)");
+  for (Format format : formats) {
     const FlightModel model = InfoOf(format).flight_model(roi_auto);
     if (std::find(models.begin(), models.end(), model) != models.end()) continue;
     models.push_back(model);
@@ -59,7 +64,7 @@ ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& op
   const bool any_rois =
       std::any_of(result.missions.begin(), result.missions.end(), [](const Mission& m) { return !m.rois.empty(); });
 
-  for (Format format : options.formats) {
+  for (Format format : formats) {
     const FormatInfo& info = InfoOf(format);
     const FlightModel model = info.flight_model(roi_auto);
     const int mission_index = static_cast<int>(std::find(models.begin(), models.end(), model) - models.begin());

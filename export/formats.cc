@@ -3,10 +3,12 @@
 #include "core/error.h"
 #include "export/dji_msdk_json.h"
 #include "export/dji_wpml.h"
+#include "export/gltf_camera.h"
 #include "export/litchi_csv.h"
 #include "export/mavlink_bin.h"
 #include "export/mavlink_mission.h"
 #include "export/msdk_spacing.h"
+#include "export/nuke_chan.h"
 #include "export/qgc_plan.h"
 #include "export/qgc_wpl.h"
 
@@ -112,6 +114,16 @@ FormatLimits LitchiLimits() {
   return l;
 }
 
+// Camera tracks: one GLB with every drone's camera (and the scene), or one .chan per drone.
+std::vector<CameraFile> WriteGltfCameraFile(const CameraWriterInput& in) {
+  return {{"previs.glb", WriteGltfCamera(in.tracks, in.scene_glb, in.scene_source)}};
+}
+std::vector<CameraFile> WriteNukeChanFiles(const CameraWriterInput& in) {
+  std::vector<CameraFile> files;
+  for (const CameraTrack& track : in.tracks) files.push_back({track.name + ".chan", WriteNukeChan(track)});
+  return files;
+}
+
 }  // namespace
 
 const std::vector<FormatInfo>& Formats() {
@@ -129,6 +141,14 @@ const std::vector<FormatInfo>& Formats() {
        &StraightWithHeadings, MsdkLimits(), &WriteMsdk},
       {Format::kLitchiCsv, "litchi-csv", "mission.litchi.csv", "Litchi Mission Hub CSV", false, &StraightTrackingCamera,
        LitchiLimits(), &WriteLitchi},
+      {Format::kGltfCamera, "gltf-camera", "previs.glb",
+       "glTF 2.0 binary: a camera per drone animated at every sample, with --scene the scene's mesh (Blender, "
+       "engines, three.js)",
+       false, nullptr, FormatLimits(), nullptr, FormatKind::kCameraTrack, &WriteGltfCameraFile},
+      {Format::kNukeChan, "nuke-chan", "<drone>.chan",
+       "Nuke .chan camera track per drone: frame, translation, ZXY rotation, vertical field of view (Nuke, "
+       "Blender)",
+       false, nullptr, FormatLimits(), nullptr, FormatKind::kCameraTrack, &WriteNukeChanFiles},
   };
   return formats;
 }
@@ -144,6 +164,7 @@ const FormatInfo& InfoOf(Format format) {
 const char* FormatName(Format format) { return InfoOf(format).name; }
 const char* FormatFileName(Format format) { return InfoOf(format).file_name; }
 bool IsMavlinkFormat(Format format) { return InfoOf(format).mavlink; }
+bool IsCameraTrackFormat(Format format) { return InfoOf(format).kind == FormatKind::kCameraTrack; }
 FormatLimits LimitsOf(Format format) { return InfoOf(format).limits; }
 
 Format ParseFormat(const std::string& name) {

@@ -8,7 +8,7 @@
 
 namespace cinepath::exporter {
 
-enum class Format { kQgcPlan, kQgcWpl, kMavlinkBin, kDjiWpml, kDjiMsdkJson, kLitchiCsv };
+enum class Format { kQgcPlan, kQgcWpl, kMavlinkBin, kDjiWpml, kDjiMsdkJson, kLitchiCsv, kGltfCamera, kNukeChan };
 enum class Firmware { kPx4, kArduPilot };
 
 const char* FirmwareName(Firmware firmware);  // "px4" | "ardupilot"

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/glb_container.h"
 #include "scene/tinygltf_config.h"
 
 namespace cinepath::scene {
@@ -449,27 +450,16 @@ SceneMesh GlbDecoder::Decode() {
   return out;
 }
 
-uint32_t ReadU32(std::string_view bytes, size_t offset) {
-  uint32_t v;
-  std::memcpy(&v, bytes.data() + offset, 4);
-  return v;
-}
-
-void AppendU32(std::string& out, uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); }
-
 // tinygltf (built without Draco, scene/tinygltf_impl.cc) insists that an index accessor has a
 // bufferView, which a Draco primitive's does not. Draco primitives therefore reach tinygltf without
 // "indices" (the decoder below takes the faces from the Draco mesh), in a GLB rebuilt with that JSON.
+// The container is checked first (core/glb_container.h): the header's total length is the file's, and
+// every chunk lies inside it — tinygltf (2.8, Debian 12) trusts the BIN chunk's length and copies past
+// the end of a truncated file.
 std::string WithoutDracoIndices(std::string_view glb, const std::string& source) {
-  // GLB 2.0: 12-byte header, then chunks (length, type, data); chunk 0 is JSON.
-  if (glb.size() < 20) throw InputError(source + ": truncated GLB header");
-  const uint32_t json_length = ReadU32(glb, 12);
-  if (ReadU32(glb, 16) != 0x4E4F534Au || json_length > glb.size() - 20) {
-    throw InputError(source + ": the first GLB chunk is not a complete JSON chunk");
-  }
-  const std::string_view json_text = glb.substr(20, json_length);
-  if (json_text.find(kDracoExtension) == std::string_view::npos) return std::string(glb);
-  nlohmann::json doc = nlohmann::json::parse(json_text, nullptr, /*allow_exceptions=*/false);
+  const GlbChunks chunks = SplitGlb(glb, source);
+  if (chunks.json.find(kDracoExtension) == std::string_view::npos) return std::string(glb);
+  nlohmann::json doc = nlohmann::json::parse(chunks.json, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded() || !doc.is_object()) throw InputError(source + ": the GLB's JSON chunk is not valid JSON");
   bool changed = false;
   if (auto meshes = doc.find("meshes"); meshes != doc.end() && meshes->is_array()) {
@@ -483,40 +473,7 @@ std::string WithoutDracoIndices(std::string_view glb, const std::string& source)
     }
   }
   if (!changed) return std::string(glb);
-  std::string json = doc.dump();
-  json.resize((json.size() + 3) / 4 * 4, ' ');
-  const std::string_view rest = glb.substr(20 + json_length);
-  std::string out;
-  out.reserve(20 + json.size() + rest.size());
-  out.append(glb.substr(0, 8));
-  AppendU32(out, static_cast<uint32_t>(20 + json.size() + rest.size()));
-  AppendU32(out, static_cast<uint32_t>(json.size()));
-  AppendU32(out, 0x4E4F534Au);
-  out += json;
-  out.append(rest);
-  return out;
-}
-
-// The GLB container: the header's total length is the file's, and every chunk lies inside it. tinygltf
-// (2.8, Debian 12) trusts the BIN chunk's length and copies past the end of a truncated file.
-void CheckGlbContainer(std::string_view glb, const std::string& source) {
-  if (glb.size() < 20) throw InputError(source + ": truncated GLB header");
-  const uint32_t total = ReadU32(glb, 8);
-  if (total != glb.size()) {
-    throw InputError(source + ": the GLB header gives " + std::to_string(total) + " bytes, the file has " +
-                     std::to_string(glb.size()) + " (truncated or padded)");
-  }
-  size_t offset = 12;
-  for (int chunk = 0; offset < glb.size(); ++chunk) {
-    if (glb.size() - offset < 8)
-      throw InputError(source + ": GLB chunk " + std::to_string(chunk) + ": truncated header");
-    const uint32_t length = ReadU32(glb, offset);
-    if (length > glb.size() - offset - 8) {
-      throw InputError(source + ": GLB chunk " + std::to_string(chunk) + " claims " + std::to_string(length) +
-                       " bytes, " + std::to_string(glb.size() - offset - 8) + " remain");
-    }
-    offset += 8 + length;
-  }
+  return AssembleGlb(doc.dump(), chunks.bin);
 }
 
 }  // namespace
@@ -524,7 +481,6 @@ void CheckGlbContainer(std::string_view glb, const std::string& source) {
 SceneMesh ReadGlbBytes(std::string_view bytes, const std::string& source) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw InputError(source + ": larger than 4 GiB");
   if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF") throw InputError(source + ": not a binary glTF (GLB) file");
-  CheckGlbContainer(bytes, source);
   const std::string glb = WithoutDracoIndices(bytes, source);
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/three_frame.h"
 #include "viewer/deflate.h"
-#include "viewer/three_frame.h"
 
 namespace cinepath::viewer {
 std::string DeltaBytePlanes(const std::vector<uint32_t>& values, int width, int stride) {

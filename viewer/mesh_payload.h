@@ -1,4 +1,4 @@
-// The scene mesh as the page carries it: positions in three.js's frame (viewer/three_frame.h)
+// The scene mesh as the page carries it: positions in three.js's frame (core/three_frame.h)
 // quantized to 16 bits per axis over the mesh's bounds (a 500 m scene keeps 8 mm steps), vertex colours
 // as 8-bit sRGB, texture coordinates (TEXCOORD_0, when the mesh has a base-colour texture) quantized to
 // 16 bits over [0, 1], triangle indices as 16- or 32-bit integers. Each of the three streams is delta-coded

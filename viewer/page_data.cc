@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "viewer/three_frame.h"
+#include "core/three_frame.h"
 
 namespace cinepath::viewer {
 namespace {

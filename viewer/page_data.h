@@ -1,5 +1,5 @@
 // What the previs page knows about the plan, as the JSON block the page's code reads (viewer/previs.js):
-// the samples' positions and camera orientations in three.js's frame (viewer/three_frame.h), the lens
+// the samples' positions and camera orientations in three.js's frame (core/three_frame.h), the lens
 // per sample (vertical angle of view by the sensor-fit rule, focus null at infinity), speeds, shots,
 // keyframes, subjects and the feasibility report's violations. Numbers are rounded to a fixed number
 // of decimals (positions mm, angles 1e-4 deg, quaternions 1e-6), so the page is the same bytes each run.

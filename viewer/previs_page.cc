@@ -6,13 +6,13 @@
 #include "core/plan_file.h"
 #include "core/reframe.h"
 #include "core/scene_file.h"
+#include "core/three_frame.h"
 #include "scene/glb_reader.h"
 #include "viewer/base64.h"
 #include "viewer/embedded_assets.h"
 #include "viewer/frame_images.h"
 #include "viewer/mesh_payload.h"
 #include "viewer/page_data.h"
-#include "viewer/three_frame.h"
 
 namespace cinepath::viewer {
 namespace {

@@ -1,6 +1,7 @@
 // libFuzzer target: plan.json through `export`'s preparation, in process: every flight's missions built,
 // checked and written in every format (MAVLink for PX4 and ArduPilot, DJI WPML and MSDK, Litchi), with
-// relative and AMSL altitudes, and the report, as `cinepath export --force` builds them before writing.
+// relative and AMSL altitudes, and the report, as `cinepath export --force` builds them before writing;
+// and every flight's camera track in the camera-track formats (glTF, Nuke .chan).
 #include <cstddef>
 #include <cstdint>
 
@@ -35,8 +36,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto team = fuzz::ReadPlanInput(data, size);
   if (!team) return 0;
   std::vector<Format> all;
-  for (const FormatInfo& f : Formats()) all.push_back(f.format);
+  std::vector<const FormatInfo*> cameras;
+  for (const FormatInfo& f : Formats()) {
+    if (f.kind == FormatKind::kCameraTrack) {
+      cameras.push_back(&f);
+    } else {
+      all.push_back(f.format);
+    }
+  }
   for (const auto& flight : team->flights) {
+    fuzz::RunStage([&] {
+      const std::vector<CameraTrack> tracks = {TrackOfFlight(flight.plan, flight.name, "plan.json", !team->single)};
+      for (const FormatInfo* f : cameras) f->write_cameras({tracks, {}, ""});
+    });
     Export(flight.plan, all, Firmware::kPx4, AltitudeRef::kRelative);
     Export(flight.plan, {Format::kQgcPlan, Format::kQgcWpl, Format::kMavlinkBin, Format::kDjiWpml},
            Firmware::kArduPilot, AltitudeRef::kAmsl);

@@ -1,10 +1,10 @@
-#include "viewer/three_frame.h"
+#include "core/three_frame.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-namespace cinepath::viewer {
+namespace cinepath {
 namespace {
 
 // world_from_camera for a camera looking along `forward` (ENU) with `right` its x axis (y = down).
@@ -44,4 +44,4 @@ TEST(ThreeFrame, VerticalFieldOfViewFollowsTheSensorFit) {
 }
 
 }  // namespace
-}  // namespace cinepath::viewer
+}  // namespace cinepath

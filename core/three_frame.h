@@ -1,7 +1,8 @@
-// From the scene frame (local ENU, camera x right / y down / z forward) to three.js's frame, which the
-// page draws in: glTF's and three.js's +Y is up, so ENU (e, n, u) is (e, u, -n) there, as in the GLB
-// (docs/design.md, "Frames"); a three.js camera looks along its -Z with +Y up, i.e. (x, -y, -z) of the
-// COLMAP/OpenCV camera frame. Also the vertical angle of view a three.js PerspectiveCamera takes.
+// From the scene frame (local ENU, camera x right / y down / z forward) to the Y-up frame that three.js
+// (the previs page), glTF and Nuke share: ENU (e, n, u) is (e, u, -n) there, as in the GLB
+// (docs/design.md, "Frames"); a camera of those three looks along its -Z with +Y up, i.e. (x, -y, -z) of
+// the COLMAP/OpenCV camera frame. Also the vertical angle of view a three.js PerspectiveCamera, a glTF
+// camera's yfov and a Nuke camera's vertical field of view take.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,7 +10,7 @@
 
 #include "core/trajectory.h"
 
-namespace cinepath::viewer {
+namespace cinepath {
 
 Eigen::Vector3d ThreeFromEnu(const Eigen::Vector3d& enu_m);
 
@@ -20,4 +21,4 @@ Eigen::Quaterniond ThreeCameraFromWorldFromCamera(const Eigen::Quaterniond& worl
 // the sensor is sensor_width_mm * height_px / width_px.
 double VerticalFieldOfViewDeg(const CameraSpec& camera, double focal_length_mm);
 
-}  // namespace cinepath::viewer
+}  // namespace cinepath

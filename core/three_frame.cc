@@ -1,10 +1,10 @@
-#include "viewer/three_frame.h"
+#include "core/three_frame.h"
 
 #include <numbers>
 
 #include "core/optics.h"
 
-namespace cinepath::viewer {
+namespace cinepath {
 
 Eigen::Vector3d ThreeFromEnu(const Eigen::Vector3d& enu_m) { return {enu_m.x(), enu_m.z(), -enu_m.y()}; }
 
@@ -24,4 +24,4 @@ double VerticalFieldOfViewDeg(const CameraSpec& camera, double focal_length_mm) 
   return FieldOfViewRad(camera.image_extent_mm().height_mm, focal_length_mm) * 180.0 / std::numbers::pi;
 }
 
-}  // namespace cinepath::viewer
+}  // namespace cinepath
