@@ -2,14 +2,15 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <tbb/parallel_invoke.h>
 
 #include "core/error.h"
+#include "preview/image_files.h"
 
 namespace cinepath::preview {
 namespace {
@@ -36,34 +37,11 @@ const std::array<float, 256>& LinearFromSrgb8() {
 }
 
 Texture DecodeTexture(const scene::SceneImage& image, size_t index) {
-  const std::string name = "texture" + std::to_string(index) + (image.mime_type == "image/jpeg" ? ".jpg" : ".png");
-  OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(image.encoded.data()), image.encoded.size());
-  auto input = OIIO::ImageInput::open(name, nullptr, &reader);
-  if (!input) throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = input->spec();
+  Srgb8Image decoded = DecodeSrgb8(image.encoded, "images[" + std::to_string(index) + "] (" + image.mime_type + ")");
   Texture texture;
-  texture.width = spec.width;
-  texture.height = spec.height;
-  const size_t count = size_t(spec.width) * spec.height;
-  if (spec.nchannels == 3) {
-    texture.srgb.resize(count * 3);
-    if (!input->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, texture.srgb.data())) {
-      throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + input->geterror());
-    }
-    return texture;
-  }
-  // Grey (1 channel) or with alpha: read as is, keep the colour.
-  std::vector<uint8_t> pixels(count * size_t(spec.nchannels));
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data())) {
-    throw InputError("images[" + std::to_string(index) + "]: cannot decode: " + input->geterror());
-  }
-  texture.srgb.resize(count * 3);
-  for (size_t i = 0; i < count; ++i) {
-    const uint8_t* p = &pixels[i * size_t(spec.nchannels)];
-    texture.srgb[3 * i] = p[0];
-    texture.srgb[3 * i + 1] = spec.nchannels >= 3 ? p[1] : p[0];
-    texture.srgb[3 * i + 2] = spec.nchannels >= 3 ? p[2] : p[0];
-  }
+  texture.width = decoded.width;
+  texture.height = decoded.height;
+  texture.srgb = std::move(decoded.rgb);
   return texture;
 }
 
@@ -88,11 +66,28 @@ Eigen::Vector3f Texture::Sample(const Eigen::Vector2f& uv) const {
 PreviewScene::PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun,
                            Backdrop backdrop)
     : mesh_(std::move(mesh)), subjects_(plan), shading_(shading) {
-  caster_ = std::make_unique<scene::RayCaster>(mesh_);
-  for (size_t i = 0; i < mesh_.images.size(); ++i) textures_.push_back(DecodeTexture(mesh_.images[i], i));
+  using Clock = std::chrono::steady_clock;
+  auto seconds_since = [](Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  // The BVH and the textures at once (two cores: Embree's build and libjpeg's decode each take one).
+  textures_.resize(mesh_.images.size());
+  tbb::parallel_invoke(
+      [&] {
+        const auto start = Clock::now();
+        caster_ = std::make_unique<scene::RayCaster>(mesh_);
+        load_times_.bvh_s = seconds_since(start);
+      },
+      [&] {
+        const auto start = Clock::now();
+        for (size_t i = 0; i < mesh_.images.size(); ++i) textures_[i] = DecodeTexture(mesh_.images[i], i);
+        load_times_.textures_s = seconds_since(start);
+      });
   const double az = sun.azimuth_deg * kDegToRad, el = sun.elevation_deg * kDegToRad;
   sun_direction_enu_ = Eigen::Vector3d(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el));
+  const auto ground_start = Clock::now();
   if (backdrop == Backdrop::kGround) ground_ = BorderGround();
+  load_times_.ground_s = seconds_since(ground_start);
 }
 
 // The plane and colour of the ground past the edge: the median height of the border's vertices (edges

@@ -64,6 +64,13 @@ struct GroundBackdrop {
   Eigen::Vector3f ColorAt(const Eigen::Vector3d& position) const;
 };
 
+// Wall-clock seconds of each loading step (`render -v` prints them; never written into an image).
+struct SceneLoadTimes {
+  double bvh_s = 0;       // Embree's BVH of the mesh
+  double textures_s = 0;  // decoding the base-colour images (JPEG/PNG) to 8-bit texels
+  double ground_s = 0;    // the ground past the edge (border ring)
+};
+
 class PreviewScene {
  public:
   // Builds the BVH and decodes the textures (OpenImageIO). InputError for an empty or broken mesh.
@@ -79,6 +86,7 @@ class PreviewScene {
 
   const scene::SceneMesh& mesh() const { return mesh_; }
   const std::optional<GroundBackdrop>& ground() const { return ground_; }
+  const SceneLoadTimes& load_times() const { return load_times_; }
 
  private:
   Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
@@ -92,6 +100,7 @@ class PreviewScene {
   Shading shading_;
   Eigen::Vector3d sun_direction_enu_;  // towards the sun
   std::optional<GroundBackdrop> ground_;
+  SceneLoadTimes load_times_;
 };
 
 }  // namespace cinepath::preview
