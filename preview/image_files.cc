@@ -1,6 +1,8 @@
 #include "preview/image_files.h"
 
 #include <png.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -70,7 +72,10 @@ void WritePng(FILE* file, const Srgb8Image& image) {
     throw RuntimeError("libpng failed");
   }
   png_init_io(png, file);
-  png_set_compression_level(png, 3);  // zlib level: a third of level 6's time, 3 % larger
+  // zlib level 1 and the Sub filter on every row: half the instructions of level 3 with libpng's adaptive
+  // filter choice (measured on a textured 640 x 360 frame, callgrind), files 6 % larger.
+  png_set_compression_level(png, 1);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGB,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
@@ -127,13 +132,16 @@ void WriteJpeg(FILE* file, const Srgb8Image& image) {
   jpeg_destroy_compress(&jpeg);
 }
 
-// libjpeg's default decode (islow IDCT, fancy upsampling): the texels OpenImageIO's JPEG reader gave.
-Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& where) {
+// Rows [begin, end) of a JPEG into `image` (sized already), with libjpeg's default decode (islow IDCT,
+// fancy upsampling): the texels OpenImageIO's JPEG reader gave. The rows before `begin` are skipped
+// (jpeg_skip_scanlines: entropy-decoded, not transformed). Without `image`, only the size is read.
+void DecodeJpegRows(const std::vector<uint8_t>& encoded, const std::string& where, int begin, int end,
+                    Srgb8Image* image, int* width = nullptr, int* height = nullptr) {
   jpeg_decompress_struct jpeg{};
   JpegError error{};
   jpeg.err = jpeg_std_error(&error.manager);
   error.manager.error_exit = JpegErrorExit;
-  Srgb8Image texture;
+  error.manager.output_message = [](j_common_ptr) {};  // warnings (a truncated scan) are not printed
   if (setjmp(error.jump)) {
     jpeg_destroy_decompress(&jpeg);
     throw InputError(where + ": cannot decode the JPEG: " + error.message);
@@ -141,18 +149,19 @@ Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& wh
   jpeg_create_decompress(&jpeg);
   jpeg_mem_src(&jpeg, encoded.data(), static_cast<unsigned long>(encoded.size()));
   jpeg_read_header(&jpeg, TRUE);
-  jpeg.out_color_space = JCS_RGB;  // grey and YCbCr alike
-  jpeg_start_decompress(&jpeg);
-  texture.width = int(jpeg.output_width);
-  texture.height = int(jpeg.output_height);
-  texture.rgb.resize(size_t(texture.width) * texture.height * 3);
-  while (jpeg.output_scanline < jpeg.output_height) {
-    JSAMPROW row = &texture.rgb[size_t(jpeg.output_scanline) * texture.width * 3];
-    jpeg_read_scanlines(&jpeg, &row, 1);
+  if (width) *width = int(jpeg.image_width);
+  if (height) *height = int(jpeg.image_height);
+  if (image) {
+    jpeg.out_color_space = JCS_RGB;  // grey and YCbCr alike
+    jpeg_start_decompress(&jpeg);
+    if (begin > 0) jpeg_skip_scanlines(&jpeg, JDIMENSION(begin));
+    while (int(jpeg.output_scanline) < end) {
+      JSAMPROW row = &image->rgb[size_t(jpeg.output_scanline) * image->width * 3];
+      jpeg_read_scanlines(&jpeg, &row, 1);
+    }
   }
-  jpeg_finish_decompress(&jpeg);
+  jpeg_abort_decompress(&jpeg);
   jpeg_destroy_decompress(&jpeg);
-  return texture;
 }
 
 // libpng's simplified API, to 8-bit sRGB RGB (grey replicated, alpha dropped).
@@ -232,9 +241,30 @@ uint8_t LinearToSrgb8(float linear) {
 
 Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width, int height) {
   Srgb8Image image{width, height, std::vector<uint8_t>(size_t(width) * height * 3)};
-  for (size_t i = 0; i < rgb_linear.size(); ++i) {
-    for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = LinearToSrgb8(rgb_linear[i][c]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, rgb_linear.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = LinearToSrgb8(rgb_linear[i][c]);
+    }
+  });
+  return image;
+}
+
+Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& where, int parts) {
+  Srgb8Image image;
+  DecodeJpegRows(encoded, where, 0, 0, nullptr, &image.width, &image.height);
+  image.rgb.resize(size_t(image.width) * image.height * 3);
+  // Small images, or one part: one decoder. Otherwise the rows in bands, one decoder each, the later
+  // bands smaller (their decoder also entropy-decodes the rows it skips); the same bytes either way.
+  if (parts <= 1 || image.height < 512) {
+    DecodeJpegRows(encoded, where, 0, image.height, &image);
+    return image;
   }
+  std::vector<int> bounds{0};
+  for (int p = 1; p < parts; ++p)
+    bounds.push_back(std::min(image.height, int(image.height * 1.15 * p / parts) / 16 * 16));
+  bounds.push_back(image.height);
+  tbb::parallel_for(0, parts,
+                    [&](int p) { DecodeJpegRows(encoded, where, bounds[size_t(p)], bounds[size_t(p) + 1], &image); });
   return image;
 }
 
@@ -242,7 +272,7 @@ Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& bytes, const std::string& whe
   const bool png = bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
   const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff;
   if (png) return DecodePng(bytes, where);
-  if (jpeg) return DecodeJpeg(bytes, where);
+  if (jpeg) return DecodeJpeg(bytes, where, 2);
   throw InputError(where + ": cannot decode: neither JPEG nor PNG");
 }
 

@@ -29,6 +29,8 @@ Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width
 // A PNG or JPEG (told by its first bytes) decoded to 8-bit RGB as stored (grey replicated, alpha dropped;
 // libjpeg's default islow IDCT and fancy upsampling). InputError naming `where` when it cannot be.
 Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& encoded, const std::string& where);
+// A JPEG decoded by `parts` decoders at once, each a band of rows (the same bytes as one decoder).
+Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& where, int parts);
 
 // PNG or JPEG (quality 95) from 8-bit sRGB; RuntimeError naming the file when it cannot be written.
 void WriteSrgb8Atomic(const std::filesystem::path& path, const Srgb8Image& image);

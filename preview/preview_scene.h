@@ -71,17 +71,40 @@ struct SceneLoadTimes {
   double ground_s = 0;    // the ground past the edge (border ring)
 };
 
+// The mesh's images decoded, one texture each (libjpeg, libpng). InputError for an image that cannot be.
+std::vector<Texture> DecodeTextures(const scene::SceneMesh& mesh);
+
 class PreviewScene {
  public:
-  // Builds the BVH and decodes the textures (OpenImageIO). InputError for an empty or broken mesh.
+  // Builds the BVH and decodes the textures, at once. InputError for an empty or broken mesh.
   PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun,
                Backdrop backdrop = Backdrop::kNone);
+  // The same with the textures decoded already (DecodeTextures(mesh)): only the BVH is built.
+  PreviewScene(scene::SceneMesh mesh, std::vector<Texture> textures, const Trajectory& plan, Shading shading,
+               SunDirection sun, Backdrop backdrop);
   ~PreviewScene();
+
+  // One instant of the scene: the time and where the subjects stand then, worked out once for the many
+  // rays of that instant (a frame's pinhole pass, every ray of a frame without motion blur).
+  struct Instant {
+    double time_s = 0;
+    std::vector<Eigen::Vector3d> subject_bases;
+  };
+  void SetInstant(double time_s, Instant* instant, size_t sample_hint = 0) const;
+  Instant At(double time_s) const {
+    Instant instant;
+    SetInstant(time_s, &instant);
+    return instant;
+  }
 
   // Radiance along a unit-direction ray at time t: the shade of the closest surface (mesh or subject
   // proxy), or the sky; `hit_out` gets that surface (distance +inf for the sky).
-  Eigen::Vector3f Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s,
+  Eigen::Vector3f Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
                            TraceHit* hit_out = nullptr) const;
+  Eigen::Vector3f Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s,
+                           TraceHit* hit_out = nullptr) const {
+    return Radiance(origin, direction, At(time_s), hit_out);
+  }
   Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
 
   const scene::SceneMesh& mesh() const { return mesh_; }
@@ -91,7 +114,8 @@ class PreviewScene {
  private:
   Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
   GroundBackdrop BorderGround() const;
-  Eigen::Vector3f Light(const Eigen::Vector3d& position, const Eigen::Vector3d& normal, double time_s) const;
+  void Finish(SunDirection sun, Backdrop backdrop);  // the sun's direction and the ground past the edge
+  Eigen::Vector3f Light(const Eigen::Vector3d& position, const Eigen::Vector3d& normal, const Instant& at) const;
 
   scene::SceneMesh mesh_;
   std::unique_ptr<scene::RayCaster> caster_;

@@ -12,6 +12,8 @@
 #include <memory>
 #include <sstream>
 
+#include <tbb/task_group.h>
+
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/number_format.h"
@@ -172,6 +174,49 @@ SunDirection SunForOptions(const RenderOptions& options, const Trajectory& plan,
   return sun;
 }
 
+// The GLB read and its textures decoded on another thread while the plan is read and the options are
+// checked (the plan's JSON and the atlas's JPEG are the two longest loading steps, and independent). Its
+// errors are raised where the GLB used to be read, after the plan's and the options' own.
+class SceneLoader {
+ public:
+  explicit SceneLoader(const SceneFile& scene_file) {
+    group_.run([this, &scene_file] {
+      try {
+        const auto start = std::chrono::steady_clock::now();
+        mesh_ = scene::ReadGlbFile(scene_file.RequireMesh());
+        const auto decoded = std::chrono::steady_clock::now();
+        glb_s_ = std::chrono::duration<double>(decoded - start).count();
+        textures_ = DecodeTextures(mesh_);
+        textures_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - decoded).count();
+      } catch (...) {
+        error_ = std::current_exception();
+      }
+    });
+  }
+  ~SceneLoader() { group_.wait(); }
+  SceneLoader(const SceneLoader&) = delete;
+  SceneLoader& operator=(const SceneLoader&) = delete;
+
+  // Waits; the loading step's error if it failed. Call once.
+  void Wait(const RenderLog& log) {
+    group_.wait();
+    if (error_) std::rethrow_exception(error_);
+    if (log.step_done) {
+      log.step_done("open GLB (parse, Draco), beside the plan", glb_s_);
+      log.step_done("decode textures, beside the plan", textures_s_);
+    }
+  }
+  scene::SceneMesh& mesh() { return mesh_; }
+  std::vector<Texture>& textures() { return textures_; }
+
+ private:
+  tbb::task_group group_;
+  scene::SceneMesh mesh_;
+  std::vector<Texture> textures_;
+  std::exception_ptr error_;
+  double glb_s_ = 0, textures_s_ = 0;
+};
+
 }  // namespace
 
 std::string FrameLabel(const Trajectory& plan, size_t k) {
@@ -250,7 +295,7 @@ void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& op
 // rendered there. The edit's contact sheet, each tile labelled with its time and drone, goes to
 // OUTPUT/edit/contact_sheet.png, or with --contact-sheet PATH beside PATH as STEM.edit.EXT (PATH then
 // holds every drone's tiles).
-RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::path& plan_json,
+RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader& loader, const fs::path& plan_json,
                          const fs::path& scene_json, const RenderOptions& options, const RenderLog& log) {
   RenderSummary summary;
   summary.inputs.push_back(plan_json.string());
@@ -288,7 +333,8 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::p
   CheckWritableFolder(options.output_dir);
   for (const auto& flight : team.flights) CheckWritableFolder(options.output_dir / flight.name);
   if (has_edit) CheckWritableFolder(options.output_dir / "edit");
-  const scene::SceneMesh mesh = scene::ReadGlbFile(glb);
+  loader.Wait(log);
+  const scene::SceneMesh& mesh = loader.mesh();
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   const FrameSettings settings = SettingsFor(options, width, height);
@@ -322,7 +368,7 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::p
   size_t done = 0;
   for (size_t f = 0; f < team.flights.size(); ++f) {
     const Trajectory& plan = team.flights[f].plan;
-    const PreviewScene scene(mesh, plan, options.shading, sun, options.backdrop);
+    const PreviewScene scene(mesh, loader.textures(), plan, options.shading, sun, options.backdrop);
     auto render = [&](size_t k, const fs::path& path) {
       const auto start = std::chrono::steady_clock::now();
       const FrameImage frame = RenderFrame(scene, plan, k, settings);
@@ -418,10 +464,11 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   };
   // Everything that can be refused, before anything is written.
   const SceneFile scene_file = ReadSceneFile(scene_json);
+  SceneLoader loader(scene_file);
   TeamPlan team = ReadTeamPlanFile(plan_json);
   summary.notes = TeamPlanNotes(team);
   if (!team.single) {
-    RenderSummary team_summary = RenderTeam(std::move(team), scene_file, plan_json, scene_json, options, log);
+    RenderSummary team_summary = RenderTeam(std::move(team), scene_file, loader, plan_json, scene_json, options, log);
     team_summary.notes = std::move(summary.notes);
     return team_summary;
   }
@@ -447,12 +494,12 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   const SunDirection sun = SunForOptions(options, plan, scene_file);
   CheckWritableFolder(options.output_dir);
   step("read plan.json and scene.json, check the options");
-  scene::SceneMesh mesh = scene::ReadGlbFile(glb);
-  step("open GLB (parse, Draco)");
-  const PreviewScene scene(std::move(mesh), plan, options.shading, sun, options.backdrop);
+  loader.Wait(log);
+  step("wait for the GLB and its textures");
+  const PreviewScene scene(std::move(loader.mesh()), std::move(loader.textures()), plan, options.shading, sun,
+                           options.backdrop);
   if (log.step_done) {
     log.step_done("BVH", scene.load_times().bvh_s);
-    log.step_done("decode textures", scene.load_times().textures_s);
     log.step_done("ground past the edge", scene.load_times().ground_s);
   }
   step_start = Clock::now();

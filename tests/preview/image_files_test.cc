@@ -5,12 +5,19 @@
 
 #include <zlib.h>
 
+#include <cstdio>
+#include <cstdlib>
+
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
 
 #include <gtest/gtest.h>
+// jpeglib.h needs FILE and size_t declared first.
+#include <jpeglib.h>
+
+#include "core/error.h"
 
 namespace cinepath::preview {
 namespace {
@@ -128,6 +135,62 @@ TEST(ExrWriter, NoiseThatDoesNotCompressIsStoredRaw) {
   }
   const ExrRead read = ReadExr(EncodeExr(64, 16, {"Z"}, values));
   for (size_t i = 0; i < values.size(); ++i) ASSERT_EQ(std::memcmp(&values[i], &read.values[i], 4), 0);
+}
+
+// A JPEG of a smooth pattern with noise, through libjpeg with the given chroma subsampling.
+std::vector<uint8_t> TestJpeg(int width, int height, int h_samp, int v_samp) {
+  std::vector<uint8_t> rgb(size_t(width) * height * 3);
+  uint32_t state = 7;
+  for (size_t i = 0; i < rgb.size(); ++i) {
+    state = state * 1664525u + 1013904223u;
+    rgb[i] = uint8_t((i / 3 % size_t(width)) * 255 / size_t(width) / 2 + (i / 3 / size_t(width)) % 97 + (state >> 28));
+  }
+  jpeg_compress_struct jpeg{};
+  jpeg_error_mgr error{};
+  jpeg.err = jpeg_std_error(&error);
+  jpeg_create_compress(&jpeg);
+  unsigned char* out = nullptr;
+  unsigned long size = 0;
+  jpeg_mem_dest(&jpeg, &out, &size);
+  jpeg.image_width = JDIMENSION(width);
+  jpeg.image_height = JDIMENSION(height);
+  jpeg.input_components = 3;
+  jpeg.in_color_space = JCS_RGB;
+  jpeg_set_defaults(&jpeg);
+  jpeg_set_quality(&jpeg, 90, TRUE);
+  jpeg.comp_info[0].h_samp_factor = h_samp;
+  jpeg.comp_info[0].v_samp_factor = v_samp;
+  jpeg_start_compress(&jpeg, TRUE);
+  while (jpeg.next_scanline < jpeg.image_height) {
+    JSAMPROW row = &rgb[size_t(jpeg.next_scanline) * size_t(width) * 3];
+    jpeg_write_scanlines(&jpeg, &row, 1);
+  }
+  jpeg_finish_compress(&jpeg);
+  jpeg_destroy_compress(&jpeg);
+  std::vector<uint8_t> bytes(out, out + size);
+  free(out);
+  return bytes;
+}
+
+TEST(JpegDecode, BandsDecodedAtOnceGiveTheBytesOfOneDecoder) {
+  for (const auto& [h, v] : {std::pair{1, 1}, std::pair{2, 2}, std::pair{2, 1}}) {
+    const std::vector<uint8_t> jpeg = TestJpeg(301, 777, h, v);  // not a multiple of the iMCU height
+    const Srgb8Image one = DecodeJpeg(jpeg, "test", 1);
+    ASSERT_EQ(one.width, 301);
+    ASSERT_EQ(one.height, 777);
+    for (int parts : {2, 3, 4}) {
+      const Srgb8Image banded = DecodeJpeg(jpeg, "test", parts);
+      EXPECT_TRUE(banded.rgb == one.rgb) << "sampling " << h << "x" << v << ", " << parts << " bands";
+    }
+    EXPECT_TRUE(DecodeSrgb8(jpeg, "test").rgb == one.rgb);
+  }
+}
+
+TEST(JpegDecode, BrokenBytesAreAnInputError) {
+  std::vector<uint8_t> jpeg = TestJpeg(64, 64, 2, 2);
+  jpeg.resize(40);
+  EXPECT_THROW(DecodeSrgb8(jpeg, "test"), InputError);
+  EXPECT_THROW(DecodeSrgb8(std::vector<uint8_t>{1, 2, 3, 4}, "test"), InputError);
 }
 
 TEST(Srgb8, Ends) {
