@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
 
 #include "core/error.h"
 #include "preview/image_files.h"
@@ -125,7 +126,7 @@ GroundBackdrop PreviewScene::BorderGround() const {
       edges.push_back({std::min(a, b), std::max(a, b), f});
     }
   }
-  std::sort(edges.begin(), edges.end());
+  tbb::parallel_sort(edges.begin(), edges.end());  // 3 per face: a tenth of a second at 1 M faces
   std::vector<double> heights;
   std::vector<uint32_t> border_faces;
   for (size_t i = 0; i < edges.size();) {
