@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/number_format.h"
 #include "core/progress.h"
+#include "preview/aov.h"
 #include "preview/render_job.h"
 #include "preview/sun_position.h"
 
@@ -79,7 +80,8 @@ class RenderCommand : public Command {
     app.add_option("--backdrop", backdrop_,
                    "ground (default: the ground continues past the mesh's edge as a hazed plane) | none")
         ->check(CLI::IsMember({"ground", "none"}));
-    app.add_option("--aov", aov_, "Extra EXR images per frame: depth (m), blur (blur-circle px), or depth,blur");
+    app.add_option("--aov", aov_,
+                   "Extra EXR images per frame, comma-separated: depth (m), blur (blur-circle px), mask (subject id)");
     app.add_flag("--overlay", options_.overlay, "Burn in the frame's time, shot and lens, and a rule-of-thirds guide");
     app.add_option("--contact-sheet", contact_sheet_, "Also write a labelled grid of the rendered frames (PNG/JPEG)");
     app.add_option("--video", video_, "Also write an H.264 MP4 at the plan's frame rate / --every (needs ffmpeg)");
@@ -108,7 +110,7 @@ class RenderCommand : public Command {
     }
     options_.backdrop = ParseBackdrop(backdrop_);
     options_.exposure = exposure_ == "physical" ? Exposure::kPhysical : Exposure::kFixed;
-    if (!aov_.empty()) ParseAovs(aov_, &options_);
+    if (!aov_.empty()) options_.aovs = ParseAovList(aov_);
     if (!contact_sheet_.empty()) options_.contact_sheet = contact_sheet_;
     if (!video_.empty()) options_.video = video_;
 

@@ -241,12 +241,14 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   image.rgb_linear.resize(size_t(w) * h);
   image.depth_m.resize(image.rgb_linear.size());
   image.blur_px.resize(image.rgb_linear.size());
+  image.subject_id.resize(image.rgb_linear.size());
   image.samples.resize(image.rgb_linear.size());
   std::vector<double> blur(image.rgb_linear.size());
   for (size_t i = 0; i < blur.size(); ++i) {
     blur[i] = camera.BlurPx(pass.depth_m[i]);
     image.depth_m[i] = float(pass.depth_m[i]);
     image.blur_px[i] = float(blur[i]);
+    image.subject_id[i] = pass.kind[i] >= 0 ? float(pass.kind[i] + 1) : 0.0f;
   }
 
   const int max_samples = std::max(1, preset.max_samples);

@@ -21,6 +21,7 @@
 #include "core/reframe.h"
 #include "core/scene_file.h"
 #include "core/team_plan.h"
+#include "preview/aov.h"
 #include "preview/image_files.h"
 #include "preview/preview_scene.h"
 #include "preview/sun_position.h"
@@ -247,6 +248,17 @@ FrameSettings SettingsFor(const RenderOptions& options, int width, int height) {
   return settings;
 }
 
+// frame_%06d.<aov>.exr beside the frame at `path`, one per --aov (preview/aov.h).
+void WriteAovs(const FrameImage& frame, const fs::path& path, const RenderOptions& options, int width, int height,
+               RenderSummary* summary) {
+  for (const Aov aov : options.aovs) {
+    const AovInfo& info = AovTable()[size_t(aov)];
+    const fs::path file = path.parent_path() / (path.stem().string() + "." + info.name + ".exr");
+    WriteExrAtomic(file, width, height, {info.channel}, AovValues(frame, aov));
+    summary->outputs.push_back(file.string());
+  }
+}
+
 // One frame written as `path` (and its AOVs beside it); its thumbnail when asked.
 void WriteFrame(const FrameImage& frame, const Trajectory& plan, size_t k, const fs::path& path,
                 const RenderOptions& options, int width, int height, RenderSummary* summary) {
@@ -262,26 +274,15 @@ void WriteFrame(const FrameImage& frame, const Trajectory& plan, size_t k, const
     WriteSrgb8Atomic(path, encoded);
   }
   summary->outputs.push_back(path.string());
-  const std::string stem = path.stem().string();
-  if (options.aov_depth) {
-    const fs::path aov = path.parent_path() / (stem + ".depth.exr");
-    WriteExrAtomic(aov, width, height, {"Z"}, frame.depth_m);
-    summary->outputs.push_back(aov.string());
-  }
-  if (options.aov_blur) {
-    const fs::path aov = path.parent_path() / (stem + ".blur.exr");
-    WriteExrAtomic(aov, width, height, {"Y"}, frame.blur_px);
-    summary->outputs.push_back(aov.string());
-  }
+  WriteAovs(frame, path, options, width, height, summary);
 }
 
 // The same frame (and AOVs) under another name, byte for byte.
 void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& options, RenderSummary* summary) {
   WriteFileAtomic(to, ReadFileToString(from));
   summary->outputs.push_back(to.string());
-  const std::pair<bool, const char*> aovs[] = {{options.aov_depth, ".depth.exr"}, {options.aov_blur, ".blur.exr"}};
-  for (const auto& [wanted, suffix] : aovs) {
-    if (!wanted) continue;
+  for (const Aov aov : options.aovs) {
+    const std::string suffix = std::string(".") + AovTable()[size_t(aov)].name + ".exr";
     const fs::path aov_to = to.parent_path() / (to.stem().string() + suffix);
     WriteFileAtomic(aov_to, ReadFileToString(from.parent_path() / (from.stem().string() + suffix)));
     summary->outputs.push_back(aov_to.string());
@@ -414,8 +415,8 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader
     for (const auto& [key, path] : held) {  // held frames were written only to be copied
       std::error_code ignored;
       fs::remove(path, ignored);
-      for (const char* suffix : {".depth.exr", ".blur.exr"}) {
-        fs::remove(path.parent_path() / (path.stem().string() + suffix), ignored);
+      for (const AovInfo& aov : AovTable()) {
+        fs::remove(path.parent_path() / (path.stem().string() + "." + aov.name + ".exr"), ignored);
       }
     }
     summary.outputs.erase(std::remove_if(summary.outputs.begin(), summary.outputs.end(),
@@ -537,17 +538,7 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
       WriteSrgb8Atomic(path, encoded);
     }
     summary.outputs.push_back(path.string());
-    const std::string stem = path.stem().string();
-    if (options.aov_depth) {
-      const fs::path aov = options.output_dir / (stem + ".depth.exr");
-      WriteExrAtomic(aov, width, height, {"Z"}, frame.depth_m);
-      summary.outputs.push_back(aov.string());
-    }
-    if (options.aov_blur) {
-      const fs::path aov = options.output_dir / (stem + ".blur.exr");
-      WriteExrAtomic(aov, width, height, {"Y"}, frame.blur_px);
-      summary.outputs.push_back(aov.string());
-    }
+    WriteAovs(frame, path, options, width, height, &summary);
     if (video) video->Add(encoded);
     if (options.contact_sheet) {
       thumbs.push_back(Thumbnail(frame));

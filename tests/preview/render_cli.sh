@@ -95,15 +95,26 @@ grep -q ffmpeg "$work/stderr" || fail "--video without ffmpeg: $(cat "$work/stde
 [[ ! -e $work/novideo ]] || [[ -z $(ls -A "$work/novideo") ]] || fail "--video without ffmpeg rendered frames"
 
 # Overlay, contact sheet, AOVs, EXR.
-"${render[@]}" --frames 0-80 --overlay --contact-sheet "$work/sheet.png" --aov depth,blur --format exr -o "$work/extras"
-for f in frame_000000.exr frame_000040.exr frame_000080.exr frame_000040.depth.exr frame_000040.blur.exr; do
+"${render[@]}" --frames 0-80 --overlay --contact-sheet "$work/sheet.png" --aov depth,blur,mask --format exr \
+  -o "$work/extras"
+for f in frame_000000.exr frame_000040.exr frame_000080.exr frame_000040.depth.exr frame_000040.blur.exr \
+  frame_000040.mask.exr; do
   [[ -s $work/extras/$f ]] || fail "missing $f"
 done
 [[ $(head -c 8 "$work/sheet.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] || fail "sheet.png is not a PNG"
 # The same bytes on a second run a second later (no wall-clock time in any file).
 sleep 1.1
-"${render[@]}" --frames 0-80 --aov depth,blur --format exr -o "$work/extras_again"
-for f in frame_000040.exr frame_000040.depth.exr frame_000040.blur.exr; do
+"${render[@]}" --frames 0-80 --aov mask,depth,blur --format exr -o "$work/extras_again"
+for f in frame_000040.exr frame_000040.depth.exr frame_000040.blur.exr frame_000040.mask.exr; do
   cmp -s "$work/extras/$f" "$work/extras_again/$f" || fail "$f differs between two runs"
 done
-echo "extras: EXR frames, depth and blur AOVs, contact sheet; EXR bytes the same on a second run"
+# The bundled shots' orbit frames its subject (the plan's first): the mask labels it 1, the rest 0.
+if command -v oiiotool > /dev/null; then
+  "$CINEPATH" plan "$sample/shots.json" --scene "$work/scene/scene.json" -o "$work/subject_plan.json"
+  "$CINEPATH" render "$work/subject_plan.json" --scene "$work/scene/scene.json" --frames 90 --width-px 96 --spp 1 \
+    --aov mask -o "$work/mask"
+  mask_range=$(oiiotool --stats "$work/mask/frame_000090.mask.exr" |
+    awk '/Stats Min/ {min=$3} /Stats Max/ {max=$3} END {print min, max}')
+  [[ $mask_range == "0.000000 1.000000" ]] || fail "mask AOV spans '$mask_range', expected 0 (ground) to 1 (the subject)"
+fi
+echo "extras: EXR frames, depth, blur and mask AOVs, contact sheet; EXR bytes the same on a second run"
