@@ -518,37 +518,61 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   }
   std::vector<Srgb8Image> thumbs;
   std::vector<std::vector<std::string>> thumb_labels;
+  // Frame k is written (encoded, its AOVs, the video, its thumbnail) on another thread while frame k + 1
+  // renders: the encoders run on one core, and the render's rows fill the other. One frame is written at
+  // a time, in order, so the files, the video and the log are as with one thread.
+  using Clock = std::chrono::steady_clock;
+  tbb::task_group writing;
+  std::exception_ptr write_error;
+  struct WaitOnExit {
+    tbb::task_group& group;
+    ~WaitOnExit() { group.wait(); }
+  } wait_on_exit{writing};
+  auto finish_writing = [&] {
+    writing.wait();
+    if (write_error) std::rethrow_exception(write_error);
+  };
   for (size_t done = 0; done < frames.size(); ++done) {
     const size_t k = frames[done];
-    const auto start = std::chrono::steady_clock::now();
-    const FrameImage frame = RenderFrame(scene, plan, k, settings);
-    const fs::path path = options.output_dir / FrameFileName(k, options.format);
-    Srgb8Image encoded;
-    if (options.format != ImageFormat::kExr || video) {
-      encoded = EncodeSrgb8(frame.rgb_linear, width, height);
-      if (options.overlay) BurnOverlay(&encoded, plan, k);
-    }
-    if (options.format == ImageFormat::kExr) {
-      std::vector<float> values(frame.rgb_linear.size() * 3);
-      for (size_t i = 0; i < frame.rgb_linear.size(); ++i) {
-        for (int c = 0; c < 3; ++c) values[3 * i + c] = frame.rgb_linear[i][c];
+    const auto start = Clock::now();
+    auto frame = std::make_shared<const FrameImage>(RenderFrame(scene, plan, k, settings));
+    const double render_s = std::chrono::duration<double>(Clock::now() - start).count();
+    finish_writing();  // the previous frame's
+    writing.run([&, frame, k, done, render_s] {
+      try {
+        const auto write_start = Clock::now();
+        const fs::path path = options.output_dir / FrameFileName(k, options.format);
+        Srgb8Image encoded;
+        if (options.format != ImageFormat::kExr || video) {
+          encoded = EncodeSrgb8(frame->rgb_linear, width, height);
+          if (options.overlay) BurnOverlay(&encoded, plan, k);
+        }
+        if (options.format == ImageFormat::kExr) {
+          std::vector<float> values(frame->rgb_linear.size() * 3);
+          for (size_t i = 0; i < frame->rgb_linear.size(); ++i) {
+            for (int c = 0; c < 3; ++c) values[3 * i + c] = frame->rgb_linear[i][c];
+          }
+          WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
+        } else {
+          WriteSrgb8Atomic(path, encoded);
+        }
+        summary.outputs.push_back(path.string());
+        WriteAovs(*frame, path, options, width, height, &summary);
+        if (video) video->Add(encoded);
+        if (options.contact_sheet) {
+          thumbs.push_back(Thumbnail(*frame));
+          thumb_labels.push_back(LabelLines(plan, k));
+        }
+        const double write_s = std::chrono::duration<double>(Clock::now() - write_start).count();
+        RenderedFrame rendered{k, render_s + write_s, double(frame->total_samples) / (double(width) * height)};
+        summary.frames.push_back(rendered);
+        if (log.frame_done) log.frame_done(rendered, done + 1, frames.size());
+      } catch (...) {
+        write_error = std::current_exception();
       }
-      WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
-    } else {
-      WriteSrgb8Atomic(path, encoded);
-    }
-    summary.outputs.push_back(path.string());
-    WriteAovs(frame, path, options, width, height, &summary);
-    if (video) video->Add(encoded);
-    if (options.contact_sheet) {
-      thumbs.push_back(Thumbnail(frame));
-      thumb_labels.push_back(LabelLines(plan, k));
-    }
-    RenderedFrame rendered{k, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                           double(frame.total_samples) / (double(width) * height)};
-    summary.frames.push_back(rendered);
-    if (log.frame_done) log.frame_done(rendered, done + 1, frames.size());
+    });
   }
+  finish_writing();
   if (options.contact_sheet && !thumbs.empty()) {
     WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(thumbs, thumb_labels));
     summary.outputs.push_back(options.contact_sheet->string());
