@@ -1,9 +1,10 @@
 // cinepath render: plan.json + scene.json -> ray-traced thin-lens previews, one image per planned
-// frame (docs/render.md). A plugin module (cli/command_plugin.h): Embree and OpenImageIO load only
+// frame (docs/render.md). A plugin module (cli/command_plugin.h): Embree, libjpeg and libpng load only
 // when this command runs.
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <string>
 
@@ -15,6 +16,7 @@
 #include "core/error.h"
 #include "core/number_format.h"
 #include "core/progress.h"
+#include "preview/aov.h"
 #include "preview/render_job.h"
 #include "preview/sun_position.h"
 
@@ -22,6 +24,32 @@ namespace cinepath::cli {
 namespace {
 
 using namespace cinepath::preview;
+
+// Wall-clock seconds since this process started (/proc: the kernel's start time in clock ticks against
+// the uptime; 10 ms resolution): what the dynamic loader and the module's libraries took before Run.
+double ProcessAgeSeconds() {
+  FILE* stat = std::fopen("/proc/self/stat", "r");
+  FILE* uptime = std::fopen("/proc/uptime", "r");
+  double age = 0;
+  if (stat && uptime) {
+    char buffer[4096];
+    const size_t n = std::fread(buffer, 1, sizeof buffer - 1, stat);
+    buffer[n] = 0;
+    const char* p = std::strrchr(buffer, ')');  // the command name may hold spaces
+    unsigned long long start_ticks = 0;
+    double up = 0;
+    // After ") ": state, then fields 4..21; field 22 is starttime.
+    if (p &&
+        std::sscanf(p + 2, "%*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %*u %*u %*d %*d %*d %*d %*d %*d %llu",
+                    &start_ticks) == 1 &&
+        std::fscanf(uptime, "%lf", &up) == 1) {
+      age = up - double(start_ticks) / double(sysconf(_SC_CLK_TCK));
+    }
+  }
+  if (stat) std::fclose(stat);
+  if (uptime) std::fclose(uptime);
+  return age;
+}
 
 class RenderCommand : public Command {
  public:
@@ -52,11 +80,13 @@ class RenderCommand : public Command {
     app.add_option("--backdrop", backdrop_,
                    "ground (default: the ground continues past the mesh's edge as a hazed plane) | none")
         ->check(CLI::IsMember({"ground", "none"}));
-    app.add_option("--aov", aov_, "Extra EXR images per frame: depth (m), blur (blur-circle px), or depth,blur");
+    app.add_option("--aov", aov_,
+                   "Extra EXR images per frame, comma-separated: depth (m), blur (blur-circle px), mask (subject id)");
     app.add_flag("--overlay", options_.overlay, "Burn in the frame's time, shot and lens, and a rule-of-thirds guide");
     app.add_option("--contact-sheet", contact_sheet_, "Also write a labelled grid of the rendered frames (PNG/JPEG)");
     app.add_option("--video", video_, "Also write an H.264 MP4 at the plan's frame rate / --every (needs ffmpeg)");
-    app.add_flag("-v,--verbose", verbose_, "One line per frame on stderr: its render time and rays per pixel");
+    app.add_flag("-v,--verbose", verbose_,
+                 "On stderr: the time of each loading step, then one line per frame (its time and rays per pixel)");
     common_.Add(app);
   }
 
@@ -80,7 +110,7 @@ class RenderCommand : public Command {
     }
     options_.backdrop = ParseBackdrop(backdrop_);
     options_.exposure = exposure_ == "physical" ? Exposure::kPhysical : Exposure::kFixed;
-    if (!aov_.empty()) ParseAovs(aov_, &options_);
+    if (!aov_.empty()) options_.aovs = ParseAovList(aov_);
     if (!contact_sheet_.empty()) options_.contact_sheet = contact_sheet_;
     if (!video_.empty()) options_.video = video_;
 
@@ -94,6 +124,13 @@ class RenderCommand : public Command {
                      frame.seconds, frame.mean_samples);
       }
     };
+    if (verbose_) {
+      std::fprintf(stderr, "render: %.3f s  process start to here (executable, the render module and its libraries)\n",
+                   ProcessAgeSeconds());
+      log.step_done = [](const std::string& step, double seconds) {
+        std::fprintf(stderr, "render: %.3f s  %s\n", seconds, step.c_str());
+      };
+    }
     const RenderSummary summary = RenderPlan(plan_path_, scene_path_, options_, log);
     if (progress) progress->Finish();
     PrintWarnings("render", summary.notes);

@@ -19,7 +19,7 @@ std::unique_ptr<Command> MakePlanCommand();
 std::unique_ptr<Command> MakeOptimizeCommand() { return LoadCommandPlugin("libcinepath_cmd_optimize.so"); }
 #endif
 #ifdef CINEPATH_WITH_PREVIEW
-// A plugin module: Embree and OpenImageIO load only for this command.
+// A plugin module: Embree, libjpeg and libpng load only for this command.
 std::unique_ptr<Command> MakeRenderCommand() { return LoadCommandPlugin("libcinepath_cmd_render.so"); }
 #endif
 #ifdef CINEPATH_WITH_VIEWER

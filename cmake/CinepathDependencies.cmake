@@ -14,6 +14,10 @@ find_package(draco 1.5 REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)
 find_package(embree 3 REQUIRED)
 pkg_check_modules(GEOGRAPHICLIB REQUIRED IMPORTED_TARGET geographiclib)
+# render's image files and textures, without OpenImageIO's ~260 libraries (preview/CMakeLists.txt).
+find_package(PNG REQUIRED)
+find_package(JPEG REQUIRED)
+find_package(ZLIB REQUIRED)
 
 find_package(OpenImageIO 2.4 REQUIRED)
 # OIIO's exported target lists /usr/include/opencv4, which does not exist without libopencv-dev.

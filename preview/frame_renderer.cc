@@ -33,20 +33,33 @@ double AxisDepth(const ThinLensCamera& camera, const CameraPose& pose, const Eig
   return depth;
 }
 
+// The camera and the subjects at the shutter's ends, for MotionPx (the same for every pixel).
+struct ShutterEnds {
+  CameraPose pose0, pose1;
+  std::vector<Eigen::Vector3d> move0, move1;  // each subject's base at t0 (t1) minus at t_mid
+};
+
+ShutterEnds ShutterEndsOf(const Trajectory& plan, const SubjectProxies& subjects, double t_mid, double t0, double t1) {
+  ShutterEnds ends{PoseAt(plan, t0), PoseAt(plan, t1), {}, {}};
+  for (size_t i = 0; i < plan.subjects.size(); ++i) {
+    ends.move0.push_back(subjects.BaseAt(i, t0) - subjects.BaseAt(i, t_mid));
+    ends.move1.push_back(subjects.BaseAt(i, t1) - subjects.BaseAt(i, t_mid));
+  }
+  return ends;
+}
+
 // Pixel motion of what the pixel centre sees, across the shutter: the point reprojected at its ends.
-double MotionPx(const ThinLensCamera& camera, const Trajectory& plan, const SubjectProxies& subjects, double t_mid,
-                double t0, double t1, const TraceHit& hit, const Eigen::Vector3d& direction,
-                const Eigen::Vector3d& origin) {
-  if (!(t1 > t0)) return 0;
+double MotionPx(const ThinLensCamera& camera, const ShutterEnds& ends, const TraceHit& hit,
+                const Eigen::Vector3d& direction, const Eigen::Vector3d& origin) {
   Eigen::Vector3d point = std::isinf(hit.distance_m) ? origin + 1e7 * direction : hit.position_enu_m;
-  auto at = [&](double t) {
+  auto at = [&](const CameraPose& pose, const std::vector<Eigen::Vector3d>& move) {
     Eigen::Vector3d p = point;
-    if (hit.subject >= 0) p += subjects.BaseAt(hit.subject, t) - subjects.BaseAt(hit.subject, t_mid);
+    if (hit.subject >= 0) p += move[size_t(hit.subject)];
     double depth = 0;
-    const Eigen::Vector2d xy = camera.Project(PoseAt(plan, t), p, &depth);
+    const Eigen::Vector2d xy = camera.Project(pose, p, &depth);
     return depth > 0 ? xy : Eigen::Vector2d(1e9, 1e9);
   };
-  return std::min(1e6, (at(t1) - at(t0)).norm());
+  return std::min(1e6, (at(ends.pose1, ends.move1) - at(ends.pose0, ends.move0)).norm());
 }
 
 PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const ThinLensCamera& camera, double t_mid,
@@ -61,20 +74,22 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
   pass.face.resize(n);
   const CameraPose pose = PoseAt(plan, t_mid);
   const SubjectProxies subjects(plan);
+  const PreviewScene::Instant at_mid = scene.At(t_mid);
+  const bool moving = motion_blur && t1 > t0;
+  const ShutterEnds ends = moving ? ShutterEndsOf(plan, subjects, t_mid, t0, t1) : ShutterEnds{};
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
         const CameraRay ray = camera.Ray(pose, x + 0.5, y + 0.5);
         TraceHit hit;
-        pass.rgb[i] = scene.Radiance(ray.origin_enu_m, ray.direction_enu, t_mid, &hit);
+        pass.rgb[i] = scene.Radiance(ray.origin_enu_m, ray.direction_enu, at_mid, &hit);
         const bool sky = std::isinf(hit.distance_m);
         pass.depth_m[i] = sky ? std::numeric_limits<double>::infinity() : AxisDepth(camera, pose, hit.position_enu_m);
         pass.kind[i] = sky ? -2 : hit.subject;
         pass.face[i] = hit.face;
         const double blur = camera.BlurPx(pass.depth_m[i]);
-        const double motion =
-            motion_blur ? MotionPx(camera, plan, subjects, t_mid, t0, t1, hit, ray.direction_enu, ray.origin_enu_m) : 0;
+        const double motion = moving ? MotionPx(camera, ends, hit, ray.direction_enu, ray.origin_enu_m) : 0;
         pass.need_px[i] = std::max(blur, motion);
       }
     }
@@ -226,17 +241,21 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   image.rgb_linear.resize(size_t(w) * h);
   image.depth_m.resize(image.rgb_linear.size());
   image.blur_px.resize(image.rgb_linear.size());
+  image.subject_id.resize(image.rgb_linear.size());
   image.samples.resize(image.rgb_linear.size());
   std::vector<double> blur(image.rgb_linear.size());
   for (size_t i = 0; i < blur.size(); ++i) {
     blur[i] = camera.BlurPx(pass.depth_m[i]);
     image.depth_m[i] = float(pass.depth_m[i]);
     image.blur_px[i] = float(blur[i]);
+    image.subject_id[i] = pass.kind[i] >= 0 ? float(pass.kind[i] + 1) : 0.0f;
   }
 
   const int max_samples = std::max(1, preset.max_samples);
-  const SubjectProxies subjects(plan);
+  const CameraPose pose_mid = PoseAt(plan, sample.time_s);
+  const PreviewScene::Instant at_mid = scene.At(sample.time_s);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    PreviewScene::Instant at_ray;  // a ray's own instant across the shutter (storage kept between rays)
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
@@ -255,10 +274,13 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         for (int s = 0; s < n; ++s) {
           const PixelSample ps = sequence.Get(uint32_t(s));
-          const double t = motion && lens ? t0 + ps.time * (t1 - t0) : sample.time_s;
+          const bool moves = motion && lens;
+          const double t = moves ? t0 + ps.time * (t1 - t0) : sample.time_s;
           const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
-          const CameraRay ray = camera.Ray(PoseAt(plan, t), x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
-          sum += scene.Radiance(ray.origin_enu_m, ray.direction_enu, t).cast<double>();
+          if (moves) scene.SetInstant(t, &at_ray, k);
+          const CameraRay ray =
+              camera.Ray(moves ? PoseAt(plan, t, k) : pose_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
+          sum += scene.Radiance(ray.origin_enu_m, ray.direction_enu, moves ? at_ray : at_mid).cast<double>();
         }
         image.rgb_linear[i] = (sum / n).cast<float>();
       }

@@ -21,6 +21,7 @@ struct FrameImage {
   std::vector<Eigen::Vector3f> rgb_linear;  // row-major, rows from the top
   std::vector<float> depth_m;               // along the optical axis at the pixel centre; +inf for sky
   std::vector<float> blur_px;               // blur-circle diameter at that depth (px)
+  std::vector<float> subject_id;            // the subject at the pixel centre: index + 1; 0 for none
   std::vector<uint16_t> samples;            // rays the pixel got
   uint64_t total_samples = 0;
 };

@@ -1,5 +1,7 @@
-// Frames and sheets on disk (OpenImageIO): PNG and JPEG hold sRGB-encoded 8-bit colour (encoded here,
-// by the sRGB transfer function, rounded), EXR linear 32-bit float. Every file is written to a
+// Frames and sheets on disk: PNG (libpng) and JPEG (libjpeg) hold sRGB-encoded 8-bit colour (encoded here,
+// by the sRGB transfer function, rounded), EXR linear 32-bit float (written here, ZIP-compressed, with
+// zlib). No OpenImageIO: its Debian build brings ~260 shared libraries whose loading took half a
+// second of every render's start. Every file is written to a
 // temporary name beside its target and renamed once complete, so a failed write leaves no partial file.
 #pragma once
 
@@ -24,15 +26,25 @@ struct Srgb8Image {
 uint8_t LinearToSrgb8(float linear);
 Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width, int height);
 
+// A PNG or JPEG (told by its first bytes) decoded to 8-bit RGB as stored (grey replicated, alpha dropped;
+// libjpeg's default islow IDCT and fancy upsampling). InputError naming `where` when it cannot be.
+Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& encoded, const std::string& where);
+// A JPEG decoded by `parts` decoders at once, each a band of rows (the same bytes as one decoder).
+Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& where, int parts);
+
 // PNG or JPEG (quality 95) from 8-bit sRGB; RuntimeError naming the file when it cannot be written.
 void WriteSrgb8Atomic(const std::filesystem::path& path, const Srgb8Image& image);
 // EXR (ZIP compression) from linear float channels, interleaved; channel names as given ("R,G,B", "Z").
 void WriteExrAtomic(const std::filesystem::path& path, int width, int height, const std::vector<std::string>& channels,
                     const std::vector<float>& values);
 
+// The bytes of that EXR file (single-part scanline, ZIP, FLOAT channels stored in name order).
+std::vector<uint8_t> EncodeExr(int width, int height, const std::vector<std::string>& channels,
+                               const std::vector<float>& values);
+
 // RuntimeError when the labels' font is missing (checked before a run writes anything).
 void RequireLabelFont();
-// Draws text (DejaVu Sans Mono, white with a dark shadow) with its top-left corner at (x, y).
+// Draws text (DejaVu Sans Mono through stb_truetype, white with a dark shadow) with its top-left corner at (x, y).
 // RuntimeError when no font is installed (Debian fonts-dejavu-core).
 void DrawText(Srgb8Image* image, int x, int y, int size_px, const std::string& text);
 

@@ -64,26 +64,58 @@ struct GroundBackdrop {
   Eigen::Vector3f ColorAt(const Eigen::Vector3d& position) const;
 };
 
+// Wall-clock seconds of each loading step (`render -v` prints them; never written into an image).
+struct SceneLoadTimes {
+  double bvh_s = 0;       // Embree's BVH of the mesh
+  double textures_s = 0;  // decoding the base-colour images (JPEG/PNG) to 8-bit texels
+  double ground_s = 0;    // the ground past the edge (border ring)
+};
+
+// The mesh's images decoded, one texture each (libjpeg, libpng). InputError for an image that cannot be.
+std::vector<Texture> DecodeTextures(const scene::SceneMesh& mesh);
+
 class PreviewScene {
  public:
-  // Builds the BVH and decodes the textures (OpenImageIO). InputError for an empty or broken mesh.
+  // Builds the BVH and decodes the textures, at once. InputError for an empty or broken mesh.
   PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun,
                Backdrop backdrop = Backdrop::kNone);
+  // The same with the textures decoded already (DecodeTextures(mesh)): only the BVH is built.
+  PreviewScene(scene::SceneMesh mesh, std::vector<Texture> textures, const Trajectory& plan, Shading shading,
+               SunDirection sun, Backdrop backdrop);
   ~PreviewScene();
+
+  // One instant of the scene: the time and where the subjects stand then, worked out once for the many
+  // rays of that instant (a frame's pinhole pass, every ray of a frame without motion blur).
+  struct Instant {
+    double time_s = 0;
+    std::vector<Eigen::Vector3d> subject_bases;
+  };
+  void SetInstant(double time_s, Instant* instant, size_t sample_hint = 0) const;
+  Instant At(double time_s) const {
+    Instant instant;
+    SetInstant(time_s, &instant);
+    return instant;
+  }
 
   // Radiance along a unit-direction ray at time t: the shade of the closest surface (mesh or subject
   // proxy), or the sky; `hit_out` gets that surface (distance +inf for the sky).
-  Eigen::Vector3f Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s,
+  Eigen::Vector3f Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
                            TraceHit* hit_out = nullptr) const;
+  Eigen::Vector3f Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s,
+                           TraceHit* hit_out = nullptr) const {
+    return Radiance(origin, direction, At(time_s), hit_out);
+  }
   Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
 
   const scene::SceneMesh& mesh() const { return mesh_; }
   const std::optional<GroundBackdrop>& ground() const { return ground_; }
+  const SceneLoadTimes& load_times() const { return load_times_; }
 
  private:
   Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
   GroundBackdrop BorderGround() const;
-  Eigen::Vector3f Light(const Eigen::Vector3d& position, const Eigen::Vector3d& normal, double time_s) const;
+  void Finish(SunDirection sun, Backdrop backdrop);  // the sun's direction and the ground past the edge
+  Eigen::Vector3f Light(const Eigen::Vector3d& position, const Eigen::Vector3d& normal, const Instant& at) const;
 
   scene::SceneMesh mesh_;
   std::unique_ptr<scene::RayCaster> caster_;
@@ -92,6 +124,7 @@ class PreviewScene {
   Shading shading_;
   Eigen::Vector3d sun_direction_enu_;  // towards the sun
   std::optional<GroundBackdrop> ground_;
+  SceneLoadTimes load_times_;
 };
 
 }  // namespace cinepath::preview

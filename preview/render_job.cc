@@ -12,6 +12,8 @@
 #include <memory>
 #include <sstream>
 
+#include <tbb/task_group.h>
+
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/number_format.h"
@@ -19,6 +21,7 @@
 #include "core/reframe.h"
 #include "core/scene_file.h"
 #include "core/team_plan.h"
+#include "preview/aov.h"
 #include "preview/image_files.h"
 #include "preview/preview_scene.h"
 #include "preview/sun_position.h"
@@ -172,6 +175,49 @@ SunDirection SunForOptions(const RenderOptions& options, const Trajectory& plan,
   return sun;
 }
 
+// The GLB read and its textures decoded on another thread while the plan is read and the options are
+// checked (the plan's JSON and the atlas's JPEG are the two longest loading steps, and independent). Its
+// errors are raised where the GLB used to be read, after the plan's and the options' own.
+class SceneLoader {
+ public:
+  explicit SceneLoader(const SceneFile& scene_file) {
+    group_.run([this, &scene_file] {
+      try {
+        const auto start = std::chrono::steady_clock::now();
+        mesh_ = scene::ReadGlbFile(scene_file.RequireMesh());
+        const auto decoded = std::chrono::steady_clock::now();
+        glb_s_ = std::chrono::duration<double>(decoded - start).count();
+        textures_ = DecodeTextures(mesh_);
+        textures_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - decoded).count();
+      } catch (...) {
+        error_ = std::current_exception();
+      }
+    });
+  }
+  ~SceneLoader() { group_.wait(); }
+  SceneLoader(const SceneLoader&) = delete;
+  SceneLoader& operator=(const SceneLoader&) = delete;
+
+  // Waits; the loading step's error if it failed. Call once.
+  void Wait(const RenderLog& log) {
+    group_.wait();
+    if (error_) std::rethrow_exception(error_);
+    if (log.step_done) {
+      log.step_done("open GLB (parse, Draco), beside the plan", glb_s_);
+      log.step_done("decode textures, beside the plan", textures_s_);
+    }
+  }
+  scene::SceneMesh& mesh() { return mesh_; }
+  std::vector<Texture>& textures() { return textures_; }
+
+ private:
+  tbb::task_group group_;
+  scene::SceneMesh mesh_;
+  std::vector<Texture> textures_;
+  std::exception_ptr error_;
+  double glb_s_ = 0, textures_s_ = 0;
+};
+
 }  // namespace
 
 std::string FrameLabel(const Trajectory& plan, size_t k) {
@@ -202,6 +248,17 @@ FrameSettings SettingsFor(const RenderOptions& options, int width, int height) {
   return settings;
 }
 
+// frame_%06d.<aov>.exr beside the frame at `path`, one per --aov (preview/aov.h).
+void WriteAovs(const FrameImage& frame, const fs::path& path, const RenderOptions& options, int width, int height,
+               RenderSummary* summary) {
+  for (const Aov aov : options.aovs) {
+    const AovInfo& info = AovTable()[size_t(aov)];
+    const fs::path file = path.parent_path() / (path.stem().string() + "." + info.name + ".exr");
+    WriteExrAtomic(file, width, height, {info.channel}, AovValues(frame, aov));
+    summary->outputs.push_back(file.string());
+  }
+}
+
 // One frame written as `path` (and its AOVs beside it); its thumbnail when asked.
 void WriteFrame(const FrameImage& frame, const Trajectory& plan, size_t k, const fs::path& path,
                 const RenderOptions& options, int width, int height, RenderSummary* summary) {
@@ -217,26 +274,15 @@ void WriteFrame(const FrameImage& frame, const Trajectory& plan, size_t k, const
     WriteSrgb8Atomic(path, encoded);
   }
   summary->outputs.push_back(path.string());
-  const std::string stem = path.stem().string();
-  if (options.aov_depth) {
-    const fs::path aov = path.parent_path() / (stem + ".depth.exr");
-    WriteExrAtomic(aov, width, height, {"Z"}, frame.depth_m);
-    summary->outputs.push_back(aov.string());
-  }
-  if (options.aov_blur) {
-    const fs::path aov = path.parent_path() / (stem + ".blur.exr");
-    WriteExrAtomic(aov, width, height, {"Y"}, frame.blur_px);
-    summary->outputs.push_back(aov.string());
-  }
+  WriteAovs(frame, path, options, width, height, summary);
 }
 
 // The same frame (and AOVs) under another name, byte for byte.
 void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& options, RenderSummary* summary) {
   WriteFileAtomic(to, ReadFileToString(from));
   summary->outputs.push_back(to.string());
-  const std::pair<bool, const char*> aovs[] = {{options.aov_depth, ".depth.exr"}, {options.aov_blur, ".blur.exr"}};
-  for (const auto& [wanted, suffix] : aovs) {
-    if (!wanted) continue;
+  for (const Aov aov : options.aovs) {
+    const std::string suffix = std::string(".") + AovTable()[size_t(aov)].name + ".exr";
     const fs::path aov_to = to.parent_path() / (to.stem().string() + suffix);
     WriteFileAtomic(aov_to, ReadFileToString(from.parent_path() / (from.stem().string() + suffix)));
     summary->outputs.push_back(aov_to.string());
@@ -250,7 +296,7 @@ void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& op
 // rendered there. The edit's contact sheet, each tile labelled with its time and drone, goes to
 // OUTPUT/edit/contact_sheet.png, or with --contact-sheet PATH beside PATH as STEM.edit.EXT (PATH then
 // holds every drone's tiles).
-RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::path& plan_json,
+RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader& loader, const fs::path& plan_json,
                          const fs::path& scene_json, const RenderOptions& options, const RenderLog& log) {
   RenderSummary summary;
   summary.inputs.push_back(plan_json.string());
@@ -288,7 +334,8 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::p
   CheckWritableFolder(options.output_dir);
   for (const auto& flight : team.flights) CheckWritableFolder(options.output_dir / flight.name);
   if (has_edit) CheckWritableFolder(options.output_dir / "edit");
-  const scene::SceneMesh mesh = scene::ReadGlbFile(glb);
+  loader.Wait(log);
+  const scene::SceneMesh& mesh = loader.mesh();
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   const FrameSettings settings = SettingsFor(options, width, height);
@@ -322,7 +369,7 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::p
   size_t done = 0;
   for (size_t f = 0; f < team.flights.size(); ++f) {
     const Trajectory& plan = team.flights[f].plan;
-    const PreviewScene scene(mesh, plan, options.shading, sun, options.backdrop);
+    const PreviewScene scene(mesh, loader.textures(), plan, options.shading, sun, options.backdrop);
     auto render = [&](size_t k, const fs::path& path) {
       const auto start = std::chrono::steady_clock::now();
       const FrameImage frame = RenderFrame(scene, plan, k, settings);
@@ -368,8 +415,8 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::p
     for (const auto& [key, path] : held) {  // held frames were written only to be copied
       std::error_code ignored;
       fs::remove(path, ignored);
-      for (const char* suffix : {".depth.exr", ".blur.exr"}) {
-        fs::remove(path.parent_path() / (path.stem().string() + suffix), ignored);
+      for (const AovInfo& aov : AovTable()) {
+        fs::remove(path.parent_path() / (path.stem().string() + "." + aov.name + ".exr"), ignored);
       }
     }
     summary.outputs.erase(std::remove_if(summary.outputs.begin(), summary.outputs.end(),
@@ -409,12 +456,20 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, const fs::p
 RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, const RenderOptions& options,
                          const RenderLog& log) {
   RenderSummary summary;
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point step_start = Clock::now();
+  auto step = [&](const std::string& name) {
+    const Clock::time_point now = Clock::now();
+    if (log.step_done) log.step_done(name, std::chrono::duration<double>(now - step_start).count());
+    step_start = now;
+  };
   // Everything that can be refused, before anything is written.
   const SceneFile scene_file = ReadSceneFile(scene_json);
+  SceneLoader loader(scene_file);
   TeamPlan team = ReadTeamPlanFile(plan_json);
   summary.notes = TeamPlanNotes(team);
   if (!team.single) {
-    RenderSummary team_summary = RenderTeam(std::move(team), scene_file, plan_json, scene_json, options, log);
+    RenderSummary team_summary = RenderTeam(std::move(team), scene_file, loader, plan_json, scene_json, options, log);
     team_summary.notes = std::move(summary.notes);
     return team_summary;
   }
@@ -439,7 +494,16 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   if (labels) RequireLabelFont();
   const SunDirection sun = SunForOptions(options, plan, scene_file);
   CheckWritableFolder(options.output_dir);
-  const PreviewScene scene(scene::ReadGlbFile(glb), plan, options.shading, sun, options.backdrop);
+  step("read plan.json and scene.json, check the options");
+  loader.Wait(log);
+  step("wait for the GLB and its textures");
+  const PreviewScene scene(std::move(loader.mesh()), std::move(loader.textures()), plan, options.shading, sun,
+                           options.backdrop);
+  if (log.step_done) {
+    log.step_done("BVH", scene.load_times().bvh_s);
+    log.step_done("ground past the edge", scene.load_times().ground_s);
+  }
+  step_start = Clock::now();
   // Every frame allocates the same few image-sized buffers: keep freed ones in the heap instead of
   // returning them to the kernel, so the next frame does not page-fault them in again (measured: a
   // fifth of a draft frame's time went to page faults and zeroing).
@@ -454,47 +518,61 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   }
   std::vector<Srgb8Image> thumbs;
   std::vector<std::vector<std::string>> thumb_labels;
+  // Frame k is written (encoded, its AOVs, the video, its thumbnail) on another thread while frame k + 1
+  // renders: the encoders run on one core, and the render's rows fill the other. One frame is written at
+  // a time, in order, so the files, the video and the log are as with one thread.
+  using Clock = std::chrono::steady_clock;
+  tbb::task_group writing;
+  std::exception_ptr write_error;
+  struct WaitOnExit {
+    tbb::task_group& group;
+    ~WaitOnExit() { group.wait(); }
+  } wait_on_exit{writing};
+  auto finish_writing = [&] {
+    writing.wait();
+    if (write_error) std::rethrow_exception(write_error);
+  };
   for (size_t done = 0; done < frames.size(); ++done) {
     const size_t k = frames[done];
-    const auto start = std::chrono::steady_clock::now();
-    const FrameImage frame = RenderFrame(scene, plan, k, settings);
-    const fs::path path = options.output_dir / FrameFileName(k, options.format);
-    Srgb8Image encoded;
-    if (options.format != ImageFormat::kExr || video) {
-      encoded = EncodeSrgb8(frame.rgb_linear, width, height);
-      if (options.overlay) BurnOverlay(&encoded, plan, k);
-    }
-    if (options.format == ImageFormat::kExr) {
-      std::vector<float> values(frame.rgb_linear.size() * 3);
-      for (size_t i = 0; i < frame.rgb_linear.size(); ++i) {
-        for (int c = 0; c < 3; ++c) values[3 * i + c] = frame.rgb_linear[i][c];
+    const auto start = Clock::now();
+    auto frame = std::make_shared<const FrameImage>(RenderFrame(scene, plan, k, settings));
+    const double render_s = std::chrono::duration<double>(Clock::now() - start).count();
+    finish_writing();  // the previous frame's
+    writing.run([&, frame, k, done, render_s] {
+      try {
+        const auto write_start = Clock::now();
+        const fs::path path = options.output_dir / FrameFileName(k, options.format);
+        Srgb8Image encoded;
+        if (options.format != ImageFormat::kExr || video) {
+          encoded = EncodeSrgb8(frame->rgb_linear, width, height);
+          if (options.overlay) BurnOverlay(&encoded, plan, k);
+        }
+        if (options.format == ImageFormat::kExr) {
+          std::vector<float> values(frame->rgb_linear.size() * 3);
+          for (size_t i = 0; i < frame->rgb_linear.size(); ++i) {
+            for (int c = 0; c < 3; ++c) values[3 * i + c] = frame->rgb_linear[i][c];
+          }
+          WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
+        } else {
+          WriteSrgb8Atomic(path, encoded);
+        }
+        summary.outputs.push_back(path.string());
+        WriteAovs(*frame, path, options, width, height, &summary);
+        if (video) video->Add(encoded);
+        if (options.contact_sheet) {
+          thumbs.push_back(Thumbnail(*frame));
+          thumb_labels.push_back(LabelLines(plan, k));
+        }
+        const double write_s = std::chrono::duration<double>(Clock::now() - write_start).count();
+        RenderedFrame rendered{k, render_s + write_s, double(frame->total_samples) / (double(width) * height)};
+        summary.frames.push_back(rendered);
+        if (log.frame_done) log.frame_done(rendered, done + 1, frames.size());
+      } catch (...) {
+        write_error = std::current_exception();
       }
-      WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
-    } else {
-      WriteSrgb8Atomic(path, encoded);
-    }
-    summary.outputs.push_back(path.string());
-    const std::string stem = path.stem().string();
-    if (options.aov_depth) {
-      const fs::path aov = options.output_dir / (stem + ".depth.exr");
-      WriteExrAtomic(aov, width, height, {"Z"}, frame.depth_m);
-      summary.outputs.push_back(aov.string());
-    }
-    if (options.aov_blur) {
-      const fs::path aov = options.output_dir / (stem + ".blur.exr");
-      WriteExrAtomic(aov, width, height, {"Y"}, frame.blur_px);
-      summary.outputs.push_back(aov.string());
-    }
-    if (video) video->Add(encoded);
-    if (options.contact_sheet) {
-      thumbs.push_back(Thumbnail(frame));
-      thumb_labels.push_back(LabelLines(plan, k));
-    }
-    RenderedFrame rendered{k, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                           double(frame.total_samples) / (double(width) * height)};
-    summary.frames.push_back(rendered);
-    if (log.frame_done) log.frame_done(rendered, done + 1, frames.size());
+    });
   }
+  finish_writing();
   if (options.contact_sheet && !thumbs.empty()) {
     WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(thumbs, thumb_labels));
     summary.outputs.push_back(options.contact_sheet->string());

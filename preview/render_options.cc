@@ -57,20 +57,6 @@ Backdrop ParseBackdrop(const std::string& text) {
   throw InputError("--backdrop: expected ground or none, got '" + text + "'");
 }
 
-void ParseAovs(const std::string& text, RenderOptions* options) {
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    if (item == "depth") {
-      options->aov_depth = true;
-    } else if (item == "blur") {
-      options->aov_blur = true;
-    } else {
-      throw InputError("--aov: expected depth, blur or depth,blur, got '" + text + "'");
-    }
-  }
-}
-
 SunDirection ParseSunDirection(const std::string& text) {
   SunDirection sun;
   char comma = 0;

@@ -20,6 +20,8 @@ enum class Exposure { kFixed, kPhysical };
 // in the border's colour, hazed with distance (docs/render.md, "The horizon"); kNone leaves the world
 // ending there (rays below the horizon that miss the mesh see a flat grey, at infinite depth).
 enum class Backdrop { kGround, kNone };
+// The extra images beside each frame, described in preview/aov.h's AovTable.
+enum class Aov { kDepth, kBlur, kMask };
 
 // How many rays a pixel gets. A pinhole pre-pass finds each pixel's depth, and so its blur and its
 // motion in pixels; a pixel sharp and still gets one ray (edge_samples where the pre-pass sees an
@@ -56,8 +58,7 @@ struct RenderOptions {
   Exposure exposure = Exposure::kFixed;
   double iso = 100;  // --exposure physical: relative exposure t * ISO / N^2, 1 at 1/50 s, ISO 100, f/4
   Backdrop backdrop = Backdrop::kGround;
-  bool aov_depth = false;
-  bool aov_blur = false;
+  std::vector<Aov> aovs;  // --aov: the extra images beside each frame (preview/aov.h), in AovTable's order
   bool overlay = false;
   std::optional<std::filesystem::path> contact_sheet;
   std::optional<std::filesystem::path> video;
@@ -68,8 +69,6 @@ RenderQuality ParseRenderQuality(const std::string& text);
 ImageFormat ParseImageFormat(const std::string& text);
 Shading ParseShading(const std::string& text);
 Backdrop ParseBackdrop(const std::string& text);
-// "depth,blur" (either or both); InputError naming `--aov` for anything else.
-void ParseAovs(const std::string& text, RenderOptions* options);
 // "AZ,EL" in degrees; InputError naming `--sun`.
 SunDirection ParseSunDirection(const std::string& text);
 

@@ -4,32 +4,44 @@
 #include <array>
 #include <cmath>
 
+#include "preview/thin_lens_camera.h"
+
 namespace cinepath::preview {
 
-Eigen::Vector3d SubjectProxies::BaseAt(size_t subject, double time_s) const {
+Eigen::Vector3d SubjectProxies::BaseAt(size_t subject, double time_s, size_t hint) const {
   const auto& samples = plan_->samples;
   const auto& positions = plan_->subjects[subject].positions_enu_m;
   const size_t n = std::min(samples.size(), positions.size());
   if (n == 0) return Eigen::Vector3d::Zero();
   if (time_s <= samples[0].time_s || n == 1) return positions[0];
   if (time_s >= samples[n - 1].time_s) return positions[n - 1];
-  const auto next = std::upper_bound(samples.begin(), samples.begin() + n, time_s,
-                                     [](double t, const TrajectorySample& s) { return t < s.time_s; });
-  const size_t b = next - samples.begin();
+  const size_t b = SampleAfter(samples, n, time_s, hint);
   const size_t a = b - 1;
   const double span = samples[b].time_s - samples[a].time_s;
   const double w = span > 0 ? (time_s - samples[a].time_s) / span : 0;
   return positions[a] + w * (positions[b] - positions[a]);
 }
 
+void SubjectProxies::BasesAt(double time_s, std::vector<Eigen::Vector3d>* bases, size_t hint) const {
+  bases->resize(plan_->subjects.size());
+  for (size_t i = 0; i < bases->size(); ++i) (*bases)[i] = BaseAt(i, time_s, hint);
+}
+
 std::optional<ProxyHit> SubjectProxies::Intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                                   double time_s, double max_distance_m) const {
+  std::vector<Eigen::Vector3d> bases;
+  BasesAt(time_s, &bases);
+  return Intersect(origin, direction, bases, max_distance_m);
+}
+
+std::optional<ProxyHit> SubjectProxies::Intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                                  const std::vector<Eigen::Vector3d>& bases,
+                                                  double max_distance_m) const {
   std::optional<ProxyHit> best;
   for (size_t i = 0; i < plan_->subjects.size(); ++i) {
     const double height = plan_->subjects[i].height_m;
     const double radius = std::max(0.05, kProxyRadiusPerHeight * height);
-    const Eigen::Vector3d base = BaseAt(i, time_s);
-    const Eigen::Vector3d o = origin - base;
+    const Eigen::Vector3d o = origin - bases[i];
     auto consider = [&](double t, const Eigen::Vector3d& normal) {
       if (t > 1e-6 && t < max_distance_m && (!best || t < best->distance_m)) best = ProxyHit{t, int(i), normal};
     };

@@ -27,10 +27,16 @@ class SubjectProxies {
 
   bool empty() const { return plan_->subjects.empty(); }
   // The base of subject i at time t (linear between samples, clamped at the ends).
-  Eigen::Vector3d BaseAt(size_t subject, double time_s) const;
+  // `hint`: a sample index near t (thin_lens_camera.h SampleAfter), or none.
+  Eigen::Vector3d BaseAt(size_t subject, double time_s, size_t hint = 0) const;
+  // Every subject's base at time t (BaseAt of each): computed once for the many rays of one instant.
+  void BasesAt(double time_s, std::vector<Eigen::Vector3d>* bases, size_t hint = 0) const;
   // The closest proxy hit along the ray within (0, max_distance_m), at time t.
   std::optional<ProxyHit> Intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s,
                                     double max_distance_m) const;
+  // The same, with the subjects standing on `bases` (from BasesAt).
+  std::optional<ProxyHit> Intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                    const std::vector<Eigen::Vector3d>& bases, double max_distance_m) const;
 
  private:
   const Trajectory* plan_;

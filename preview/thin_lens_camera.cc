@@ -68,14 +68,23 @@ Eigen::Vector2d ConcentricDisk(double u1, double u2) {
   return {r * std::cos(phi), r * std::sin(phi)};
 }
 
-CameraPose PoseAt(const Trajectory& plan, double time_s) {
+size_t SampleAfter(const std::vector<TrajectorySample>& samples, size_t n, double time_s, size_t hint) {
+  const auto later = [](double t, const TrajectorySample& s) { return t < s.time_s; };
+  const size_t lo = std::min(hint > 0 ? hint - 1 : 0, n), hi = std::min(hint + 3, n);
+  const auto begin = samples.begin();
+  if ((lo == 0 || samples[lo - 1].time_s <= time_s) && (hi == n || samples[hi].time_s > time_s)) {
+    return size_t(std::upper_bound(begin + long(lo), begin + long(hi), time_s, later) - begin);
+  }
+  return size_t(std::upper_bound(begin, begin + long(n), time_s, later) - begin);
+}
+
+CameraPose PoseAt(const Trajectory& plan, double time_s, size_t hint) {
   const auto& samples = plan.samples;
   if (time_s <= samples.front().time_s) return {samples.front().position_enu_m, samples.front().world_from_camera};
   if (time_s >= samples.back().time_s) return {samples.back().position_enu_m, samples.back().world_from_camera};
-  const auto next = std::upper_bound(samples.begin(), samples.end(), time_s,
-                                     [](double t, const TrajectorySample& s) { return t < s.time_s; });
-  const TrajectorySample& b = *next;
-  const TrajectorySample& a = *(next - 1);
+  const size_t next = SampleAfter(samples, samples.size(), time_s, hint);
+  const TrajectorySample& b = samples[next];
+  const TrajectorySample& a = samples[next - 1];
   const double span = b.time_s - a.time_s;
   const double w = span > 0 ? (time_s - a.time_s) / span : 0;
   return {a.position_enu_m + w * (b.position_enu_m - a.position_enu_m),

@@ -69,8 +69,13 @@ class ThinLensCamera {
 // so stratified lens samples stay stratified.
 Eigen::Vector2d ConcentricDisk(double u1, double u2);
 
+// The index of the first of samples[0, n) later than t (std::upper_bound on time), looking first
+// around `hint` (samples hint-1 .. hint+2: a ray inside sample hint's shutter interval finds it there
+// without a binary search over the whole plan). The same index whatever the hint.
+size_t SampleAfter(const std::vector<TrajectorySample>& samples, size_t n, double time_s, size_t hint);
+
 // The pose at time t, between the samples around it: position linear, orientation slerp; clamped to
-// the plan's first and last sample.
-CameraPose PoseAt(const Trajectory& plan, double time_s);
+// the plan's first and last sample. `hint`: a sample index near t (SampleAfter), or none.
+CameraPose PoseAt(const Trajectory& plan, double time_s, size_t hint = 0);
 
 }  // namespace cinepath::preview

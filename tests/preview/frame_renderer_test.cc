@@ -3,6 +3,7 @@
 // thread count and far from the origin.
 #include "preview/frame_renderer.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,7 +12,9 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include "core/error.h"
 #include "core/optics.h"
+#include "preview/aov.h"
 #include "preview/thin_lens_camera.h"
 
 namespace cinepath::preview {
@@ -285,6 +288,48 @@ TEST(FrameRenderer, ASubjectPlannedAtAFrameHeightFractionFillsItInTheImage) {
   for (int y = 0; y < image.height; ++y) rows += image.rgb_linear[size_t(y) * image.width + 160].x() / 0.9;
   const double planned = 1.8 * 35 / 20 / (24.89 * 180 / 320);
   EXPECT_NEAR(rows / image.height, planned, 1.0 / image.height);
+}
+
+TEST(FrameRenderer, TheMaskAovLabelsEachSubjectAndNothingElse) {
+  // Two subjects side by side in front of a wall: the mask holds 1 on the first, 2 on the second, 0 on
+  // the wall, and each label covers the pixels the pinhole pass sees it at (none of the other).
+  const Eigen::Vector3d camera(0, 0, 0);
+  Trajectory plan = StillCamera(camera, 35, 64, 20);
+  plan.camera.width_px = 320;
+  plan.camera.height_px = 180;
+  for (double east : {-1.5, 1.5}) {
+    SubjectTrack person;
+    person.height_m = 1.8;
+    person.positions_enu_m.assign(3, Eigen::Vector3d(east, 20, -0.9));
+    plan.subjects.push_back(person);
+  }
+  FrameSettings settings = Settings(RenderQuality::kStandard, 4);
+  settings.width_px = 320;
+  settings.height_px = 180;
+  const FrameImage image = Render(Wall(camera, 40, Eigen::Vector3f::Zero()), plan, settings);
+  ASSERT_EQ(image.subject_id.size(), size_t(320 * 180));
+  std::array<int, 3> count{};
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const float id = image.subject_id[size_t(y) * image.width + x];
+      ASSERT_TRUE(id == 0 || id == 1 || id == 2) << id;
+      ++count[size_t(id)];
+      if (id == 1) EXPECT_LT(x, 160);  // the first subject stands west (left)
+      if (id == 2) EXPECT_GT(x, 160);
+    }
+  }
+  EXPECT_GT(count[1], 100);
+  EXPECT_EQ(count[1], count[2]);  // mirror images of each other
+  EXPECT_GT(count[0], 320 * 180 / 2);
+  EXPECT_EQ(&AovValues(image, Aov::kMask), &image.subject_id);
+}
+
+TEST(FrameRenderer, AovListFollowsTheTable) {
+  EXPECT_EQ(ParseAovList("mask,depth"), (std::vector<Aov>{Aov::kDepth, Aov::kMask}));
+  EXPECT_EQ(ParseAovList("blur,blur"), (std::vector<Aov>{Aov::kBlur}));
+  EXPECT_THROW(ParseAovList("depth,normal"), InputError);
+  EXPECT_THROW(ParseAovList(""), InputError);
+  for (size_t i = 0; i < AovTable().size(); ++i) EXPECT_EQ(size_t(AovTable()[i].aov), i);
 }
 
 TEST(FrameRenderer, TheSamePixelsOnOneThreadAndOnAll) {

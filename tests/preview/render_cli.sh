@@ -28,9 +28,11 @@ n=$(ls "$work/full" | wc -l)
 diff -r "$work/full" "$work/shards" > /dev/null || fail "two shards differ from one full run"
 echo "shards: $n frames identical to one run"
 
-# Memory at start-up: the textures stay 8-bit in memory. One small frame of the draft sample (a 2048² atlas)
-# peaked at 162 MB with 8-bit texels and at 234 MB when they were linear floats (2026-11-27, 2 cores); the
-# bound catches a return to floats. Not under the sanitizers, whose shadow memory is counted too.
+# Memory at start-up: the textures stay 8-bit in memory, and no OpenImageIO is loaded. One small frame of the
+# draft sample (a 2048² atlas) peaked at 234 MB when its texels were linear floats, 162-165 MB with 8-bit
+# texels and OpenImageIO's ~260 libraries, 30 MB without them (2026-11-27, 2 cores); the bound (twice that)
+# catches a return of either: float texels alone would add 50 MB. Not under the sanitizers, whose shadow memory
+# is counted too.
 if [[ -z ${ASAN_OPTIONS:-} ]]; then
   peak_mb=$(python3 - "${render[@]:0:5}" "$work/memory" <<'PY'
 import resource, subprocess, sys
@@ -40,7 +42,7 @@ subprocess.run([cinepath, command, plan, scene_flag, scene, "--frames", "0", "--
 print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss // 1024)
 PY
 )
-  [[ $peak_mb -lt 200 ]] || fail "render of one frame peaked at $peak_mb MB (bound 200 MB: textures held as floats again?)"
+  [[ $peak_mb -lt 64 ]] || fail "render of one frame peaked at $peak_mb MB (bound 64 MB: textures held as floats again?)"
   echo "memory: one frame peaked at $peak_mb MB"
 fi
 
@@ -93,15 +95,26 @@ grep -q ffmpeg "$work/stderr" || fail "--video without ffmpeg: $(cat "$work/stde
 [[ ! -e $work/novideo ]] || [[ -z $(ls -A "$work/novideo") ]] || fail "--video without ffmpeg rendered frames"
 
 # Overlay, contact sheet, AOVs, EXR.
-"${render[@]}" --frames 0-80 --overlay --contact-sheet "$work/sheet.png" --aov depth,blur --format exr -o "$work/extras"
-for f in frame_000000.exr frame_000040.exr frame_000080.exr frame_000040.depth.exr frame_000040.blur.exr; do
+"${render[@]}" --frames 0-80 --overlay --contact-sheet "$work/sheet.png" --aov depth,blur,mask --format exr \
+  -o "$work/extras"
+for f in frame_000000.exr frame_000040.exr frame_000080.exr frame_000040.depth.exr frame_000040.blur.exr \
+  frame_000040.mask.exr; do
   [[ -s $work/extras/$f ]] || fail "missing $f"
 done
 [[ $(head -c 8 "$work/sheet.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] || fail "sheet.png is not a PNG"
 # The same bytes on a second run a second later (no wall-clock time in any file).
 sleep 1.1
-"${render[@]}" --frames 0-80 --aov depth,blur --format exr -o "$work/extras_again"
-for f in frame_000040.exr frame_000040.depth.exr frame_000040.blur.exr; do
+"${render[@]}" --frames 0-80 --aov mask,depth,blur --format exr -o "$work/extras_again"
+for f in frame_000040.exr frame_000040.depth.exr frame_000040.blur.exr frame_000040.mask.exr; do
   cmp -s "$work/extras/$f" "$work/extras_again/$f" || fail "$f differs between two runs"
 done
-echo "extras: EXR frames, depth and blur AOVs, contact sheet; EXR bytes the same on a second run"
+# The bundled shots' orbit frames its subject (the plan's first): the mask labels it 1, the rest 0.
+if command -v oiiotool > /dev/null; then
+  "$CINEPATH" plan "$sample/shots.json" --scene "$work/scene/scene.json" -o "$work/subject_plan.json"
+  "$CINEPATH" render "$work/subject_plan.json" --scene "$work/scene/scene.json" --frames 90 --width-px 96 --spp 1 \
+    --aov mask -o "$work/mask"
+  mask_range=$(oiiotool --stats "$work/mask/frame_000090.mask.exr" |
+    awk '/Stats Min/ {min=$3} /Stats Max/ {max=$3} END {print min, max}')
+  [[ $mask_range == "0.000000 1.000000" ]] || fail "mask AOV spans '$mask_range', expected 0 (ground) to 1 (the subject)"
+fi
+echo "extras: EXR frames, depth, blur and mask AOVs, contact sheet; EXR bytes the same on a second run"

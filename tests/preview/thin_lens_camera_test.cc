@@ -1,5 +1,6 @@
 #include "preview/thin_lens_camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -77,6 +78,21 @@ TEST(ThinLensCamera, PoseAtInterpolatesBetweenSamples) {
   EXPECT_NEAR(mid.position_enu_m.x(), 2.5, 1e-12);
   EXPECT_NEAR(mid.world_from_camera.angularDistance(Eigen::Quaterniond::Identity()), M_PI / 8, 1e-12);
   EXPECT_NEAR(PoseAt(plan, 9).position_enu_m.x(), 10, 1e-12);
+}
+
+TEST(ThinLensCamera, SampleAfterIsUpperBoundWhateverTheHint) {
+  std::vector<TrajectorySample> samples(40);
+  for (size_t i = 0; i < samples.size(); ++i) samples[i].time_s = double(i / 2) * 0.5;  // pairs of equal times
+  const auto later = [](double t, const TrajectorySample& s) { return t < s.time_s; };
+  for (size_t n : {size_t(1), size_t(7), samples.size()}) {
+    for (double t = -1; t < 12; t += 0.125) {
+      const size_t expected =
+          size_t(std::upper_bound(samples.begin(), samples.begin() + long(n), t, later) - samples.begin());
+      for (size_t hint = 0; hint < samples.size() + 3; ++hint) {
+        ASSERT_EQ(SampleAfter(samples, n, t, hint), expected) << "n " << n << " t " << t << " hint " << hint;
+      }
+    }
+  }
 }
 
 }  // namespace
