@@ -18,6 +18,7 @@ pkg_check_modules(GEOGRAPHICLIB REQUIRED IMPORTED_TARGET geographiclib)
 find_package(PNG REQUIRED)
 find_package(JPEG REQUIRED)
 find_package(ZLIB REQUIRED)
+find_package(OpenEXR 3.1 CONFIG REQUIRED)
 
 find_package(OpenImageIO 2.4 REQUIRED)
 # OIIO's exported target lists /usr/include/opencv4, which does not exist without libopencv-dev.

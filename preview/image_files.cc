@@ -4,7 +4,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +14,13 @@
 
 // jpeglib.h needs FILE and size_t declared first.
 #include <jpeglib.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #define STB_TRUETYPE_IMPLEMENTATION
 #define STBTT_STATIC
@@ -183,52 +189,23 @@ Srgb8Image DecodePng(const std::vector<uint8_t>& encoded, const std::string& whe
   return texture;
 }
 
-// OpenEXR, single-part scanline, ZIP compression (16 scanlines a block), 32-bit float channels: the
-// file layout of the OpenEXR specification ("OpenEXR File Layout"), written directly.
-class ExrBytes {
+// An OpenEXR output stream into memory: OutputFile seeks back to fill in the line offset table.
+class ExrMemoryStream : public Imf::OStream {
  public:
-  void Bytes(const void* data, size_t n) {
-    const auto* p = static_cast<const uint8_t*>(data);
-    out_.insert(out_.end(), p, p + n);
+  ExrMemoryStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    if (position_ + size_t(n) > bytes_.size()) bytes_.resize(position_ + size_t(n));
+    std::memcpy(bytes_.data() + position_, c, size_t(n));
+    position_ += size_t(n);
   }
-  void U8(uint8_t v) { out_.push_back(v); }
-  void I32(int32_t v) { U32(uint32_t(v)); }
-  void U32(uint32_t v) {
-    for (int i = 0; i < 4; ++i) out_.push_back(uint8_t(v >> (8 * i)));
-  }
-  void U64(uint64_t v) {
-    for (int i = 0; i < 8; ++i) out_.push_back(uint8_t(v >> (8 * i)));
-  }
-  void F32(float v) {
-    uint32_t u;
-    std::memcpy(&u, &v, 4);
-    U32(u);
-  }
-  void Str(const std::string& s) { Bytes(s.c_str(), s.size() + 1); }  // with its terminating zero
-  void Attribute(const std::string& name, const std::string& type, uint32_t size) {
-    Str(name);
-    Str(type);
-    U32(size);
-  }
-  std::vector<uint8_t>& bytes() { return out_; }
+  uint64_t tellp() override { return position_; }
+  void seekp(uint64_t position) override { position_ = size_t(position); }
+  std::vector<uint8_t>& bytes() { return bytes_; }
 
  private:
-  std::vector<uint8_t> out_;
+  std::vector<uint8_t> bytes_;
+  size_t position_ = 0;
 };
-
-// One block through OpenEXR's ZIP: bytes split into even and odd halves, then a delta predictor,
-// then zlib; stored raw when that is not smaller (as the format allows).
-std::vector<uint8_t> ExrZipBlock(const std::vector<uint8_t>& raw) {
-  std::vector<uint8_t> t(raw.size());
-  const size_t half = (raw.size() + 1) / 2;
-  for (size_t i = 0; i < raw.size(); ++i) t[i % 2 == 0 ? i / 2 : half + i / 2] = raw[i];
-  for (size_t i = t.size(); i-- > 1;) t[i] = uint8_t(int(t[i]) - int(t[i - 1]) + 128 + 256);
-  uLongf size = compressBound(uLong(t.size()));
-  std::vector<uint8_t> packed(size);
-  if (compress2(packed.data(), &size, t.data(), uLong(t.size()), 4) != Z_OK || size >= raw.size()) return raw;
-  packed.resize(size);
-  return packed;
-}
 
 }  // namespace
 
@@ -287,76 +264,32 @@ void WriteSrgb8Atomic(const fs::path& path, const Srgb8Image& image) {
 std::vector<uint8_t> EncodeExr(int width, int height, const std::vector<std::string>& channels,
                                const std::vector<float>& values) {
   const size_t nc = channels.size();
-  std::vector<size_t> order(nc);  // the file holds channels in name order
-  for (size_t c = 0; c < nc; ++c) order[c] = c;
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return channels[a] < channels[b]; });
-  ExrBytes out;
-  out.U32(20000630);  // magic
-  out.U32(2);         // version 2, single-part scanline
-  uint32_t chlist_size = 1;
-  for (const auto& name : channels) chlist_size += uint32_t(name.size() + 1 + 16);
-  out.Attribute("channels", "chlist", chlist_size);
-  for (size_t c : order) {
-    out.Str(channels[c]);
-    out.I32(2);  // FLOAT
-    out.U32(0);  // pLinear and reserved
-    out.I32(1);  // x sampling
-    out.I32(1);  // y sampling
+  if (values.size() != size_t(width) * height * nc) throw RuntimeError("EXR: pixel values do not match the size");
+  Imf::Header header(width, height);  // windows (0, 0)-(w-1, h-1), increasing Y, pixel aspect 1
+  header.compression() = Imf::ZIP_COMPRESSION;
+  header.insert("software", Imf::StringAttribute("cinepath render"));
+  Imf::FrameBuffer frame;
+  const size_t x_stride = nc * sizeof(float), y_stride = x_stride * size_t(width);
+  for (size_t c = 0; c < nc; ++c) {  // OpenEXR stores the channels in name order
+    header.channels().insert(channels[c], Imf::Channel(Imf::FLOAT));
+    // Slice wants a char*, but OutputFile only reads through it.
+    char* base = reinterpret_cast<char*>(const_cast<float*>(values.data() + c));
+    frame.insert(channels[c], Imf::Slice(Imf::FLOAT, base, x_stride, y_stride));
   }
-  out.U8(0);
-  out.Attribute("compression", "compression", 1);
-  out.U8(3);  // ZIP_COMPRESSION
-  for (const char* window : {"dataWindow", "displayWindow"}) {
-    out.Attribute(window, "box2i", 16);
-    out.I32(0);
-    out.I32(0);
-    out.I32(width - 1);
-    out.I32(height - 1);
-  }
-  out.Attribute("lineOrder", "lineOrder", 1);
-  out.U8(0);  // INCREASING_Y
-  out.Attribute("pixelAspectRatio", "float", 4);
-  out.F32(1);
-  out.Attribute("screenWindowCenter", "v2f", 8);
-  out.F32(0);
-  out.F32(0);
-  out.Attribute("screenWindowWidth", "float", 4);
-  out.F32(1);
-  const std::string software = "cinepath render";
-  out.Attribute("software", "string", uint32_t(software.size()));
-  out.Bytes(software.data(), software.size());
-  out.U8(0);  // end of header
-  constexpr int kLinesPerBlock = 16;
-  const int blocks = (height + kLinesPerBlock - 1) / kLinesPerBlock;
-  const size_t table = out.bytes().size();
-  for (int b = 0; b < blocks; ++b) out.U64(0);
-  for (int b = 0; b < blocks; ++b) {
-    const int y0 = b * kLinesPerBlock, y1 = std::min(height, y0 + kLinesPerBlock);
-    std::vector<uint8_t> raw;
-    raw.reserve(size_t(y1 - y0) * width * nc * 4);
-    for (int y = y0; y < y1; ++y) {
-      for (size_t c : order) {
-        for (int x = 0; x < width; ++x) {
-          uint32_t u;
-          std::memcpy(&u, &values[(size_t(y) * width + x) * nc + c], 4);
-          for (int i = 0; i < 4; ++i) raw.push_back(uint8_t(u >> (8 * i)));
-        }
-      }
-    }
-    const std::vector<uint8_t> block = ExrZipBlock(raw);
-    const uint64_t offset = out.bytes().size();
-    for (int i = 0; i < 8; ++i) out.bytes()[table + 8 * size_t(b) + size_t(i)] = uint8_t(offset >> (8 * i));
-    out.I32(y0);
-    out.I32(int32_t(block.size()));
-    out.Bytes(block.data(), block.size());
-  }
-  return std::move(out.bytes());
+  ExrMemoryStream stream;
+  {
+    // No worker threads: the blocks compressed in order on this thread, the same bytes on every machine.
+    Imf::OutputFile file(stream, header, 0);
+    file.setFrameBuffer(frame);
+    file.writePixels(height);
+  }  // the destructor writes the line offset table
+  return std::move(stream.bytes());
 }
 
 void WriteExrAtomic(const fs::path& path, int width, int height, const std::vector<std::string>& channels,
                     const std::vector<float>& values) {
-  const std::vector<uint8_t> bytes = EncodeExr(width, height, channels, values);
   WriteFileAtomicWith(path, [&](FILE* file) {
+    const std::vector<uint8_t> bytes = EncodeExr(width, height, channels, values);
     if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size()) throw RuntimeError(std::strerror(errno));
   });
 }

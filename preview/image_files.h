@@ -1,8 +1,8 @@
 // Frames and sheets on disk: PNG (libpng) and JPEG (libjpeg) hold sRGB-encoded 8-bit colour (encoded here,
-// by the sRGB transfer function, rounded), EXR linear 32-bit float (written here, ZIP-compressed, with
-// zlib). No OpenImageIO: its Debian build brings ~260 shared libraries whose loading took half a
-// second of every render's start. Every file is written to a
-// temporary name beside its target and renamed once complete, so a failed write leaves no partial file.
+// by the sRGB transfer function, rounded), EXR linear 32-bit float (the OpenEXR library, ZIP-compressed).
+// No OpenImageIO: its Debian build brings ~260 shared libraries whose loading took half a second of every
+// render's start. Every file is written to a temporary name beside its target and renamed once complete,
+// so a failed write leaves no partial file.
 #pragma once
 
 #include <cstdint>
@@ -38,7 +38,8 @@ void WriteSrgb8Atomic(const std::filesystem::path& path, const Srgb8Image& image
 void WriteExrAtomic(const std::filesystem::path& path, int width, int height, const std::vector<std::string>& channels,
                     const std::vector<float>& values);
 
-// The bytes of that EXR file (single-part scanline, ZIP, FLOAT channels stored in name order).
+// The bytes of that EXR file (OpenEXR's OutputFile without worker threads: single-part scanline, ZIP, FLOAT
+// channels stored in name order; the same bytes for the same input).
 std::vector<uint8_t> EncodeExr(int width, int height, const std::vector<std::string>& channels,
                                const std::vector<float>& values);
 
