@@ -1,5 +1,6 @@
 // cinepath info: inspect a cinepath file or a mission and print a summary or JSON (docs/export.md,
-// "cinepath info"). Understands QGC .plan and "QGC WPL 110" missions; other kinds of files are
+// "cinepath info"). Understands plan.json (one drone or several), QGC .plan and "QGC WPL 110" missions;
+// other kinds of files are
 // added by the stages that write them.
 #include <iostream>
 #include <string>
@@ -21,20 +22,20 @@ namespace {
 class InfoCommand : public Command {
  public:
   void Setup(CLI::App& app) override {
-    app.add_option("file", path_, "File to inspect (.plan, .waypoints, a plan.json of several drones)")->required();
+    app.add_option("file", path_, "File to inspect (.plan, .waypoints, a plan.json)")->required();
     app.add_flag("--json", json_, "Print JSON instead of text");
   }
 
   int Run() override {
     const std::string text = ReadFileToString(path_);
-    if (IsTeamPlan(text)) {
+    if (IsPlan(text)) {
       const TeamPlan plan = ReadTeamPlanFile(path_);
       PrintWarnings("info", TeamPlanNotes(plan));
       std::cout << (json_ ? DumpJson(TeamPlanSummaryJson(plan)) : TeamPlanSummaryText(plan));
       return 0;
     }
     if (!exporter::LooksLikeMission(text)) {
-      throw InputError(path_ + ": not a file kind `cinepath info` understands (QGC .plan, QGC WPL 110)");
+      throw InputError(path_ + ": not a file kind `cinepath info` understands (plan.json, QGC .plan, QGC WPL 110)");
     }
     const exporter::ReadMission mission =
         text.rfind("QGC WPL", 0) == 0 ? exporter::ParseQgcWpl(text, path_) : exporter::ParseQgcPlan(text, path_);
@@ -43,11 +44,12 @@ class InfoCommand : public Command {
   }
 
  private:
-  // A plan of several drones ("cinepath.plan/2"); other plans are not summarized here.
-  static bool IsTeamPlan(const std::string& text) {
-    if (text.find(kTeamPlanSchema) == std::string::npos) return false;
+  // A plan of one drone ("cinepath.plan/1", read as a team of one) or of several ("cinepath.plan/2").
+  static bool IsPlan(const std::string& text) {
+    if (text.find("cinepath.plan/") == std::string::npos) return false;
     const Json doc = Json::parse(text, nullptr, false);
-    return doc.is_object() && doc.contains("schema") && doc["schema"] == kTeamPlanSchema;
+    return doc.is_object() && doc.contains("schema") &&
+           (doc["schema"] == kPlanSchema || doc["schema"] == kTeamPlanSchema);
   }
 
   std::string path_;

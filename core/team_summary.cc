@@ -49,6 +49,12 @@ Json TeamPlanSummaryJson(const TeamPlan& plan) {
                              {"limit_value", RoundToDecimals(c.limit_value, 3)},
                              {"unit", c.unit}});
   }
+  if (plan.single) {  // one drone: no edit, no team
+    return Json{{"kind", "cinepath plan (one drone)"},
+                {"frame_rate_hz", plan.frame_rate_hz},
+                {"samples", plan.SampleCount()},
+                {"drones", drones}};
+  }
   return Json{{"kind", "cinepath plan (several drones)"},
               {"frame_rate_hz", plan.frame_rate_hz},
               {"samples", plan.SampleCount()},
@@ -61,9 +67,9 @@ Json TeamPlanSummaryJson(const TeamPlan& plan) {
 }
 
 std::string TeamPlanSummaryText(const TeamPlan& plan) {
-  std::string out = "cinepath plan, " + std::to_string(plan.flights.size()) + " drones, " +
-                    std::to_string(plan.SampleCount()) + " samples at " + FormatSignificant(plan.frame_rate_hz, 6) +
-                    " Hz\n";
+  std::string out = "cinepath plan, " + std::to_string(plan.flights.size()) +
+                    (plan.flights.size() == 1 ? " drone, " : " drones, ") + std::to_string(plan.SampleCount()) +
+                    " samples at " + FormatSignificant(plan.frame_rate_hz, 6) + " Hz\n";
   for (const auto& flight : plan.flights) {
     const auto& v = flight.plan.feasibility.violations;
     out += "  " + flight.name + ": " + flight.plan.drone.name + ", " + std::to_string(flight.plan.samples.size()) +
@@ -75,6 +81,7 @@ std::string TeamPlanSummaryText(const TeamPlan& plan) {
     }
     out += "\n";
   }
+  if (plan.single) return out;  // one drone: no edit, no team
   if (plan.edit.empty()) {
     out += "edit: none (every camera counts as live)\n";
   } else {
