@@ -479,7 +479,10 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   summary.inputs.push_back(plan_json.string());
   const std::vector<size_t> frames = SelectFrames(plan.samples.size(), options.frames);
   if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");
-  const auto [width, height] = OutputSize(plan.camera, options.width_px);
+  // Plain variables, not a structured binding: the frame writer's lambda captures them (clang 14, which
+  // the fuzz build uses, cannot capture structured bindings).
+  const std::pair<int, int> size = OutputSize(plan.camera, options.width_px);
+  const int width = size.first, height = size.second;
   for (size_t k : frames) {  // the lens of every frame, as the camera will take it
     const auto& s = plan.samples[k];
     ThinLensCamera(plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
