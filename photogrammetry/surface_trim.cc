@@ -7,10 +7,10 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <Eigen/Eigenvalues>
 
 #include "photogrammetry/cgal_point_search_internal.h"
 #include "photogrammetry/vertex_faces.h"
+#include "photogrammetry/vertex_moves_internal.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -68,26 +68,6 @@ struct EdgeTable {
   }
   size_t num_edges() const { return offsets.size() - 1; }
 };
-
-// The least-squares plane of `points`: centroid, unit normal, and whether the points span a plane.
-struct Plane {
-  Eigen::Vector3d centroid, normal;
-  bool valid = false;
-};
-Plane FitPlane(const std::vector<Eigen::Vector3d>& points) {
-  Plane plane;
-  if (points.size() < 3) return plane;
-  plane.centroid = Eigen::Vector3d::Zero();
-  for (const auto& p : points) plane.centroid += p;
-  plane.centroid /= static_cast<double>(points.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& p : points) covariance += (p - plane.centroid) * (p - plane.centroid).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-  plane.normal = solver.eigenvectors().col(0);
-  // Collinear neighbours (a strip one triangle wide) define no plane.
-  plane.valid = solver.eigenvalues()(1) > 1e-6 * std::max(solver.eigenvalues()(2), 1e-30);
-  return plane;
-}
 
 // The direction, from border vertex i, away from the faces on its border edges: for each such edge, the
 // unit vector in the face's plane, perpendicular to the edge, pointing away from the face's third corner;
@@ -171,7 +151,7 @@ void FitBorderToData(TriangleMesh& mesh, const PointCloud& points, const interna
         const Eigen::Vector3d& q = points.positions_m[j];
         if (d2 <= radius_m * radius_m && std::abs((q - p).dot(surface_normal)) <= s) around.push_back(q);
       }
-      const Plane plane = FitPlane(around);
+      const internal::FittedPlane plane = internal::FitPlane(around);
       double off_plane_m2 = 0;
       for (const auto& q : around) off_plane_m2 += std::pow((q - plane.centroid).dot(plane.normal), 2);
       if (plane.valid && around.size() >= 8 && off_plane_m2 < around.size() * std::pow(s / 3, 2)) {
@@ -182,11 +162,16 @@ void FitBorderToData(TriangleMesh& mesh, const PointCloud& points, const interna
           const Eigen::Vector3d along = plane.normal.cross(out);
           const Eigen::Vector3d foot = p - (p - plane.centroid).dot(plane.normal) * plane.normal;
           double past_m = 0;
+          const Eigen::Vector3d* farthest = nullptr;
           for (const auto& q : around) {
-            if (std::abs((q - foot).dot(along)) <= s) past_m = std::max(past_m, (q - foot).dot(out));
+            if (std::abs((q - foot).dot(along)) > s || !((q - foot).dot(out) > past_m)) continue;
+            past_m = (q - foot).dot(out);
+            farthest = &q;
           }
           if (past_m > keep_m) {
-            target[i] = foot + past_m * out;
+            // At the farthest point itself, less its offset along the border: the height is the point's,
+            // not the fitted plane's (a plane tilted by a few degrees is a metre off ten metres out).
+            target[i] = *farthest - (*farthest - foot).dot(along) * along;
             moved[i] = 2;
             return;
           }
@@ -198,35 +183,8 @@ void FitBorderToData(TriangleMesh& mesh, const PointCloud& points, const interna
     target[i] = q + (p - q) * (keep_m / d);
     moved[i] = 1;
   });
-  auto normal = [&](const std::array<uint32_t, 3>& t, const std::vector<Eigen::Vector3d>& at) {
-    return Eigen::Vector3d((at[t[1]] - at[t[0]]).cross(at[t[2]] - at[t[0]]));
-  };
-  constexpr int kMaxHalvings = 3;
-  std::vector<int> halvings(n, 0);
-  for (bool changed = true; changed;) {
-    changed = false;
-    std::vector<Eigen::Vector3d> trial = mesh.vertices_m;
-    for (size_t i = 0; i < n; ++i) {
-      if (moved[i]) trial[i] = target[i];
-    }
-    std::vector<char> undo(n, 0);
-    for (const auto& t : mesh.faces) {
-      if (!moved[t[0]] && !moved[t[1]] && !moved[t[2]]) continue;
-      const Eigen::Vector3d before = normal(t, mesh.vertices_m), after = normal(t, trial);
-      if (after.norm() > 1e-3 * before.norm() && after.dot(before) >= 0.5 * after.norm() * before.norm()) continue;
-      for (uint32_t c : t) undo[c] = moved[c] != 0;
-    }
-    for (size_t i = 0; i < n; ++i) {
-      if (!undo[i]) continue;
-      changed = true;
-      if (++halvings[i] <= kMaxHalvings) {  // try half the move
-        target[i] = 0.5 * (target[i] + mesh.vertices_m[i]);
-        continue;
-      }
-      moved[i] = 0;
-      ++report->border_pulls_refused;
-    }
-  }
+  std::vector<int> halvings;
+  report->border_pulls_refused += internal::KeepFacesFromTurning(mesh, target, moved, halvings);
   for (size_t i = 0; i < n; ++i) {
     if (!moved[i]) continue;
     report->border_moves_shortened += halvings[i] > 0;
@@ -522,7 +480,7 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
         std::vector<Eigen::Vector3d> q;
         q.reserve(around.size());
         for (uint32_t j : around) q.push_back(out.vertices_m[j]);
-        const Plane plane = FitPlane(q);
+        const internal::FittedPlane plane = internal::FitPlane(q);
         if (!plane.valid) return;
         const Eigen::Vector3d& p = out.vertices_m[i];
         const double h = (p - plane.centroid).dot(plane.normal);

@@ -27,8 +27,9 @@
 //    reaches a few triangles in and never peels ring after ring: the part of step 2 that stays safe on
 //    a sparse cloud's clumpy border, where peeling eats into the data.
 //    2c. Border fit: a border vertex short of the data (points lie past it, within border_extend_factor ×
-//    spacing, on a plane around it) is moved onto that plane, out to the farthest of those points (Poisson
-//    rounds a sheet over at a free edge, and the roll is cut away); a border vertex past the data (farther
+//    spacing, on a plane around it) is moved out to the farthest of those points: onto that point, less
+//    its offset along the border, so at the point's own height and never past the points (Poisson rounds
+//    a sheet over at a free edge, and the roll is cut away); a border vertex past the data (farther
 //    from its nearest data point than border_pull_factor × that point's spacing) is moved straight toward
 //    the point until it is that far. Both use the points' own k-NN spacing (not floored by min_spacing_m),
 //    and a move that would turn a face around it by more than 60° is halved (up to three times) or else
