@@ -3,7 +3,8 @@
 (odm_reference.ply, tests/data/colmap/PROVENANCE.md: EPSG:32615, z WGS84 ellipsoidal; its path in
 $ODM_REFERENCE): for each mesh vertex,
 the median z of the reference points in its 1 m UTM cell; prints the median vertical difference and the
-reference's median ground height under the mesh. Needs GeographicLib's CartConvert and GeoConvert.
+reference's median ground height under the mesh, the share of vertices more than 1 m off it, how many
+more than 3 m, the largest difference, and the share more than 1 m from the median difference. Needs GeographicLib's CartConvert and GeoConvert.
 Usage: odm_ground_under_mesh.py OUTDIR [OUTDIR...]   (each holding scene.json and an uncompressed scene.glb)"""
 import json,struct,sys,subprocess,collections,statistics
 import os
@@ -36,4 +37,7 @@ for d in sys.argv[1:]:
         k=(int(float(u[1])//1),int(float(u[2])//1))
         if k in med: diffs.append(float(g[2])-med[k]); refs.append(med[k])
     diffs.sort()
-    print(d,'n',len(diffs),'of',len(geo),'median mesh-ODM vertical',round(statistics.median(diffs),2),'p10',round(diffs[len(diffs)//10],2),'p90',round(diffs[9*len(diffs)//10],2),'ODM median ground there',round(statistics.median(refs),2))
+    print(d,'n',len(diffs),'of',len(geo),'median mesh-ODM vertical',round(statistics.median(diffs),2),'p10',round(diffs[len(diffs)//10],2),'p90',round(diffs[9*len(diffs)//10],2),'ODM median ground there',round(statistics.median(refs),2),
+          'over 1 m',f'{100*sum(abs(x)>1 for x in diffs)/len(diffs):.2f}%','over 3 m',sum(abs(x)>3 for x in diffs),
+          'max',round(max(abs(x) for x in diffs),2),
+          'over 1 m from the median',f'{100*sum(abs(x-statistics.median(diffs))>1 for x in diffs)/len(diffs):.2f}%')

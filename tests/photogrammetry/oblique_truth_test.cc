@@ -1,0 +1,75 @@
+// Rule 1 of the mesh, "as true as the points", on oblique data with exact truth: `cinepath mesh` on the
+// COLMAP reconstruction of the rendered oblique house scene of tests/data/photogrammetry/oblique
+// (make_oblique.py; PROVENANCE.md there), measured against the rendered geometry itself
+// (oblique_truth.h):
+// - at least 95 % of the mesh's distinct vertex positions within 0.3 m of the true surface, and the
+//   99th percentile within 0.6 m;
+// - the trim's border fit moves no border vertex farther than two of the points' own spacings
+//   (scene.json: max_border_extension_m against the trim's median_point_spacing_m).
+//
+// Its own executable (it runs the real `cinepath` binary, a few seconds a scene), label "mesh_truth".
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/json.h"
+#include "tests/photogrammetry/oblique_truth.h"
+#include "tests/support/command_line.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using cinepath::testing::MakeTempDir;
+using cinepath::testing::ReadText;
+using cinepath::testing::ShellQuote;
+
+class ObliqueTruth : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ObliqueTruth, MeshIsAsTrueAsItsPoints) {
+  const fs::path data = fs::path(CINEPATH_TEST_DATA_DIR) / "photogrammetry" / "oblique" / GetParam();
+  ASSERT_TRUE(fs::is_directory(data / "sparse")) << data;
+  const fs::path tmp = MakeTempDir(std::string("cinepath_oblique_") + GetParam());
+  ASSERT_FALSE(tmp.empty());
+  const fs::path out = tmp / "scene";
+  const std::string command = ShellQuote(CINEPATH_BINARY) + " mesh --colmap " + ShellQuote((data / "sparse").string()) +
+                              " --refs " + ShellQuote((data / "refs_gps.txt").string()) + " -o " +
+                              ShellQuote(out.string()) + " --no-timestamp 2> " +
+                              ShellQuote((tmp / "stderr.txt").string());
+  const int rc = std::system(command.c_str());
+  ASSERT_EQ(rc, 0) << command << "\n" << ReadText(tmp / "stderr.txt");
+
+  const cinepath::Json truth = cinepath::Json::parse(ReadText(data / "truth.json"));
+  const auto& target = truth["cameras"][0]["look_at_enu_m"];
+  const Eigen::Vector2d centre(target[0].get<double>(), target[1].get<double>());
+  const cinepath::testing::TruthDistances d =
+      cinepath::testing::MeasureAgainstTruth(out / "scene.glb", data / "truth.ply", centre);
+  ASSERT_GT(d.size(), 100u);
+  std::printf("%s: %zu vertices; median %.3f m, p90 %.3f m, p99 %.3f m, within 0.3 m %.1f %%\n", GetParam(), d.size(),
+              d.Quantile(0.5), d.Quantile(0.9), d.Quantile(0.99), 100 * d.ShareWithin(0.3));
+  for (double r : {0.0, 15.0, 25.0, 35.0, 45.0}) {
+    const double r_hi = r == 45.0 ? INFINITY : (r == 0.0 ? 15.0 : r + 10.0);
+    std::printf("  %4.0f-%-4.0f m from the centre: %6zu vertices, within 0.3 m %.1f %%, p99 %.3f m\n", r, r_hi,
+                d.CountIn(r, r_hi), 100 * d.ShareWithin(0.3, r, r_hi), d.Quantile(0.99, r, r_hi));
+  }
+  EXPECT_GE(d.ShareWithin(0.3), 0.95);
+  EXPECT_LE(d.Quantile(0.99), 0.6);
+
+  // The trim's border fit: no border vertex moved past the points' own extent.
+  const cinepath::Json scene = cinepath::Json::parse(ReadText(out / "scene.json"));
+  for (const auto& step : scene["surface"]["steps"]) {
+    if (step["step"] != "trim") continue;
+    const double moved_m = step["max_border_extension_m"].get<double>();
+    const double spacing_m = step["median_point_spacing_m"].get<double>();
+    std::printf("  trim: max_border_extension_m %.3f, median_point_spacing_m %.3f\n", moved_m, spacing_m);
+    EXPECT_LE(moved_m, 2 * spacing_m);
+  }
+  fs::remove_all(tmp);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ObliqueTruth, ::testing::Values("house"));
+
+}  // namespace
