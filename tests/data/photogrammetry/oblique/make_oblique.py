@@ -215,27 +215,9 @@ for radius, height, count, start in ORBITS:
         index += 1
 
 # --- truth and references -----------------------------------------------------------------------------
-A, F = 6378137.0, 1 / 298.257223563
-E2 = F * (2 - F)
-
-
-def ecef(lat, lon, h):
-    la, lo = math.radians(lat), math.radians(lon)
-    n = A / math.sqrt(1 - E2 * math.sin(la)**2)
-    return ((n + h) * math.cos(la) * math.cos(lo), (n + h) * math.cos(la) * math.sin(lo),
-            (n * (1 - E2) + h) * math.sin(la))
-
-
-def geodetic(x, y, z):
-    lon = math.atan2(y, x)
-    p = math.hypot(x, y)
-    lat = math.atan2(z, p * (1 - E2))
-    for _ in range(10):
-        n = A / math.sqrt(1 - E2 * math.sin(lat)**2)
-        h = p / math.cos(lat) - n
-        lat = math.atan2(z, p * (1 - E2 * n / (n + h)))
-    n = A / math.sqrt(1 - E2 * math.sin(lat)**2)
-    return math.degrees(lat), math.degrees(lon), p / math.cos(lat) - n
+# The WGS84 conversions of the Blender interop tests (an implementation independent of cinepath's).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "interop", "blender"))
+from wgs84 import ecef_from_geodetic as ecef, geodetic_from_ecef as geodetic  # noqa: E402
 
 
 def enu_to_geodetic(e, nn, u):
