@@ -31,8 +31,9 @@ PACKAGES=(
   # the browser the previs page is tested in (tests/viewer/browser_test.sh)
   chromium
   # Blender's own glTF and Nuke .chan importers check `export --format gltf-camera|nuke-chan`
-  # (tests/interop/blender; 11 packages, 56 MB download, 202 MB installed, 11 s on the CI machine class)
-  blender
+  # (tests/interop/blender; 11 packages, 56 MB download, 202 MB installed, 11 s on the CI machine class).
+  # Its glTF importer imports numpy, which Debian's blender package does not depend on.
+  blender python3-numpy
 )
 for g in "${EXTRA_GROUPS[@]+"${EXTRA_GROUPS[@]}"}"; do
   case "$g" in
