@@ -161,6 +161,8 @@ class PlanOptimizer {
   // Adds the limits of every sample left out of the problem that a solve brought within kLimitRecheck of a
   // limit; returns how many.
   size_t AddLimitsNearTheirBounds();
+  void AddLimitsTerm(const SampleBase& base);
+  std::array<const double*, 4> KnotsOf(const SampleBase& base) const;  // the sample's four knots
   // The channels the change may move at a sample (kEast: any of the position's).
   std::array<bool, kNumChannels> FreeChannels(const SampleBase& base) const;
   // The limits cost of the samples left out: a constant (their free limits hold with room; the others do
@@ -382,17 +384,8 @@ void PlanOptimizer::AddTerms() {
       }
     }
 
-    // Limits, keep-out, clearance. A sample whose every limit holds with room to spare has a zero limits
-    // residual, and so does every change that keeps it so: it joins the problem only when a solve brings
-    // it near a limit (AddLimitsNearTheirBounds).
-    terms_["limits"];  // reported even when every sample's limits are left out
-    auto limits = std::make_unique<LimitsCost>(
-        LimitsCost{base, plan_.drone, camera, scene_->takeoff_up_m, options_.limit_margin, w.limits});
-    if (limits->Headroom(zero, FreeChannels(base)) > -kLimitScreen) {
-      AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
-    } else {
-      screened_limits_.push_back(std::move(limits));
-    }
+    // Limits, keep-out, clearance.
+    AddLimitsTerm(base);
     const double max_dev = s ? s->max_deviation_m : options_.max_deviation_m;
     for (const auto& t : plan_.subjects) {
       const Eigen::Vector3d& foot = t.positions_enu_m[k];
@@ -601,6 +594,26 @@ void PlanOptimizer::Solve(bool ramp) {
   }
 }
 
+// A sample whose every limit holds with room to spare has a zero limits residual, and so does every change
+// that keeps it so: it joins the problem only when a solve brings it near a limit (AddLimitsNearTheirBounds).
+void PlanOptimizer::AddLimitsTerm(const SampleBase& base) {
+  static const Knot kZero{};
+  const double* zero[4] = {kZero.data(), kZero.data(), kZero.data(), kZero.data()};
+  terms_["limits"];  // reported even when every sample's limits are left out
+  auto limits = std::make_unique<LimitsCost>(LimitsCost{base, plan_.drone, plan_.camera, scene_->takeoff_up_m,
+                                                        options_.limit_margin, options_.weights.limits});
+  if (limits->Headroom(zero, FreeChannels(base)) > -kLimitScreen) {
+    AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
+  } else {
+    screened_limits_.push_back(std::move(limits));
+  }
+}
+
+std::array<const double*, 4> PlanOptimizer::KnotsOf(const SampleBase& base) const {
+  const int first = base.knots.first_knot;
+  return {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(), knots_[first + 3].data()};
+}
+
 std::array<bool, kNumChannels> PlanOptimizer::FreeChannels(const SampleBase& base) const {
   std::array<bool, kNumChannels> free{};
   for (int j = 0; j < 4; ++j) {
@@ -615,10 +628,7 @@ double PlanOptimizer::ScreenedLimitsCost() const {
   double cost = 0;
   for (const auto& limits : screened_limits_) {
     if (!limits) continue;
-    const int first = limits->base.knots.first_knot;
-    const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
-                          knots_[first + 3].data()};
-    cost += limits->Cost(k);
+    cost += limits->Cost(KnotsOf(limits->base).data());
   }
   return cost;
 }
@@ -627,10 +637,7 @@ size_t PlanOptimizer::AddLimitsNearTheirBounds() {
   size_t added = 0;
   for (auto& limits : screened_limits_) {
     if (!limits) continue;
-    const int first = limits->base.knots.first_knot;
-    const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
-                          knots_[first + 3].data()};
-    if (limits->Headroom(k, FreeChannels(limits->base)) <= -kLimitRecheck) continue;
+    if (limits->Headroom(KnotsOf(limits->base).data(), FreeChannels(limits->base)) <= -kLimitRecheck) continue;
     const SampleBase base = limits->base;
     AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
     ++added;
