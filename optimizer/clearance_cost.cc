@@ -10,8 +10,8 @@ bool ClearanceCost::Evaluate(double const* const* parameters, double* residuals,
   // Behind the closest face (inside a solid, under terrain) the distance counts as negative: the residual
   // keeps growing and the push points out through that face.
   const double signed_m = closest ? (closest->behind ? -closest->distance_m : closest->distance_m) : margin_m_;
-  if (signed_m < margin_m_) {
-    residuals[0] = weight_ * (margin_m_ - signed_m) / margin_m_;
+  if (closest && signed_m < margin_m_ + shift_m_) {
+    residuals[0] = weight_ * (margin_m_ + shift_m_ - signed_m) / margin_m_;
     // Out of the surface: along the offset from it, or along the face normal when on or behind it.
     const Eigen::Vector3d offset = s.position - closest->position_enu_m;
     const Eigen::Vector3d away = closest->distance_m > 1e-9
@@ -27,6 +27,18 @@ bool ClearanceCost::Evaluate(double const* const* parameters, double* residuals,
     }
   }
   return true;
+}
+
+double ClearanceCost::SignedDistanceM(const Eigen::Vector3d& position) const {
+  const auto closest = surface_->Closest(position);
+  if (!closest) return margin_m_;
+  return closest->behind ? -closest->distance_m : closest->distance_m;
+}
+
+double ClearanceCost::UpdateShifts(const double* const* parameters) {
+  const double short_m = margin_m_ - SignedDistanceM(EvaluateSample(base_, parameters).position);
+  shift_m_ = std::max(0.0, shift_m_ + short_m);
+  return short_m / margin_m_;
 }
 
 }  // namespace cinepath::optimizer

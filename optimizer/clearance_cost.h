@@ -1,5 +1,5 @@
 // clearance: the camera at least `margin_m` from the nearest surface of the scene's mesh. The residual is
-// weight * max(0, margin - d) / margin with d the distance to the closest surface point q
+// weight * max(0, margin - d + shift) / margin with d the distance to the closest surface point q
 // (scene/surface_distance.h), negative behind the closest face (inside a solid, under terrain); its gradient in the
 // camera position is exact, -(c - q) / (d margin), and the knots get it through the sample's spline weights. Analytic,
 // since the distance comes from a tree query that automatic differentiation cannot see through.
@@ -17,8 +17,16 @@ class ClearanceCost : public ceres::SizedCostFunction<1, kNumChannels, kNumChann
   ClearanceCost(const SampleBase& base, const scene::SurfaceDistance* surface, double margin_m, double weight)
       : base_(base), surface_(surface), margin_m_(margin_m), weight_(weight) {}
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+  // The augmented Lagrangian's multiplier update (docs/optimize.md, "Limits as constraints"), the
+  // residual being weight max(0, margin - d + shift) / margin: shift = max(0, shift + margin - d). Returns
+  // (margin - d) / margin.
+  double UpdateShifts(const double* const* parameters);
+  double ResetShift() { return shift_m_ = 0; }
 
  private:
+  // The distance counted: negative behind the closest face (inside a solid, under terrain).
+  double SignedDistanceM(const Eigen::Vector3d& position) const;
+  double shift_m_ = 0;
   SampleBase base_;
   const scene::SurfaceDistance* surface_;
   double margin_m_;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -144,6 +145,13 @@ struct LimitsCost {
   double margin = 0.02;  // aim at (1 - margin) of each limit
   double weight = 1;
   bool raw = false;  // the hinges' arguments instead of the hinges (Headroom)
+  // The augmented Lagrangian's shifts (docs/optimize.md, "Limits as constraints"): residual i is
+  // weight max(0, argument_i + shift_i), shift_i = multiplier_i / weight^2, updated by UpdateShifts.
+  std::array<double, kNumResiduals> shift{};
+  // The channels the change may move at this sample: only their limits get multipliers (a limit of a
+  // channel that does not move is a constant, and one aimed inside an empty range, as a prime lens's focal
+  // range at (1 - margin), would grow its multiplier for ever).
+  std::array<bool, kNumChannels> free = {true, true, true, true, true, true, true, true};
 
   // The channel each residual moves with (kEast standing for the position).
   static constexpr int kChannelOf[kNumResiduals] = {kEast,     kEast,  kEast,  kEast,    kEast,   kYaw, kTilt,
@@ -174,6 +182,21 @@ struct LimitsCost {
     for (double v : r) cost += 0.5 * v * v;
     return cost;
   }
+  // The multiplier update after a solve ended at `k`: shift_i = max(0, shift_i + argument_i). Returns the
+  // largest argument (how far past its aimed value the worst limit is, per unit of the limit).
+  double UpdateShifts(const double* const* k) {
+    LimitsCost measure = *this;
+    measure.raw = true;
+    double a[kNumResiduals];
+    measure(k[0], k[1], k[2], k[3], a);
+    double most = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < kNumResiduals; ++i) {
+      if (!free[kChannelOf[i]]) continue;
+      shift[i] = std::max(0.0, shift[i] + a[i]);
+      most = std::max(most, a[i]);
+    }
+    return most;
+  }
 
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
@@ -181,12 +204,12 @@ struct LimitsCost {
     const T* k[4] = {k0, k1, k2, k3};
     const SampleState<T> s = EvaluateSample(base, k);
     const double m = 1.0 - margin;
-    const auto hinge = [&](const T& x) { return raw ? x : Hinge(x); };
-    const auto over = [&](const T& value, double limit) { return hinge((value - T(limit * m)) / limit); };
+    const auto over = [&](const T& value, double limit) { return (value - T(limit * m)) / limit; };
     const auto under = [&](const T& value, double limit, double scale) {
-      return hinge((T(limit) - value) / scale + T(margin));
+      return (T(limit) - value) / scale + T(margin);
     };
-    for (int i = 0; i < kNumResiduals; ++i) r[i] = T(raw ? -std::numeric_limits<double>::infinity() : 0.0);
+    // The hinges' arguments first (minus infinity: no such limit at this sample), then the residuals.
+    for (int i = 0; i < kNumResiduals; ++i) r[i] = T(-std::numeric_limits<double>::infinity());
     if (base.has_rates) {
       const Vec3T<T> v = base.velocity_m_s.cast<T>() + s.velocity;
       const Vec3T<T> a = base.acceleration_m_s2.cast<T>() + s.acceleration;
@@ -206,7 +229,7 @@ struct LimitsCost {
     }
     const T pitch = T(base.pitch_deg) + s.tilt * kDeg;
     r[9] = under(pitch, drone.min_gimbal_pitch_deg, 90.0);
-    r[10] = hinge((pitch - T(drone.max_gimbal_pitch_deg)) / 90.0 + T(margin));
+    r[10] = (pitch - T(drone.max_gimbal_pitch_deg)) / 90.0 + T(margin);
     const T altitude = s.position[2] - T(takeoff_up_m);
     r[11] = under(altitude, drone.min_altitude_m, std::max(drone.min_altitude_m, 10.0));
     r[12] = over(altitude, drone.max_altitude_m);
@@ -218,11 +241,24 @@ struct LimitsCost {
     r[16] = over(f_number, camera.max_f_number);
     const double max_dioptre = 1.0 / camera.min_focus_distance_m;
     r[17] = over(s.dioptre, max_dioptre);
-    r[18] = hinge(-s.dioptre / max_dioptre);  // focus beyond infinity
-    for (int i = 0; i < kNumResiduals; ++i) r[i] *= weight;
+    r[18] = -s.dioptre / max_dioptre;  // focus beyond infinity
+    if (raw) return true;
+    for (int i = 0; i < kNumResiduals; ++i) r[i] = weight * Hinge(r[i] + T(shift[i]));
     return true;
   }
 };
+
+// The augmented Lagrangian's multiplier update of a one-residual constraint functor with `raw` and
+// `shift` members: shift = max(0, shift + argument). Returns the argument over `scale`.
+template <typename Functor>
+double UpdateShift(Functor& f, const double* const* k, double scale) {
+  Functor measure = f;
+  measure.raw = true;
+  double argument = 0;
+  measure(k[0], k[1], k[2], k[3], &argument);
+  f.shift = std::max(0.0, f.shift + argument);
+  return argument / scale;
+}
 
 // keep-out: the camera at least min_subject_distance_m from an actor (a vertical segment from its base
 // to its height), as the feasibility check measures it.
@@ -241,9 +277,14 @@ struct KeepOutCost {
     Vec3T<T> d = s.position - subject_base_enu_m.cast<T>();
     const T top = T(subject_height_m);
     d[2] = d[2] < T(0) ? d[2] : (d[2] > top ? d[2] - top : T(0));
-    r[0] = weight * Hinge(T(min_distance_m * (1.0 + margin)) - SafeNorm(d)) / min_distance_m;
+    r[0] = T(min_distance_m * (1.0 + margin)) - SafeNorm(d);  // metres short of the distance aimed at
+    if (!raw) r[0] = weight * Hinge(r[0] + T(shift)) / min_distance_m;
     return true;
   }
+  bool raw = false;  // the hinge's argument instead of the residual
+  double shift = 0;  // the augmented Lagrangian's shift (metres), as LimitsCost's
+  // The multiplier update; returns the argument per unit of the distance.
+  double UpdateShifts(const double* const* k) { return UpdateShift(*this, k, min_distance_m); }
 };
 
 // out_of_shot (several drones): a drone's body, a sphere, outside another drone's live frame. Either this
@@ -278,15 +319,19 @@ struct OutOfShotCost {
       f_mm = T(viewer_focal_length_mm);
     }
     if (c[2] <= T(body_radius_m)) {
-      r[0] = T(0);
+      r[0] = T(raw ? -std::numeric_limits<double>::infinity() : 0.0);
       return true;
     }
     const T reach = T(body_radius_m * (1.0 + margin) + margin);
     const T inside_x = T(0.5 * image_width_mm) / f_mm * c[2] + reach - abs(c[0]);
     const T inside_y = T(0.5 * image_height_mm) / f_mm * c[2] + reach - abs(c[1]);
-    r[0] = weight * Hinge(inside_x < inside_y ? inside_x : inside_y);
+    r[0] = inside_x < inside_y ? inside_x : inside_y;
+    if (!raw) r[0] = weight * Hinge(r[0] + T(shift));
     return true;
   }
+  bool raw = false;  // the hinge's argument instead of the residual
+  double shift = 0;  // the augmented Lagrangian's shift (metres), as LimitsCost's
+  double UpdateShifts(const double* const* k) { return UpdateShift(*this, k, 1.0); }
 };
 
 // smoothness: over one spline segment, the jerk and the acceleration of the path change and the rates
@@ -334,9 +379,16 @@ struct AdherenceCost {
   bool operator()(const T* k, T* r) const {
     const Vec3T<T> d(k[kEast], k[kNorth], k[kUp]);
     for (int c = 0; c < 3; ++c) r[c] = adherence_weight * d[c];
-    r[3] = deviation_weight * Hinge(SafeNorm(d) - T(max_deviation_m));
+    r[3] = deviation_weight * Hinge(SafeNorm(d) - T(max_deviation_m) + T(shift));
     for (int c = kYaw; c < kNumChannels; ++c) r[c + 1] = ridge_weight * k[c];
     return true;
+  }
+  double shift = 0;  // the augmented Lagrangian's shift on the deviation (metres), as LimitsCost's
+  // The multiplier update; returns the metres past the deviation allowed.
+  double UpdateShifts(const double* k) {
+    const double past = Eigen::Vector3d(k[kEast], k[kNorth], k[kUp]).norm() - max_deviation_m;
+    shift = std::max(0.0, shift + past);
+    return past;
   }
 };
 

@@ -21,14 +21,16 @@ const char* OptimizeQualityName(OptimizeQuality quality) {
 }
 
 OptimizeOptions OptimizeOptions::ForQuality(OptimizeQuality quality) {
-  // {knot spacing s, iterations per solve, function tolerance, visibility rounds} (docs/optimize.md).
+  // {knot spacing s, iterations per solve, function tolerance, visibility rounds, multiplier rounds}
+  // (docs/optimize.md).
   struct Preset {
     double knot_spacing_s;
     int max_iterations;
     double function_tolerance;
     int visibility_rounds;
+    int multiplier_rounds;
   };
-  static constexpr Preset kDraft{1.0, 30, 1e-5, 1}, kStandard{0.5, 100, 1e-8, 4}, kFinal{0.25, 300, 1e-10, 6};
+  static constexpr Preset kDraft{1.0, 30, 1e-5, 1, 4}, kStandard{0.5, 100, 1e-8, 4, 6}, kFinal{0.25, 300, 1e-10, 6, 8};
   const Preset& p = quality == OptimizeQuality::kDraft   ? kDraft
                     : quality == OptimizeQuality::kFinal ? kFinal
                                                          : kStandard;
@@ -38,6 +40,7 @@ OptimizeOptions OptimizeOptions::ForQuality(OptimizeQuality quality) {
   o.max_iterations = p.max_iterations;
   o.function_tolerance = p.function_tolerance;
   o.visibility_rounds = p.visibility_rounds;
+  o.multiplier_rounds = p.multiplier_rounds;
   return o;
 }
 

@@ -45,6 +45,7 @@ struct OptimizeOptions {
   int max_iterations = 100;          // per round
   double function_tolerance = 1e-8;  // Ceres: relative cost change that ends a round
   int visibility_rounds = 4;         // solve, re-check lines of sight, re-target the hidden frames, solve again
+  int multiplier_rounds = 4;         // augmented Lagrangian: update the limits' multipliers, solve again
   double clearance_margin_m = 3.0;   // distance to the mesh the drone keeps
   double max_deviation_m = 5.0;      // default when a shot gives none
   double limit_margin = 0.02;        // limits are aimed at (1 - margin) of their value, so they hold after

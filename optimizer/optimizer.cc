@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -175,6 +176,31 @@ class PlanOptimizer {
   // How far past the first clear viewpoint a target is set: the pull stops just short of its target.
   static constexpr double kTargetOvershootM = 0.75;
   void Solve(bool ramp);
+  // Solves again with the multipliers of the hard limits updated until they hold (docs/optimize.md,
+  // "Limits as constraints"), at most options_.multiplier_rounds times.
+  void SolveUntilTheLimitsHold();
+  // The augmented Lagrangian's update of every constraint in the problem; returns the largest violation
+  // (per unit of its limit) before it. ResetMultipliers: every shift back to zero (the plain penalties).
+  double UpdateMultipliers();
+  void ResetMultipliers();
+  // A hard limit's functor in the problem, for its multiplier updates (the problem owns it).
+  template <typename Functor>
+  void AddConstraint(Functor* f, const SampleBase& base) {
+    const int first = base.knots.first_knot;
+    constraints_.push_back([this, f, first](bool reset) {
+      if (reset) {
+        f->shift = decltype(f->shift){};
+        return 0.0;
+      }
+      const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
+                            knots_[first + 3].data()};
+      return f->UpdateShifts(k);
+    });
+  }
+  // Their multiplier updates (argument true: reset), in the order they joined the problem.
+  std::vector<std::function<double(bool)>> constraints_;
+  // A solve within this much of every limit's aimed value (per unit of the limit) needs no other round.
+  static constexpr double kConstraintTolerance = 1e-3;
   SampleState<double> StateAt(const SampleBase& base) const;
   // The plan with `alpha` of the change: input + alpha (output - input) over every optimized channel
   // (alpha = 1 is the solver's output, 0 the input itself).
@@ -288,8 +314,11 @@ void PlanOptimizer::MarkFreeChannels() {
     if (shot >= 0) {
       const ShotSettings& s = shots_[shot];
       const bool size_goal = s.span->intent.frame_height_fraction.has_value();
-      touched[kLogFocal] = size_goal || !s.sharp.empty();
-      touched[kStops] = !s.sharp.empty();
+      // A prime lens or a fixed aperture (the small aircraft's built-in cameras) has nothing to move.
+      const bool zooms = plan_.camera.max_focal_length_mm > plan_.camera.min_focal_length_mm;
+      const bool stops = plan_.camera.max_f_number > plan_.camera.min_f_number;
+      touched[kLogFocal] = zooms && (size_goal || !s.sharp.empty());
+      touched[kStops] = stops && !s.sharp.empty();
       touched[kDioptre] = !s.sharp.empty() || s.focus_follows;  // DoF goals, or focus following
     }
     for (int j = 0; j < 4; ++j) {
@@ -391,19 +420,24 @@ void PlanOptimizer::AddTerms() {
       const Eigen::Vector3d& foot = t.positions_enu_m[k];
       if ((sample.position_enu_m - foot).norm() > plan_.drone.min_subject_distance_m + max_dev + t.height_m + 1.0)
         continue;
-      AddSampleTerm(
-          "keep_out",
-          new KeepOutCost{base, foot, t.height_m, plan_.drone.min_subject_distance_m, options_.limit_margin, w.limits},
-          base, 1);
+      auto* keep_out =
+          new KeepOutCost{base, foot, t.height_m, plan_.drone.min_subject_distance_m, options_.limit_margin, w.limits};
+      AddConstraint(keep_out, base);
+      AddSampleTerm("keep_out", keep_out, base, 1);
     }
     if (!input_.others.empty()) AddTeamTerms(k, max_dev);
     if (scene_->surface && scene_->surface->num_faces() > 0) {
       const auto closest = scene_->surface->Closest(sample.position_enu_m);
       if (closest && closest->distance_m < options_.clearance_margin_m + max_dev + 0.5) {
-        AddBlock("clearance",
-                 new ClearanceCost(base, scene_->surface.get(),
-                                   options_.clearance_margin_m * (1 + options_.limit_margin), w.clearance),
-                 base.knots.first_knot);
+        auto* clearance = new ClearanceCost(base, scene_->surface.get(),
+                                            options_.clearance_margin_m * (1 + options_.limit_margin), w.clearance);
+        const int first = base.knots.first_knot;
+        constraints_.push_back([this, clearance, first](bool reset) {
+          const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
+                                knots_[first + 3].data()};
+          return reset ? clearance->ResetShift() : clearance->UpdateShifts(k);
+        });
+        AddBlock("clearance", clearance, first);
       }
     }
   }
@@ -424,7 +458,10 @@ void PlanOptimizer::AddTerms() {
     const int shot = split_.shot_of_sample[k];
     // What is left of the deviation allowed (a later stage starts where the cheaper one left the path).
     const double used = (plan_.samples[k].position_enu_m - input_.plan.samples[k].position_enu_m).norm();
-    const double dev = std::max(0.0, (shot >= 0 ? shots_[shot].max_deviation_m : options_.max_deviation_m) - used);
+    // Aimed at (1 - limit_margin) of it, as every other limit: a hinge met to within the solver's tolerance
+    // then stays inside the deviation allowed.
+    const double allowed = shot >= 0 ? shots_[shot].max_deviation_m : options_.max_deviation_m;
+    const double dev = std::max(0.0, (1 - options_.limit_margin) * allowed - used);
     for (int j = 0; j < 4; ++j) {
       const int i = split_.bases[k].knots.first_knot + j;
       knot_deviation[i] = seen[i] ? std::min(knot_deviation[i], dev) : dev;
@@ -433,6 +470,10 @@ void PlanOptimizer::AddTerms() {
   }
   for (size_t i = 0; i < knots_.size(); ++i) {
     auto* f = new AdherenceCost{knot_deviation[i], w.adherence, w.deviation, w.ridge};
+    constraints_.push_back([this, f, i](bool reset) {
+      if (reset) return f->shift = 0.0;
+      return f->UpdateShifts(knots_[i].data()) / std::max(f->max_deviation_m, 1.0);
+    });
     terms_["adherence"].push_back(problem_.AddResidualBlock(
         new ceres::AutoDiffCostFunction<AdherenceCost, AdherenceCost::kNumResiduals, kNumChannels>(f), nullptr,
         knots_[i].data()));
@@ -463,10 +504,10 @@ void PlanOptimizer::AddTeamTerms(size_t k, double max_deviation_m) {
     const TrajectorySample& o = other.samples[k];
     const double separation = other.separation_m[k];
     if (separation > 0 && (position - o.position_enu_m).norm() < separation + max_deviation_m + 1.0) {
-      AddSampleTerm(
-          "separation",
-          new KeepOutCost{base, o.position_enu_m, 0.0, separation, options_.limit_margin, options_.weights.team}, base,
-          1);
+      auto* apart =
+          new KeepOutCost{base, o.position_enu_m, 0.0, separation, options_.limit_margin, options_.weights.team};
+      AddConstraint(apart, base);
+      AddSampleTerm("separation", apart, base, 1);
     }
     // This drone in the other's live frame (the other's camera held), and the other in this drone's.
     for (const bool this_views : {false, true}) {
@@ -488,11 +529,18 @@ void PlanOptimizer::AddTeamTerms(size_t k, double max_deviation_m) {
           std::fabs(c.y()) > half_h * c.z() + reach) {
         continue;
       }
-      AddSampleTerm(
-          "out_of_shot",
-          new OutOfShotCost{base, this_views, this_views ? body : viewer, camera_from_world, focal_mm, image.width_mm,
-                            image.height_mm, body_radius, options_.limit_margin, options_.weights.team},
-          base, 1);
+      auto* out = new OutOfShotCost{base,
+                                    this_views,
+                                    this_views ? body : viewer,
+                                    camera_from_world,
+                                    focal_mm,
+                                    image.width_mm,
+                                    image.height_mm,
+                                    body_radius,
+                                    options_.limit_margin,
+                                    options_.weights.team};
+      AddConstraint(out, base);
+      AddSampleTerm("out_of_shot", out, base, 1);
     }
   }
 }
@@ -594,6 +642,27 @@ void PlanOptimizer::Solve(bool ramp) {
   }
 }
 
+// Rule 1 (docs/optimize.md, "Limits as constraints"): the penalties alone leave a limit broken wherever
+// the goals pull harder than its weight; the augmented Lagrangian's multipliers, carried as shifts inside
+// the hinges, grow where a limit is broken until the solve meets it, without a larger weight.
+void PlanOptimizer::SolveUntilTheLimitsHold() {
+  for (int round = 0; round < options_.multiplier_rounds; ++round) {
+    if (UpdateMultipliers() <= kConstraintTolerance) return;
+    Solve(false);
+    while (AddLimitsNearTheirBounds() > 0) Solve(false);
+  }
+}
+
+double PlanOptimizer::UpdateMultipliers() {
+  double most = 0;
+  for (auto& update : constraints_) most = std::max(most, update(false));
+  return most;
+}
+
+void PlanOptimizer::ResetMultipliers() {
+  for (auto& update : constraints_) update(true);
+}
+
 // A sample whose every limit holds with room to spare has a zero limits residual, and so does every change
 // that keeps it so: it joins the problem only when a solve brings it near a limit (AddLimitsNearTheirBounds).
 void PlanOptimizer::AddLimitsTerm(const SampleBase& base) {
@@ -602,7 +671,9 @@ void PlanOptimizer::AddLimitsTerm(const SampleBase& base) {
   terms_["limits"];  // reported even when every sample's limits are left out
   auto limits = std::make_unique<LimitsCost>(LimitsCost{base, plan_.drone, plan_.camera, scene_->takeoff_up_m,
                                                         options_.limit_margin, options_.weights.limits});
-  if (limits->Headroom(zero, FreeChannels(base)) > -kLimitScreen) {
+  limits->free = FreeChannels(base);
+  if (limits->Headroom(zero, limits->free) > -kLimitScreen) {
+    AddConstraint(limits.get(), base);
     AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
   } else {
     screened_limits_.push_back(std::move(limits));
@@ -637,8 +708,9 @@ size_t PlanOptimizer::AddLimitsNearTheirBounds() {
   size_t added = 0;
   for (auto& limits : screened_limits_) {
     if (!limits) continue;
-    if (limits->Headroom(KnotsOf(limits->base).data(), FreeChannels(limits->base)) <= -kLimitRecheck) continue;
+    if (limits->Headroom(KnotsOf(limits->base).data(), limits->free) <= -kLimitRecheck) continue;
     const SampleBase base = limits->base;
+    AddConstraint(limits.get(), base);
     AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
     ++added;
   }
@@ -963,8 +1035,10 @@ OptimizeResult PlanOptimizer::Run() {
     if (round > 0 && AddVisibilityTargets() == 0) break;
     Solve(round == 0 && !warm());
     while (AddLimitsNearTheirBounds() > 0) Solve(false);
+    SolveUntilTheLimitsHold();
   }
   if (terms_.count("occlusion") && terms_["occlusion"].empty()) terms_.erase("occlusion");
+  ResetMultipliers();  // costs are reported as the plain penalties, whatever the multipliers came to
 
   // Rule 2: the solver's output only if it is never worse than the input in any limit, else the largest
   // fraction of its change that is (optimizer/limit_guard.h).
@@ -1040,6 +1114,7 @@ OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& o
       stage_options.max_iterations = preset.max_iterations;
       stage_options.function_tolerance = preset.function_tolerance;
       stage_options.visibility_rounds = preset.visibility_rounds;
+      stage_options.multiplier_rounds = preset.multiplier_rounds;
     }
     PlanOptimizer stage(input, i == 0 ? input.plan : kept.plan, stage_options, scene, targets ? &*targets : nullptr);
     OptimizeResult result = stage.Run();

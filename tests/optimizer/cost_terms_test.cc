@@ -132,6 +132,51 @@ TEST(CostTerms, LimitsGradient) {
   ExpectGradientsMatch(cost.get(), RandomKnots(6, 0.3));
 }
 
+// The augmented Lagrangian's update: a broken limit's shift grows by how far past its aimed value the
+// limit is, a limit held with room keeps a zero shift, and the shifted hinge's gradients are still exact.
+TEST(CostTerms, LimitsMultipliersGrowWhereALimitIsBrokenAndKeepExactGradients) {
+  const SampleBase b = MakeBase();
+  DroneProfile drone;
+  drone.max_horizontal_speed_m_s = 10;  // the base's 12.3 m/s breaks it
+  CameraSpec camera;
+  camera.min_focal_length_mm = 24;
+  camera.max_focal_length_mm = 200;  // 50 mm holds it with room
+  LimitsCost limits{b, drone, camera, 0.0, 0.02, 100};
+  static const Knot kZero{};
+  const double* zero[4] = {kZero.data(), kZero.data(), kZero.data(), kZero.data()};
+  const double speed_past = std::hypot(b.velocity_m_s.x(), b.velocity_m_s.y()) / 10.0 - 0.98;
+  ASSERT_GT(speed_past, 0.2);
+  EXPECT_NEAR(limits.UpdateShifts(zero), speed_past, 1e-9);  // the worst argument
+  EXPECT_NEAR(limits.shift[0], speed_past, 1e-9);
+  EXPECT_EQ(limits.shift[14], 0.0);  // focal length max: held
+  limits.UpdateShifts(zero);
+  EXPECT_NEAR(limits.shift[0], 2 * speed_past, 1e-9);  // the same excess again: twice the shift
+  double r[LimitsCost::kNumResiduals];
+  limits(kZero.data(), kZero.data(), kZero.data(), kZero.data(), r);
+  EXPECT_NEAR(r[0], 100 * 3 * speed_past, 1e-6);  // weight max(0, argument + shift)
+  // A channel that does not move gets no multiplier.
+  limits.free[kEast] = false;
+  limits.shift = {};
+  limits.UpdateShifts(zero);
+  EXPECT_EQ(limits.shift[0], 0.0);
+  limits.free[kEast] = true;
+  limits.shift[0] = 0.3;
+  std::unique_ptr<ceres::CostFunction> cost(
+      new ceres::AutoDiffCostFunction<LimitsCost, LimitsCost::kNumResiduals, kNumChannels, kNumChannels, kNumChannels,
+                                      kNumChannels>(new LimitsCost(limits)));
+  ExpectGradientsMatch(cost.get(), RandomKnots(6, 0.3));
+  // Keep-out and the deviation: the same update.
+  KeepOutCost keep_out{b, b.position_enu_m + Eigen::Vector3d(1, 0, -1), 1.8, 3.0, 0.02, 100};
+  EXPECT_NEAR(keep_out.UpdateShifts(zero), (3.06 - 1.0) / 3.0, 1e-6);
+  EXPECT_NEAR(keep_out.shift, 2.06, 1e-6);
+  AdherenceCost adherence{1.0, 0.5, 200, 1e-3};
+  Knot far{};
+  far[kEast] = 3;
+  EXPECT_NEAR(adherence.UpdateShifts(far.data()), 2.0, 1e-12);
+  EXPECT_NEAR(adherence.UpdateShifts(kZero.data()), -1.0, 1e-12);
+  EXPECT_NEAR(adherence.shift, 1.0, 1e-12);
+}
+
 TEST(CostTerms, KeepOutGradient) {
   const SampleBase b = MakeBase();
   std::unique_ptr<ceres::CostFunction> cost(
