@@ -22,6 +22,7 @@ class ClearanceCost : public ceres::SizedCostFunction<1, kNumChannels, kNumChann
   // (margin - d) / margin.
   double UpdateShifts(const double* const* parameters);
   double ResetShift() { return shift_m_ = 0; }
+  double shift_m() const { return shift_m_; }
 
  private:
   // The distance counted: negative behind the closest face (inside a solid, under terrain).

@@ -153,6 +153,12 @@ struct LimitsCost {
   // range at (1 - margin), would grow its multiplier for ever).
   std::array<bool, kNumChannels> free = {true, true, true, true, true, true, true, true};
 
+  // The feasibility check's name of each residual's limit (shots/feasibility.h).
+  static constexpr const char* kLimitName[kNumResiduals] = {
+      "horizontal_speed", "climb_rate",        "descent_rate",       "horizontal_acceleration", "jerk",
+      "yaw_rate",         "gimbal_pitch_rate", "focal_length_rate",  "aperture_rate",           "gimbal_pitch_min",
+      "gimbal_pitch_max", "altitude_min",      "altitude_max",       "focal_length_min",        "focal_length_max",
+      "f_number_min",     "f_number_max",      "focus_distance_min", "focus_beyond_infinity"};
   // The channel each residual moves with (kEast standing for the position).
   static constexpr int kChannelOf[kNumResiduals] = {kEast,     kEast,  kEast,  kEast,    kEast,   kYaw, kTilt,
                                                     kLogFocal, kStops, kTilt,  kTilt,    kUp,     kUp,  kLogFocal,

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <type_traits>
 
 #include <ceres/ceres.h>
 
@@ -162,7 +163,7 @@ class PlanOptimizer {
   // Adds the limits of every sample left out of the problem that a solve brought within kLimitRecheck of a
   // limit; returns how many.
   size_t AddLimitsNearTheirBounds();
-  void AddLimitsTerm(const SampleBase& base);
+  void AddLimitsTerm(const SampleBase& base, int shot);
   std::array<const double*, 4> KnotsOf(const SampleBase& base) const;  // the sample's four knots
   // The channels the change may move at a sample (kEast: any of the position's).
   std::array<bool, kNumChannels> FreeChannels(const SampleBase& base) const;
@@ -183,11 +184,21 @@ class PlanOptimizer {
   // (per unit of its limit) before it. ResetMultipliers: every shift back to zero (the plain penalties).
   double UpdateMultipliers();
   void ResetMultipliers();
-  // A hard limit's functor in the problem, for its multiplier updates (the problem owns it).
+  // A hard limit in the problem: its multiplier update (argument true: reset) and the names of its limits
+  // whose multiplier is positive (the limits that held the goals back), in its shot (-1: none).
+  struct Constraint {
+    int shot = -1;
+    std::function<double(bool)> update;
+    std::function<void(std::set<std::string>*)> binding;
+  };
+  // A one-sample constraint functor in the problem (the problem owns it), named `name` (LimitsCost: each
+  // residual by its own name).
   template <typename Functor>
-  void AddConstraint(Functor* f, const SampleBase& base) {
+  void AddConstraint(Functor* f, const SampleBase& base, int shot, const char* name) {
     const int first = base.knots.first_knot;
-    constraints_.push_back([this, f, first](bool reset) {
+    Constraint c;
+    c.shot = shot;
+    c.update = [this, f, first](bool reset) {
       if (reset) {
         f->shift = decltype(f->shift){};
         return 0.0;
@@ -195,10 +206,21 @@ class PlanOptimizer {
       const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
                             knots_[first + 3].data()};
       return f->UpdateShifts(k);
-    });
+    };
+    c.binding = [f, name](std::set<std::string>* names) {
+      if constexpr (std::is_same_v<Functor, LimitsCost>) {
+        for (int i = 0; i < LimitsCost::kNumResiduals; ++i) {
+          if (f->shift[i] > 0) names->insert(LimitsCost::kLimitName[i]);
+        }
+      } else if (f->shift > 0) {
+        names->insert(name);
+      }
+    };
+    constraints_.push_back(std::move(c));
   }
-  // Their multiplier updates (argument true: reset), in the order they joined the problem.
-  std::vector<std::function<double(bool)>> constraints_;
+  std::vector<Constraint> constraints_;  // in the order they joined the problem
+  // Per shot, the limits whose multiplier was positive at the end of the solve (Report).
+  std::vector<std::set<std::string>> binding_;
   // A solve within this much of every limit's aimed value (per unit of the limit) needs no other round.
   static constexpr double kConstraintTolerance = 1e-3;
   SampleState<double> StateAt(const SampleBase& base) const;
@@ -253,6 +275,7 @@ class PlanOptimizer {
   std::map<std::string, std::vector<ceres::ResidualBlockId>> terms_;
   std::vector<ceres::ResidualBlockId> occlusion_blocks_;      // per sample, null when it has no target
   std::vector<std::unique_ptr<LimitsCost>> screened_limits_;  // limits not (yet) in the problem
+  std::vector<int> screened_shot_;                            // the shot of each
   size_t unresolved_views_ = 0;
   size_t frames_without_target_ = 0;  // blocked, and no clear viewpoint within reach (summed over rounds)
   int iterations_ = 0;
@@ -414,7 +437,7 @@ void PlanOptimizer::AddTerms() {
     }
 
     // Limits, keep-out, clearance.
-    AddLimitsTerm(base);
+    AddLimitsTerm(base, shot);
     const double max_dev = s ? s->max_deviation_m : options_.max_deviation_m;
     for (const auto& t : plan_.subjects) {
       const Eigen::Vector3d& foot = t.positions_enu_m[k];
@@ -422,7 +445,7 @@ void PlanOptimizer::AddTerms() {
         continue;
       auto* keep_out =
           new KeepOutCost{base, foot, t.height_m, plan_.drone.min_subject_distance_m, options_.limit_margin, w.limits};
-      AddConstraint(keep_out, base);
+      AddConstraint(keep_out, base, shot, "subject_distance");
       AddSampleTerm("keep_out", keep_out, base, 1);
     }
     if (!input_.others.empty()) AddTeamTerms(k, max_dev);
@@ -432,11 +455,17 @@ void PlanOptimizer::AddTerms() {
         auto* clearance = new ClearanceCost(base, scene_->surface.get(),
                                             options_.clearance_margin_m * (1 + options_.limit_margin), w.clearance);
         const int first = base.knots.first_knot;
-        constraints_.push_back([this, clearance, first](bool reset) {
+        Constraint c;
+        c.shot = shot;
+        c.update = [this, clearance, first](bool reset) {
           const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
                                 knots_[first + 3].data()};
           return reset ? clearance->ResetShift() : clearance->UpdateShifts(k);
-        });
+        };
+        c.binding = [clearance](std::set<std::string>* names) {
+          if (clearance->shift_m() > 0) names->insert("mesh_clearance");
+        };
+        constraints_.push_back(std::move(c));
         AddBlock("clearance", clearance, first);
       }
     }
@@ -454,6 +483,7 @@ void PlanOptimizer::AddTerms() {
   }
   std::vector<double> knot_deviation(knots_.size(), options_.max_deviation_m);
   std::vector<bool> seen(knots_.size(), false);
+  std::vector<int> knot_shot(knots_.size(), -1);  // the shot of the last sample that moves with the knot
   for (size_t k = 0; k < plan_.samples.size(); ++k) {
     const int shot = split_.shot_of_sample[k];
     // What is left of the deviation allowed (a later stage starts where the cheaper one left the path).
@@ -466,14 +496,21 @@ void PlanOptimizer::AddTerms() {
       const int i = split_.bases[k].knots.first_knot + j;
       knot_deviation[i] = seen[i] ? std::min(knot_deviation[i], dev) : dev;
       seen[i] = true;
+      knot_shot[i] = shot;
     }
   }
   for (size_t i = 0; i < knots_.size(); ++i) {
     auto* f = new AdherenceCost{knot_deviation[i], w.adherence, w.deviation, w.ridge};
-    constraints_.push_back([this, f, i](bool reset) {
+    Constraint c;
+    c.shot = knot_shot[i];
+    c.update = [this, f, i](bool reset) {
       if (reset) return f->shift = 0.0;
       return f->UpdateShifts(knots_[i].data()) / std::max(f->max_deviation_m, 1.0);
-    });
+    };
+    c.binding = [f](std::set<std::string>* names) {
+      if (f->shift > 0) names->insert("max_deviation");
+    };
+    constraints_.push_back(std::move(c));
     terms_["adherence"].push_back(problem_.AddResidualBlock(
         new ceres::AutoDiffCostFunction<AdherenceCost, AdherenceCost::kNumResiduals, kNumChannels>(f), nullptr,
         knots_[i].data()));
@@ -506,7 +543,7 @@ void PlanOptimizer::AddTeamTerms(size_t k, double max_deviation_m) {
     if (separation > 0 && (position - o.position_enu_m).norm() < separation + max_deviation_m + 1.0) {
       auto* apart =
           new KeepOutCost{base, o.position_enu_m, 0.0, separation, options_.limit_margin, options_.weights.team};
-      AddConstraint(apart, base);
+      AddConstraint(apart, base, split_.shot_of_sample[k], "separation");
       AddSampleTerm("separation", apart, base, 1);
     }
     // This drone in the other's live frame (the other's camera held), and the other in this drone's.
@@ -539,7 +576,7 @@ void PlanOptimizer::AddTeamTerms(size_t k, double max_deviation_m) {
                                     body_radius,
                                     options_.limit_margin,
                                     options_.weights.team};
-      AddConstraint(out, base);
+      AddConstraint(out, base, split_.shot_of_sample[k], "out_of_shot");
       AddSampleTerm("out_of_shot", out, base, 1);
     }
   }
@@ -655,17 +692,21 @@ void PlanOptimizer::SolveUntilTheLimitsHold() {
 
 double PlanOptimizer::UpdateMultipliers() {
   double most = 0;
-  for (auto& update : constraints_) most = std::max(most, update(false));
+  for (auto& c : constraints_) most = std::max(most, c.update(false));
   return most;
 }
 
 void PlanOptimizer::ResetMultipliers() {
-  for (auto& update : constraints_) update(true);
+  binding_.assign(shots_.size(), {});
+  for (auto& c : constraints_) {
+    if (c.shot >= 0) c.binding(&binding_[c.shot]);
+    c.update(true);
+  }
 }
 
 // A sample whose every limit holds with room to spare has a zero limits residual, and so does every change
 // that keeps it so: it joins the problem only when a solve brings it near a limit (AddLimitsNearTheirBounds).
-void PlanOptimizer::AddLimitsTerm(const SampleBase& base) {
+void PlanOptimizer::AddLimitsTerm(const SampleBase& base, int shot) {
   static const Knot kZero{};
   const double* zero[4] = {kZero.data(), kZero.data(), kZero.data(), kZero.data()};
   terms_["limits"];  // reported even when every sample's limits are left out
@@ -673,10 +714,11 @@ void PlanOptimizer::AddLimitsTerm(const SampleBase& base) {
                                                         options_.limit_margin, options_.weights.limits});
   limits->free = FreeChannels(base);
   if (limits->Headroom(zero, limits->free) > -kLimitScreen) {
-    AddConstraint(limits.get(), base);
+    AddConstraint(limits.get(), base, shot, "");
     AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
   } else {
     screened_limits_.push_back(std::move(limits));
+    screened_shot_.push_back(shot);
   }
 }
 
@@ -706,11 +748,12 @@ double PlanOptimizer::ScreenedLimitsCost() const {
 
 size_t PlanOptimizer::AddLimitsNearTheirBounds() {
   size_t added = 0;
-  for (auto& limits : screened_limits_) {
+  for (size_t i = 0; i < screened_limits_.size(); ++i) {
+    std::unique_ptr<LimitsCost>& limits = screened_limits_[i];
     if (!limits) continue;
     if (limits->Headroom(KnotsOf(limits->base).data(), limits->free) <= -kLimitRecheck) continue;
     const SampleBase base = limits->base;
-    AddConstraint(limits.get(), base);
+    AddConstraint(limits.get(), base, screened_shot_[i], "");
     AddSampleTerm("limits", limits.release(), base, LimitsCost::kNumResiduals);
     ++added;
   }
@@ -952,6 +995,13 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
         background_blur = std::min(background_blur, blur * px);
       }
     }
+    // What held the shot's goals back: the limits whose multiplier the solve needed (docs/optimize.md,
+    // "Limits as constraints"); a goal missed while this is empty gave way to the weights, not to a limit.
+    Json binding = Json::array();
+    if (i < binding_.size()) {
+      for (const std::string& name : binding_[i]) binding.push_back(name);
+    }
+    j["binding_limits"] = binding;
     j["subject_blur_px_max"] = any ? Json(RoundToDecimals(subject_blur, 4)) : Json(nullptr);
     if (s.background) {
       j["background_blur_px_goal"] = *s.span->intent.background_blur_px;

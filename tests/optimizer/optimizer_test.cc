@@ -191,6 +191,37 @@ TEST(Optimizer, BackgroundBlurGoalMovesTheCameraBackAndZoomsInAtEveryPreset) {
   }
 }
 
+// Rule 5: a goal the limits let it reach is reached; one they do not names the limit it gave way to. The
+// dolly-zoom above with 30 m of deviation reaches its background blur with no deviation multiplier; with
+// 1 m the camera cannot back off far enough, and the report says the deviation held it.
+TEST(Optimizer, AGoalThatCannotBeReachedNamesTheLimitItGaveWayTo) {
+  const double h = 1.8, fraction = 0.5, d0 = 10;
+  const CameraSpec cam = TestCamera();
+  const double f0 = fraction * cam.image_extent_mm().height_mm * d0 / h;
+  for (const double max_deviation_m : {30.0, 1.0}) {
+    SCOPED_TRACE(max_deviation_m);
+    Trajectory plan = StillPlan({0, -d0, 0.9}, {0, 0, 0.9}, 31, f0, 2.8, d0);
+    AddStillActor(&plan, "a", {0, 0, 0.9}, h);
+    plan.shots[0].intent.frame_height_fraction = fraction;
+    plan.shots[0].intent.background_distance_m = 50;
+    plan.shots[0].intent.hold = {"aperture"};
+    plan.shots[0].intent.max_deviation_m = max_deviation_m;
+    const double planned_px = BlurCircleMm(f0, 2.8, d0, d0 + 50) * cam.width_px / cam.sensor_width_mm;
+    plan.shots[0].intent.background_blur_px = 2.5 * planned_px;
+    const Json shot = Optimize(plan, nullptr, OptimizeQuality::kStandard).report["shots"][0];
+    const double reached = shot["background_blur_px_min"].get<double>() / shot["background_blur_px_goal"].get<double>();
+    bool deviation_bound = false;
+    for (const auto& name : shot["binding_limits"]) deviation_bound = deviation_bound || name == "max_deviation";
+    if (max_deviation_m > 10) {
+      EXPECT_GE(reached, 0.98);
+      EXPECT_FALSE(deviation_bound) << shot.dump();
+    } else {
+      EXPECT_LT(reached, 0.95);
+      EXPECT_TRUE(deviation_bound) << shot.dump();
+    }
+  }
+}
+
 TEST(Optimizer, TheFocusFollowsWhatThePlanRecordsItFollows) {
   // The camera starts 1.5 m from actor "a", inside the drone's 2 m keep-out, so it must back off. The
   // focus racks from "a" to "b", 5 m behind "a", during [0.5, 1] s. Recorded as a rack, the focus follows
