@@ -21,3 +21,9 @@ if [[ -x "$BUILD/bench/mesh_decimate_bench" ]]; then
   "$BUILD/bench/mesh_decimate_bench" --faces 1000000 --ratio 0.1 --samples 200000 \
     --methods meshoptimizer,meshoptimizer_partitioned,cgal_garland_heckbert_probabilistic
 fi
+# Rule 2 of optimize as a property on 200 random feasible plans among random buildings (20 in make test).
+if [[ -x "$BUILD/tests/optimizer/optimizer_test" ]]; then
+  echo "== optimizer_test RandomFeasiblePlansStayFeasibleAtEveryPreset, 200 plans"
+  CINEPATH_PROPERTY_PLANS=200 "$BUILD/tests/optimizer/optimizer_test" \
+    --gtest_filter='OptimizerRules.RandomFeasiblePlansStayFeasibleAtEveryPreset'
+fi
