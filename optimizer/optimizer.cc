@@ -165,6 +165,7 @@ class PlanOptimizer {
   size_t AddLimitsNearTheirBounds();
   void AddLimitsTerm(const SampleBase& base, int shot);
   std::array<const double*, 4> KnotsOf(const SampleBase& base) const;  // the sample's four knots
+  std::array<const double*, 4> KnotsFrom(int first_knot) const;
   // The channels the change may move at a sample (kEast: any of the position's).
   std::array<bool, kNumChannels> FreeChannels(const SampleBase& base) const;
   // The limits cost of the samples left out: a constant (their free limits hold with room; the others do
@@ -203,9 +204,7 @@ class PlanOptimizer {
         f->shift = decltype(f->shift){};
         return 0.0;
       }
-      const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
-                            knots_[first + 3].data()};
-      return f->UpdateShifts(k);
+      return f->UpdateShifts(KnotsFrom(first).data());
     };
     c.binding = [f, name](std::set<std::string>* names) {
       if constexpr (std::is_same_v<Functor, LimitsCost>) {
@@ -458,9 +457,7 @@ void PlanOptimizer::AddTerms() {
         Constraint c;
         c.shot = shot;
         c.update = [this, clearance, first](bool reset) {
-          const double* k[4] = {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(),
-                                knots_[first + 3].data()};
-          return reset ? clearance->ResetShift() : clearance->UpdateShifts(k);
+          return reset ? clearance->ResetShift() : clearance->UpdateShifts(KnotsFrom(first).data());
         };
         c.binding = [clearance](std::set<std::string>* names) {
           if (clearance->shift_m() > 0) names->insert("mesh_clearance");
@@ -723,7 +720,10 @@ void PlanOptimizer::AddLimitsTerm(const SampleBase& base, int shot) {
 }
 
 std::array<const double*, 4> PlanOptimizer::KnotsOf(const SampleBase& base) const {
-  const int first = base.knots.first_knot;
+  return KnotsFrom(base.knots.first_knot);
+}
+
+std::array<const double*, 4> PlanOptimizer::KnotsFrom(int first) const {
   return {knots_[first].data(), knots_[first + 1].data(), knots_[first + 2].data(), knots_[first + 3].data()};
 }
 
