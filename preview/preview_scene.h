@@ -18,6 +18,7 @@
 
 #include "preview/render_options.h"
 #include "preview/subject_proxies.h"
+#include "scene/border_ring.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_mesh.h"
 
@@ -51,7 +52,7 @@ struct TraceHit {
 // and the grass beyond the grass, fading into their mean farther out; hazed toward the horizon's sky colour with
 // distance (a visibility of `visibility_m`: the haze takes 1 - exp(-3 d / visibility) of the colour).
 struct GroundBackdrop {
-  static constexpr int kSectors = 72;
+  static constexpr int kSectors = scene::BorderRing::kSectors;
   double height_m = 0;
   Eigen::Vector2d centre_m = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector3f> sector_color = std::vector<Eigen::Vector3f>(kSectors, Eigen::Vector3f::Constant(0.5f));
@@ -112,6 +113,10 @@ class PreviewScene {
   const SceneLoadTimes& load_times() const { return load_times_; }
 
  private:
+  // What a ray sees, given the mesh's hit along it (or none): the closer of it and the subjects, the
+  // ground past the edge, or the sky.
+  Eigen::Vector3f Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
+                        const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out) const;
   Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
   GroundBackdrop BorderGround() const;
   void Finish(SunDirection sun, Backdrop backdrop);  // the sun's direction and the ground past the edge
