@@ -199,6 +199,15 @@ Eigen::Vector3f PreviewScene::Radiance(const Eigen::Vector3d& origin, const Eige
   return Shade(origin, direction, at, caster_->Intersect(origin, direction), hit_out);
 }
 
+void PreviewScene::Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count,
+                             const Instant& at, Eigen::Vector3f* radiance, TraceHit* hits_out) const {
+  std::optional<scene::RayHit> mesh_hits[8];
+  caster_->Intersect8(origins, directions, count, mesh_hits);
+  for (int i = 0; i < count; ++i) {
+    radiance[i] = Shade(origins[i], directions[i], at, mesh_hits[i], hits_out ? &hits_out[i] : nullptr);
+  }
+}
+
 Eigen::Vector3f PreviewScene::Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
                                     const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out) const {
   double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();

@@ -106,6 +106,10 @@ class PreviewScene {
                            TraceHit* hit_out = nullptr) const {
     return Radiance(origin, direction, At(time_s), hit_out);
   }
+  // The same for `count` (1 to 8) rays at once, traced as one packet (the pinhole pass's rows): radiance[i]
+  // and hits_out[i] (when not null) are what Radiance gives ray i.
+  void Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count, const Instant& at,
+                 Eigen::Vector3f* radiance, TraceHit* hits_out = nullptr) const;
   Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
 
   const scene::SceneMesh& mesh() const { return mesh_; }
