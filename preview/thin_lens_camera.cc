@@ -36,23 +36,31 @@ void ThinLensCamera::CameraRayInCamera(double x_px, double y_px, double lens_u, 
   }
 }
 
+namespace {
+
+// The ray from the camera frame's origin_cam along direction_cam, in ENU; `rotation` is a quaternion or a
+// matrix. A pinhole ray starts at the camera's centre (the rotation of the zero vector is zero: the same
+// bytes as rotating it).
+template <typename Rotation>
+CameraRay InWorld(const Eigen::Vector3d& position_enu_m, const Rotation& world_from_camera,
+                  const Eigen::Vector3d& origin_cam, const Eigen::Vector3d& direction_cam) {
+  const Eigen::Vector3d origin =
+      origin_cam.isZero(0) ? position_enu_m : Eigen::Vector3d(position_enu_m + world_from_camera * origin_cam);
+  return {origin, (world_from_camera * direction_cam).normalized()};
+}
+
+}  // namespace
+
 CameraRay ThinLensCamera::Ray(const CameraPose& pose, double x_px, double y_px, double lens_u, double lens_v) const {
   Eigen::Vector3d origin_cam, direction_cam;
   CameraRayInCamera(x_px, y_px, lens_u, lens_v, &origin_cam, &direction_cam);
-  // A pinhole ray starts at the camera's centre (the rotation of the zero vector is zero: the same bytes).
-  const Eigen::Vector3d origin = origin_cam.isZero(0)
-                                     ? pose.position_enu_m
-                                     : Eigen::Vector3d(pose.position_enu_m + pose.world_from_camera * origin_cam);
-  return {origin, (pose.world_from_camera * direction_cam).normalized()};
+  return InWorld(pose.position_enu_m, pose.world_from_camera, origin_cam, direction_cam);
 }
 
 CameraRay ThinLensCamera::Ray(const CameraFrame& frame, double x_px, double y_px, double lens_u, double lens_v) const {
   Eigen::Vector3d origin_cam, direction_cam;
   CameraRayInCamera(x_px, y_px, lens_u, lens_v, &origin_cam, &direction_cam);
-  const Eigen::Vector3d origin = origin_cam.isZero(0)
-                                     ? frame.position_enu_m
-                                     : Eigen::Vector3d(frame.position_enu_m + frame.world_from_camera * origin_cam);
-  return {origin, (frame.world_from_camera * direction_cam).normalized()};
+  return InWorld(frame.position_enu_m, frame.world_from_camera, origin_cam, direction_cam);
 }
 
 Eigen::Vector2d ThinLensCamera::Project(const CameraPose& pose, const Eigen::Vector3d& point_enu_m,
