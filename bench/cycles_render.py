@@ -1,6 +1,10 @@
-# Blender Cycles render of one sample of a cinepath plan.json, for bench/render_vs_cycles.sh:
+# Blender Cycles render of samples of a cinepath plan.json, for bench/render_vs_cycles.sh and
+# bench/render_sequence_vs_cycles.sh:
 #   blender -b --factory-startup --python-exit-code 1 -P bench/cycles_render.py -- \
 #       scene.glb plan.json SAMPLE WIDTH HEIGHT SPP OUT.exr [THREADS]
+# SAMPLE may be a range A-B: then every sample from A to B is rendered in turn in the one Blender process,
+# with persistent data (the scene synced and its BVH built once; each frame only moves the camera and
+# changes the lens), each to OUT with "#" replaced by the sample index (6 digits).
 # Like for like with `cinepath render --shading flat --exposure fixed` (docs/render.md):
 # - every material replaced by the mesh's first colour attribute (glTF COLOR_0, linear) into an Emission
 #   shader of strength 1; no bounces, so the pixel value is the vertex colour, unlit;
@@ -11,7 +15,8 @@
 #   (no blades);
 # - box pixel filter 1 px wide, no adaptive sampling, no denoising, no motion blur, 'Standard' view
 #   transform; linear float EXR out; CPU, THREADS threads (default 2).
-# Prints "import_seconds S" and "render_seconds S" (the render alone: scene sync, BVH and sampling).
+# Prints "import_seconds S" and "render_seconds S" (the render alone: scene sync, BVH and sampling), one
+# "render_seconds S" line per sample of a range.
 #
 # Frames: Blender's world is ENU. The glTF importer turns glTF's Y-up into Blender's Z-up, (x, y, z) ->
 # (x, -z, y), and cinepath GLBs store ENU (e, n, u) as glTF (e, u, -n), so the mesh lands at (e, n, u).
@@ -32,12 +37,12 @@ if not hasattr(numpy, "bool"):
 argv = sys.argv[sys.argv.index("--") + 1:]
 if len(argv) not in (7, 8):
     raise SystemExit("usage: blender -b -P cycles_render.py -- scene.glb plan.json SAMPLE W H SPP OUT.exr [THREADS]")
-glb, plan_path, k, width, height, spp, out = argv[0], argv[1], int(argv[2]), int(argv[3]), int(argv[4]), int(
-    argv[5]), argv[6]
+glb, plan_path, width, height, spp, out = argv[0], argv[1], int(argv[3]), int(argv[4]), int(argv[5]), argv[6]
+first, _, last = argv[2].partition("-")
+samples_to_render = list(range(int(first), int(last or first) + 1))
 threads = int(argv[7]) if len(argv) > 7 else 2
 
 plan = json.load(open(plan_path))
-sample = plan["samples"][k]
 camera_spec = plan["camera"]
 
 start = time.time()
@@ -112,31 +117,35 @@ def sky_world():
 
 scene.world = sky_world()
 
-# The camera.
-w, x, y, z = sample["world_from_camera"]
-rotation = mathutils.Quaternion((w, x, y, z)).normalized().to_matrix() @ mathutils.Matrix(
-    ((1, 0, 0), (0, -1, 0), (0, 0, -1)))
+# The camera, placed and focused for each sample.
 camera_data = bpy.data.cameras.new("cinepath")
-camera_data.type = "PERSP"
-camera_data.sensor_fit = "HORIZONTAL"
-camera_data.sensor_width = camera_spec["sensor_width_mm"]
-camera_data.lens_unit = "MILLIMETERS"
-camera_data.lens = sample["focal_length_mm"]
-camera_data.shift_x = camera_data.shift_y = 0.0
-camera_data.clip_start = 0.001
-camera_data.clip_end = 1e7
-focus = sample["focus_distance_m"]
-camera_data.dof.use_dof = True
-camera_data.dof.focus_object = None
-camera_data.dof.focus_distance = focus if focus is not None else 1e9  # null = infinity
-camera_data.dof.aperture_fstop = sample["f_number"]
-camera_data.dof.aperture_blades = 0
-camera_data.dof.aperture_rotation = 0.0
-camera_data.dof.aperture_ratio = 1.0
 camera = bpy.data.objects.new("cinepath", camera_data)
-camera.matrix_world = mathutils.Matrix.Translation(sample["position_enu_m"]) @ rotation.to_4x4()
 scene.collection.objects.link(camera)
 scene.camera = camera
+
+
+def place_camera(sample):
+    w, x, y, z = sample["world_from_camera"]
+    rotation = mathutils.Quaternion((w, x, y, z)).normalized().to_matrix() @ mathutils.Matrix(
+        ((1, 0, 0), (0, -1, 0), (0, 0, -1)))
+    camera_data.type = "PERSP"
+    camera_data.sensor_fit = "HORIZONTAL"
+    camera_data.sensor_width = camera_spec["sensor_width_mm"]
+    camera_data.lens_unit = "MILLIMETERS"
+    camera_data.lens = sample["focal_length_mm"]
+    camera_data.shift_x = camera_data.shift_y = 0.0
+    camera_data.clip_start = 0.001
+    camera_data.clip_end = 1e7
+    focus = sample["focus_distance_m"]
+    camera_data.dof.use_dof = True
+    camera_data.dof.focus_object = None
+    camera_data.dof.focus_distance = focus if focus is not None else 1e9  # null = infinity
+    camera_data.dof.aperture_fstop = sample["f_number"]
+    camera_data.dof.aperture_blades = 0
+    camera_data.dof.aperture_rotation = 0.0
+    camera_data.dof.aperture_ratio = 1.0
+    camera.matrix_world = mathutils.Matrix.Translation(sample["position_enu_m"]) @ rotation.to_4x4()
+
 
 scene.render.engine = "CYCLES"
 scene.cycles.device = "CPU"
@@ -172,7 +181,10 @@ scene.render.image_settings.color_depth = "32"
 scene.render.image_settings.exr_codec = "ZIP"
 scene.render.use_compositing = False
 scene.render.use_sequencer = False
-scene.render.filepath = out
-start = time.time()
-bpy.ops.render.render(write_still=True)
-print("render_seconds %.3f" % (time.time() - start))
+scene.render.use_persistent_data = True  # a range: the scene synced once, only the camera changes
+for k in samples_to_render:
+    place_camera(plan["samples"][k])
+    scene.render.filepath = out.replace("#", "%06d" % k)
+    start = time.time()
+    bpy.ops.render.render(write_still=True)
+    print("render_seconds %.3f" % (time.time() - start))

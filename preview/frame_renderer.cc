@@ -16,21 +16,20 @@ namespace {
 constexpr int kTile = 16;
 constexpr double kSharpPx = 0.5;  // under half a pixel of blur and motion: one ray
 constexpr double kEdgeDepthRatio = 0.02;
-constexpr float kEdgeColor = 0.08f;
 constexpr int kMaxGatherRadiusPx = 48;  // draft: blur wider than 97 px is clipped
 
 struct PrePass {
   std::vector<Eigen::Vector3f> rgb;
   std::vector<double> depth_m;
+  std::vector<double> blur_px;  // the blur-circle diameter at the pixel centre's depth
   std::vector<double> need_px;  // max(blur, motion) at the pixel
   std::vector<int> kind;        // -2 sky, -1 mesh, >= 0 subject
   std::vector<uint32_t> face;
 };
 
-double AxisDepth(const ThinLensCamera& camera, const CameraPose& pose, const Eigen::Vector3d& point) {
-  double depth = 0;
-  camera.Project(pose, point, &depth);
-  return depth;
+// Depth along the optical axis (the camera's z axis in ENU, `axis`, worked out once per frame).
+double AxisDepth(const CameraPose& pose, const Eigen::Vector3d& axis, const Eigen::Vector3d& point) {
+  return (point - pose.position_enu_m).dot(axis);
 }
 
 // The camera and the subjects at the shutter's ends, for MotionPx (the same for every pixel).
@@ -69,28 +68,45 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
   const size_t n = size_t(w) * h;
   pass.rgb.resize(n);
   pass.depth_m.resize(n);
+  pass.blur_px.resize(n);
   pass.need_px.resize(n);
   pass.kind.resize(n);
   pass.face.resize(n);
   const CameraPose pose = PoseAt(plan, t_mid);
+  const CameraFrame frame(pose);
+  const Eigen::Vector3d axis = frame.world_from_camera.col(2);
   const SubjectProxies subjects(plan);
   const PreviewScene::Instant at_mid = scene.At(t_mid);
   const bool moving = motion_blur && t1 > t0;
   const ShutterEnds ends = moving ? ShutterEndsOf(plan, subjects, t_mid, t0, t1) : ShutterEnds{};
+  // Eight pixels of a row at a time, traced as one packet.
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    Eigen::Vector3d origins[8], directions[8];
+    Eigen::Vector3f radiance[8];
+    TraceHit hits[8];
     for (int y = rows.begin(); y < rows.end(); ++y) {
-      for (int x = 0; x < w; ++x) {
-        const size_t i = size_t(y) * w + x;
-        const CameraRay ray = camera.Ray(pose, x + 0.5, y + 0.5);
-        TraceHit hit;
-        pass.rgb[i] = scene.Radiance(ray.origin_enu_m, ray.direction_enu, at_mid, &hit);
-        const bool sky = std::isinf(hit.distance_m);
-        pass.depth_m[i] = sky ? std::numeric_limits<double>::infinity() : AxisDepth(camera, pose, hit.position_enu_m);
-        pass.kind[i] = sky ? -2 : hit.subject;
-        pass.face[i] = hit.face;
-        const double blur = camera.BlurPx(pass.depth_m[i]);
-        const double motion = moving ? MotionPx(camera, ends, hit, ray.direction_enu, ray.origin_enu_m) : 0;
-        pass.need_px[i] = std::max(blur, motion);
+      for (int x0 = 0; x0 < w; x0 += 8) {
+        const int count = std::min(8, w - x0);
+        for (int j = 0; j < count; ++j) {
+          const CameraRay ray = camera.Ray(frame, x0 + j + 0.5, y + 0.5);
+          origins[j] = ray.origin_enu_m;
+          directions[j] = ray.direction_enu;
+        }
+        scene.Radiance8(origins, directions, count, at_mid, radiance, hits);
+        for (int j = 0; j < count; ++j) {
+          const int x = x0 + j;
+          const size_t i = size_t(y) * w + x;
+          const TraceHit& hit = hits[j];
+          const CameraRay ray{origins[j], directions[j]};
+          pass.rgb[i] = radiance[j];
+          const bool sky = std::isinf(hit.distance_m);
+          pass.depth_m[i] = sky ? std::numeric_limits<double>::infinity() : AxisDepth(pose, axis, hit.position_enu_m);
+          pass.kind[i] = sky ? -2 : hit.subject;
+          pass.face[i] = hit.face;
+          const double blur = pass.blur_px[i] = camera.BlurPx(pass.depth_m[i]);
+          const double motion = moving ? MotionPx(camera, ends, hit, ray.direction_enu, ray.origin_enu_m) : 0;
+          pass.need_px[i] = std::max(blur, motion);
+        }
       }
     }
   });
@@ -99,22 +115,25 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
 
 // Pixels where the pre-pass sees an edge (another object, a depth step, a colour step): they get
 // edge_samples jittered rays even when sharp, so in-focus edges are antialiased like the box filter.
-std::vector<uint8_t> FindEdges(const PrePass& pass, int w, int h) {
+std::vector<uint8_t> FindEdges(const PrePass& pass, int w, int h, float edge_color_step) {
   std::vector<uint8_t> edge(size_t(w) * h, 0);
-  auto differ = [&](size_t a, size_t b) {
+  auto differ = [&](size_t a, size_t b) {  // symmetric in a and b
     if (pass.kind[a] != pass.kind[b]) return true;
     if (pass.kind[a] == -2) return false;
     const double da = pass.depth_m[a], db = pass.depth_m[b];
     if (std::abs(da - db) > kEdgeDepthRatio * std::min(da, db)) return true;
-    return (pass.rgb[a] - pass.rgb[b]).cwiseAbs().maxCoeff() > kEdgeColor;
+    return (pass.rgb[a] - pass.rgb[b]).cwiseAbs().maxCoeff() > edge_color_step;
   };
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const size_t i = size_t(y) * w + x;
-      if (x + 1 < w && differ(i, i + 1)) edge[i] = edge[i + 1] = 1;
-      if (y + 1 < h && differ(i, i + w)) edge[i] = edge[i + w] = 1;
+  // A pixel is an edge when it differs from one of its four neighbours (each row on its own: rows in parallel).
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        edge[i] = (x + 1 < w && differ(i, i + 1)) || (x > 0 && differ(i, i - 1)) || (y + 1 < h && differ(i, i + w)) ||
+                  (y > 0 && differ(i, i - w));
+      }
     }
-  }
+  });
   return edge;
 }
 
@@ -231,7 +250,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   const int w = settings.width_px, h = settings.height_px;
 
   const PrePass pass = PinholePrePass(scene, plan, camera, sample.time_s, t0, t1, motion);
-  const std::vector<uint8_t> edge = FindEdges(pass, w, h);
+  const std::vector<uint8_t> edge = FindEdges(pass, w, h, preset.edge_color_step);
   const std::vector<double> tile_need = DilatedTileNeed(pass, w, h);
   const int tw = (w + kTile - 1) / kTile;
 
@@ -243,16 +262,14 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   image.blur_px.resize(image.rgb_linear.size());
   image.subject_id.resize(image.rgb_linear.size());
   image.samples.resize(image.rgb_linear.size());
-  std::vector<double> blur(image.rgb_linear.size());
-  for (size_t i = 0; i < blur.size(); ++i) {
-    blur[i] = camera.BlurPx(pass.depth_m[i]);
+  for (size_t i = 0; i < image.rgb_linear.size(); ++i) {
     image.depth_m[i] = float(pass.depth_m[i]);
-    image.blur_px[i] = float(blur[i]);
+    image.blur_px[i] = float(pass.blur_px[i]);
     image.subject_id[i] = pass.kind[i] >= 0 ? float(pass.kind[i] + 1) : 0.0f;
   }
 
   const int max_samples = std::max(1, preset.max_samples);
-  const CameraPose pose_mid = PoseAt(plan, sample.time_s);
+  const CameraFrame frame_mid(PoseAt(plan, sample.time_s));
   const PreviewScene::Instant at_mid = scene.At(sample.time_s);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     PreviewScene::Instant at_ray;  // a ray's own instant across the shutter (storage kept between rays)
@@ -272,21 +289,37 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
         }
         const SampleSequence sequence(k, uint32_t(x), uint32_t(y));
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        for (int s = 0; s < n; ++s) {
-          const PixelSample ps = sequence.Get(uint32_t(s));
-          const bool moves = motion && lens;
-          const double t = moves ? t0 + ps.time * (t1 - t0) : sample.time_s;
-          const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
-          if (moves) scene.SetInstant(t, &at_ray, k);
-          const CameraRay ray =
-              camera.Ray(moves ? PoseAt(plan, t, k) : pose_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
-          sum += scene.Radiance(ray.origin_enu_m, ray.direction_enu, moves ? at_ray : at_mid).cast<double>();
+        const bool moves = motion && lens;
+        if (moves) {  // each ray at its own instant
+          for (int s = 0; s < n; ++s) {
+            const PixelSample ps = sequence.Get(uint32_t(s));
+            const double t = t0 + ps.time * (t1 - t0);
+            const Eigen::Vector2d disk = ConcentricDisk(ps.lens_u, ps.lens_v);
+            scene.SetInstant(t, &at_ray, k);
+            const CameraRay ray = camera.Ray(PoseAt(plan, t, k), x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
+            sum += scene.Radiance(ray.origin_enu_m, ray.direction_enu, at_ray).cast<double>();
+          }
+        } else {  // every ray at the frame's instant: eight at a time, as one packet, summed in the same order
+          Eigen::Vector3d origins[8], directions[8];
+          Eigen::Vector3f radiance[8];
+          for (int s0 = 0; s0 < n; s0 += 8) {
+            const int count = std::min(8, n - s0);
+            for (int j = 0; j < count; ++j) {
+              const PixelSample ps = sequence.Get(uint32_t(s0 + j));
+              const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
+              const CameraRay ray = camera.Ray(frame_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
+              origins[j] = ray.origin_enu_m;
+              directions[j] = ray.direction_enu;
+            }
+            scene.Radiance8(origins, directions, count, at_mid, radiance);
+            for (int j = 0; j < count; ++j) sum += radiance[j].cast<double>();
+          }
         }
         image.rgb_linear[i] = (sum / n).cast<float>();
       }
     }
   });
-  if (preset.gather_blur) image.rgb_linear = GatherBlur(image.rgb_linear, pass, blur, tile_need, w, h);
+  if (preset.gather_blur) image.rgb_linear = GatherBlur(image.rgb_linear, pass, pass.blur_px, tile_need, w, h);
   for (uint16_t n : image.samples) image.total_samples += n;
   if (settings.exposure == Exposure::kPhysical) {
     const float scale = float(RelativeExposure(sample.shutter_s, settings.iso, sample.f_number));

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
@@ -216,11 +217,62 @@ uint8_t LinearToSrgb8(float linear) {
   return uint8_t(std::lround(encoded * 255));
 }
 
+namespace {
+
+// The byte of a float x in (0, 1) in two steps. thresholds[v - 1] is the smallest float with
+// LinearToSrgb8(x) >= v (v = 1 .. 255), found by bisection over the floats' bit patterns (for x > 0 they
+// order as the values do); start[b] is the byte at the smallest float of the bit patterns' block b (its top
+// 17 bits). LinearToSrgb8 never decreases, so x's byte is start[its block], stepped up past the thresholds
+// at or below x: at most one or two (a block spans 2^15 floats, far less than a step). The same bytes as
+// LinearToSrgb8, without a pow() per channel.
+struct SrgbTable {
+  static constexpr int kShift = 15;
+  std::array<float, 255> thresholds{};
+  std::vector<uint8_t> start;
+  SrgbTable() {
+    auto at = [](uint32_t bits) {
+      float x;
+      std::memcpy(&x, &bits, sizeof x);
+      return x;
+    };
+    for (int v = 1; v <= 255; ++v) {
+      uint32_t lo = 0, hi = 0x3f800000u;  // 0 gives 0; 1.0f gives 255
+      while (hi - lo > 1) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        (LinearToSrgb8(at(mid)) >= v ? hi : lo) = mid;
+      }
+      thresholds[size_t(v - 1)] = at(hi);
+    }
+    start.resize((0x3f800000u >> kShift) + 1);
+    for (uint32_t b = 0; b < start.size(); ++b) start[b] = LinearToSrgb8(at(b << kShift));
+  }
+};
+
+const SrgbTable& SrgbTableOnce() {
+  static const SrgbTable table;
+  return table;
+}
+
+uint8_t LinearToSrgb8ByTable(const SrgbTable& table, float linear) {
+  if (!(linear > 0)) return 0;
+  if (linear >= 1) return 255;
+  uint32_t bits;
+  std::memcpy(&bits, &linear, sizeof bits);
+  int v = table.start[bits >> SrgbTable::kShift];
+  while (v < 255 && linear >= table.thresholds[size_t(v)]) ++v;
+  return uint8_t(v);
+}
+
+}  // namespace
+
+uint8_t LinearToSrgb8ByTable(float linear) { return LinearToSrgb8ByTable(SrgbTableOnce(), linear); }
+
 Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width, int height) {
   Srgb8Image image{width, height, std::vector<uint8_t>(size_t(width) * height * 3)};
+  const SrgbTable& table = SrgbTableOnce();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rgb_linear.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
-      for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = LinearToSrgb8(rgb_linear[i][c]);
+      for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = LinearToSrgb8ByTable(table, rgb_linear[i][c]);
     }
   });
   return image;

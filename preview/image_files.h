@@ -23,7 +23,11 @@ struct Srgb8Image {
   std::vector<uint8_t> rgb;
 };
 
+// Linear [0, 1] -> 8-bit sRGB: the transfer function, rounded; 0 for NaN and below, 255 from 1 up.
 uint8_t LinearToSrgb8(float linear);
+// The same values from a table of the 255 steps' thresholds (a search instead of a pow() per channel);
+// EncodeSrgb8 uses it.
+uint8_t LinearToSrgb8ByTable(float linear);
 Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width, int height);
 
 // A PNG or JPEG (told by its first bytes) decoded to 8-bit RGB as stored (grey replicated, alpha dropped;

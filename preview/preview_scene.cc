@@ -5,13 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include <tbb/parallel_invoke.h>
-#include <tbb/parallel_sort.h>
 
 #include "core/error.h"
 #include "preview/image_files.h"
+#include "scene/border_ring.h"
 
 namespace cinepath::preview {
 namespace {
@@ -114,88 +113,23 @@ void PreviewScene::Finish(SunDirection sun, Backdrop backdrop) {
   load_times_.ground_s = SecondsSince(ground_start);
 }
 
-// The plane and colour of the ground past the edge: the median height of the border's vertices (edges
-// of one face), and the mean colour of the faces that hold a border edge, at their centroids. A closed
-// mesh has no border: its lowest vertex and its mean face colour stand in.
+// The plane and colour of the ground past the edge: the border ring (scene/border_ring.h), each ring
+// face's colour at its centroid (texture included), averaged per sector of azimuth.
 GroundBackdrop PreviewScene::BorderGround() const {
-  std::vector<std::array<uint32_t, 3>> edges;  // (smaller vertex, larger vertex, face)
-  edges.reserve(3 * mesh_.faces.size());
-  for (uint32_t f = 0; f < mesh_.faces.size(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = mesh_.faces[f][size_t(k)], b = mesh_.faces[f][size_t((k + 1) % 3)];
-      edges.push_back({std::min(a, b), std::max(a, b), f});
-    }
-  }
-  tbb::parallel_sort(edges.begin(), edges.end());  // 3 per face: a tenth of a second at 1 M faces
-  std::vector<double> heights;
-  std::vector<uint32_t> border_faces;
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
-    if (j - i == 1) {
-      heights.push_back(mesh_.positions_enu_m[edges[i][0]].z());
-      heights.push_back(mesh_.positions_enu_m[edges[i][1]].z());
-      border_faces.push_back(edges[i][2]);
-    }
-    i = j;
+  const scene::BorderRing ring = scene::FindBorderRing(mesh_);
+  std::vector<Eigen::Vector3f> face_colors(ring.faces.size());
+  for (size_t i = 0; i < ring.faces.size(); ++i) {
+    scene::RayHit at_centroid;
+    at_centroid.face = ring.faces[i];
+    at_centroid.u = at_centroid.v = 1.0 / 3.0;
+    face_colors[i] = SurfaceColor(at_centroid);
   }
   GroundBackdrop ground;
-  if (heights.empty()) {
-    ground.height_m = std::numeric_limits<double>::infinity();
-    for (const auto& p : mesh_.positions_enu_m) ground.height_m = std::min(ground.height_m, p.z());
-    border_faces.resize(mesh_.faces.size());
-    std::iota(border_faces.begin(), border_faces.end(), 0u);
-  } else {
-    std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
-    ground.height_m = heights[heights.size() / 2];
-  }
-  std::sort(border_faces.begin(), border_faces.end());
-  border_faces.erase(std::unique(border_faces.begin(), border_faces.end()), border_faces.end());
-  std::vector<Eigen::Vector2d> centroid(border_faces.size());
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (size_t i = 0; i < border_faces.size(); ++i) {
-    const auto& f = mesh_.faces[border_faces[i]];
-    centroid[i] =
-        ((mesh_.positions_enu_m[f[0]] + mesh_.positions_enu_m[f[1]] + mesh_.positions_enu_m[f[2]]) / 3.0).head<2>();
-    centre += centroid[i];
-  }
-  if (!border_faces.empty()) centre /= double(border_faces.size());
-  ground.centre_m = centre;
-  const int n = GroundBackdrop::kSectors;
-  std::vector<Eigen::Vector3d> sum(size_t(n), Eigen::Vector3d::Zero());
-  std::vector<int> count(size_t(n), 0);
-  for (size_t i = 0; i < border_faces.size(); ++i) {
-    scene::RayHit at_centroid;
-    at_centroid.face = border_faces[i];
-    at_centroid.u = at_centroid.v = 1.0 / 3.0;
-    const Eigen::Vector2d d = centroid[i] - centre;
-    const int sector = int(std::floor((std::atan2(d.y(), d.x()) + M_PI) / (2 * M_PI) * n)) % n;
-    sum[size_t(sector)] += SurfaceColor(at_centroid).cast<double>();
-    ++count[size_t(sector)];
-  }
-  std::vector<double> radius;
-  Eigen::Vector3d total = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < border_faces.size(); ++i) radius.push_back((centroid[i] - centre).norm());
-  for (int k = 0; k < n; ++k) total += sum[size_t(k)];
-  if (!radius.empty()) {
-    std::nth_element(radius.begin(), radius.begin() + radius.size() / 2, radius.end());
-    ground.border_radius_m = radius[radius.size() / 2];
-    ground.mean_color = (total / double(border_faces.size())).cast<float>();
-  }
-  // Empty sectors take the distance-weighted mean of the nearest filled one on each side.
-  for (int k = 0; k < n; ++k) {
-    if (count[size_t(k)] > 0) {
-      ground.sector_color[size_t(k)] = (sum[size_t(k)] / count[size_t(k)]).cast<float>();
-      continue;
-    }
-    int lo = 1, hi = 1;
-    while (lo < n && count[size_t((k - lo + n) % n)] == 0) ++lo;
-    while (hi < n && count[size_t((k + hi) % n)] == 0) ++hi;
-    if (lo >= n) break;  // no border face at all: the default grey stays
-    const Eigen::Vector3d a = sum[size_t((k - lo + n) % n)] / count[size_t((k - lo + n) % n)];
-    const Eigen::Vector3d b = sum[size_t((k + hi) % n)] / count[size_t((k + hi) % n)];
-    ground.sector_color[size_t(k)] = ((hi * a + lo * b) / double(lo + hi)).cast<float>();
-  }
+  ground.height_m = ring.height_m;
+  ground.centre_m = ring.centre_m;
+  ground.border_radius_m = ring.radius_m;
+  const Eigen::Vector3f grey = ground.mean_color;  // no face at all: mid-grey
+  ground.sector_color = scene::SectorColors(ring, face_colors, grey, &ground.mean_color);
   return ground;
 }
 
@@ -262,7 +196,20 @@ Eigen::Vector3f PreviewScene::Light(const Eigen::Vector3d& position, const Eigen
 
 Eigen::Vector3f PreviewScene::Radiance(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                        const Instant& at, TraceHit* hit_out) const {
-  const auto mesh_hit = caster_->Intersect(origin, direction);
+  return Shade(origin, direction, at, caster_->Intersect(origin, direction), hit_out);
+}
+
+void PreviewScene::Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count,
+                             const Instant& at, Eigen::Vector3f* radiance, TraceHit* hits_out) const {
+  std::optional<scene::RayHit> mesh_hits[8];
+  caster_->Intersect8(origins, directions, count, mesh_hits);
+  for (int i = 0; i < count; ++i) {
+    radiance[i] = Shade(origins[i], directions[i], at, mesh_hits[i], hits_out ? &hits_out[i] : nullptr);
+  }
+}
+
+Eigen::Vector3f PreviewScene::Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
+                                    const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out) const {
   double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();
   // The ground past the edge: only where the mesh is missed (under the mesh it is hidden anyway).
   double ground_distance = std::numeric_limits<double>::infinity();

@@ -18,6 +18,7 @@
 
 #include "preview/render_options.h"
 #include "preview/subject_proxies.h"
+#include "scene/border_ring.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_mesh.h"
 
@@ -51,7 +52,7 @@ struct TraceHit {
 // and the grass beyond the grass, fading into their mean farther out; hazed toward the horizon's sky colour with
 // distance (a visibility of `visibility_m`: the haze takes 1 - exp(-3 d / visibility) of the colour).
 struct GroundBackdrop {
-  static constexpr int kSectors = 72;
+  static constexpr int kSectors = scene::BorderRing::kSectors;
   double height_m = 0;
   Eigen::Vector2d centre_m = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector3f> sector_color = std::vector<Eigen::Vector3f>(kSectors, Eigen::Vector3f::Constant(0.5f));
@@ -105,6 +106,10 @@ class PreviewScene {
                            TraceHit* hit_out = nullptr) const {
     return Radiance(origin, direction, At(time_s), hit_out);
   }
+  // The same for `count` (1 to 8) rays at once, traced as one packet (the pinhole pass's rows): radiance[i]
+  // and hits_out[i] (when not null) are what Radiance gives ray i.
+  void Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count, const Instant& at,
+                 Eigen::Vector3f* radiance, TraceHit* hits_out = nullptr) const;
   Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
 
   const scene::SceneMesh& mesh() const { return mesh_; }
@@ -112,6 +117,10 @@ class PreviewScene {
   const SceneLoadTimes& load_times() const { return load_times_; }
 
  private:
+  // What a ray sees, given the mesh's hit along it (or none): the closer of it and the subjects, the
+  // ground past the edge, or the sky.
+  Eigen::Vector3f Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
+                        const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out) const;
   Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
   GroundBackdrop BorderGround() const;
   void Finish(SunDirection sun, Backdrop backdrop);  // the sun's direction and the ground past the edge

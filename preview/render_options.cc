@@ -12,6 +12,9 @@ SamplingPreset PresetFor(RenderQuality quality) {
     case RenderQuality::kDraft:
       preset.gather_blur = true;
       preset.edge_samples = 4;
+      // Only the edges a frame shows at a glance: objects, depth steps and strong colour steps (texture
+      // detail below this is left to the pinhole ray; bench/RESULTS.md has the PSNR it costs).
+      preset.edge_color_step = 0.2f;
       preset.max_samples = 4;
       preset.motion_blur = false;
       break;

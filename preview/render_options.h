@@ -30,6 +30,9 @@ enum class Aov { kDepth, kBlur, kMask };
 struct SamplingPreset {
   bool gather_blur = false;  // draft: no lens rays; a depth-aware gather blur of the pinhole image
   int edge_samples = 4;
+  // A colour step (linear, any channel) between neighbours above this marks both as an edge; a step in
+  // depth over 2 % or another object always does.
+  float edge_color_step = 0.08f;
   double samples_per_blur_px2 = 1.0;
   int min_blurred_samples = 8;
   int max_samples = 64;

@@ -15,6 +15,24 @@ uint64_t Mix(uint64_t z) {
 
 double Wrap(double value) { return value - std::floor(value); }
 
+uint32_t ReverseBits(uint32_t v) {
+  v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+  v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+  v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
+  v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
+  return (v >> 16) | (v << 16);
+}
+
+uint32_t Sobol2Bits(uint32_t index) {
+  uint32_t result = 0;
+  for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1) {
+    if (index & 1) result ^= v;
+  }
+  return result;
+}
+
+constexpr double kTwoTo32 = 4294967296.0;
+
 }  // namespace
 
 double RadicalInverse(uint32_t index, uint32_t base) {
@@ -27,12 +45,17 @@ double RadicalInverse(uint32_t index, uint32_t base) {
   return result;
 }
 
-double Sobol2(uint32_t index) {
-  uint32_t result = 0;
-  for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1) {
-    if (index & 1) result ^= v;
-  }
-  return result * (1.0 / 4294967296.0);
+double Sobol2(uint32_t index) { return Sobol2Bits(index) * (1.0 / kTwoTo32); }
+
+uint32_t OwenScramble(uint32_t bits, uint32_t seed) {
+  // Laine and Karras's hash on the reversed bits (Burley 2020, "Practical Hash-based Owen Scrambling"):
+  // each bit flips depending only on the bits above it, with a seed.
+  uint32_t x = ReverseBits(bits) + seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return ReverseBits(x);
 }
 
 SampleSequence::SampleSequence(uint64_t frame, uint32_t x, uint32_t y) {
@@ -41,12 +64,19 @@ SampleSequence::SampleSequence(uint64_t frame, uint32_t x, uint32_t y) {
     state = Mix(state);
     shift = (state >> 11) * (1.0 / 9007199254740992.0);
   }
+  for (uint32_t& seed : lens_seeds_) {
+    state = Mix(state);
+    seed = uint32_t(state >> 32);
+  }
 }
 
 PixelSample SampleSequence::Get(uint32_t index) const {
   PixelSample s;
-  s.lens_u = Wrap(RadicalInverse(index, 2) + shift_[0]);
-  s.lens_v = Wrap(Sobol2(index) + shift_[1]);
+  // The lens: the index shuffled (an Owen scramble keeps every power-of-two prefix a prefix), then both
+  // dimensions Owen-scrambled with the pixel's seeds.
+  const uint32_t i = OwenScramble(index, lens_seeds_[0]);
+  s.lens_u = OwenScramble(ReverseBits(i), lens_seeds_[1]) * (1.0 / kTwoTo32);
+  s.lens_v = OwenScramble(Sobol2Bits(i), lens_seeds_[2]) * (1.0 / kTwoTo32);
   s.pixel_x = Wrap(RadicalInverse(index, 3) + shift_[2]);
   s.pixel_y = Wrap(RadicalInverse(index, 5) + shift_[3]);
   s.time = Wrap(RadicalInverse(index, 7) + shift_[4]);

@@ -104,23 +104,69 @@ std::optional<RayHit> RayCaster::Intersect(const Eigen::Vector3d& origin_enu_m, 
   rtcInitIntersectContext(&context);
   rtcIntersect1(embree_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  return Refine(origin_enu_m, d, rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v);
+}
 
-  // Refine in double on the hit triangle (float32 hits are good to ~1e-7 of the scene's extent).
+void RayCaster::Intersect8(const Eigen::Vector3d* origins_enu_m, const Eigen::Vector3d* unit_directions, int count,
+                           std::optional<RayHit>* hits) const {
+  if (count < 1 || count > 8) throw InternalError("ray caster: Intersect8 takes 1 to 8 rays");
+  alignas(32) int valid[8];
+  Eigen::Vector3d d[8];
+  RTCRayHit8 packet;
+  for (int i = 0; i < 8; ++i) {
+    const bool used = i < count && origins_enu_m[i].allFinite() && unit_directions[i].norm() > 0;
+    valid[i] = used ? -1 : 0;
+    // Normalized again, as Intersect does, so the packet's rays are its rays to the bit.
+    if (used) d[i] = unit_directions[i] / unit_directions[i].norm();
+    const RTCRay ray =
+        used ? MakeRay(origins_enu_m[i] - centre_enu_m_, d[i], 0.0, std::numeric_limits<double>::infinity())
+             : MakeRay(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), 0.0, 1.0);
+    packet.ray.org_x[i] = ray.org_x;
+    packet.ray.org_y[i] = ray.org_y;
+    packet.ray.org_z[i] = ray.org_z;
+    packet.ray.dir_x[i] = ray.dir_x;
+    packet.ray.dir_y[i] = ray.dir_y;
+    packet.ray.dir_z[i] = ray.dir_z;
+    packet.ray.tnear[i] = ray.tnear;
+    packet.ray.tfar[i] = ray.tfar;
+    packet.ray.time[i] = 0;
+    packet.ray.mask[i] = ray.mask;
+    packet.ray.id[i] = 0;
+    packet.ray.flags[i] = 0;
+    packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect8(valid, embree_->scene, &context, &packet);
+  for (int i = 0; i < count; ++i) {
+    hits[i] = std::nullopt;
+    if (valid[i] && packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
+      hits[i] =
+          Refine(origins_enu_m[i], d[i], packet.hit.primID[i], packet.ray.tfar[i], packet.hit.u[i], packet.hit.v[i]);
+    }
+  }
+}
+
+// Refine in double on the hit triangle (float32 hits are good to ~1e-7 of the scene's extent).
+RayHit RayCaster::Refine(const Eigen::Vector3d& origin_enu_m, const Eigen::Vector3d& d, uint32_t face, float t_float,
+                         float u, float v) const {
   RayHit hit;
-  hit.face = rh.hit.primID;
+  hit.face = face;
   const auto& f = faces_[hit.face];
   const Eigen::Vector3d a = vertices_enu_m_[f[0]], b = vertices_enu_m_[f[1]], c = vertices_enu_m_[f[2]];
   const Eigen::Vector3d n = (b - a).cross(c - a);
   const double denom = n.dot(d);
-  double t = rh.ray.tfar;
+  double t = t_float;
   if (std::fabs(denom) > 1e-300) {
     const double t_plane = n.dot(a - origin_enu_m) / denom;
     if (std::isfinite(t_plane) && std::fabs(t_plane - t) <= 1e-3 * (1.0 + std::fabs(t))) t = t_plane;
   }
   hit.distance_m = t;
   hit.position_enu_m = origin_enu_m + t * d;
-  hit.u = rh.hit.u;
-  hit.v = rh.hit.v;
+  hit.u = u;
+  hit.v = v;
   hit.normal_enu = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
   return hit;
 }

@@ -40,6 +40,14 @@ class RayCaster {
   std::optional<RayHit> Intersect(const Eigen::Vector3d& origin_enu_m, const Eigen::Vector3d& direction,
                                   double min_distance_m = 0,
                                   double max_distance_m = std::numeric_limits<double>::infinity()) const;
+  // The closest hits of `count` (1 to 8) rays from origins_enu_m[i] along directions[i] (unit length; they
+  // are normalized again, as Intersect does), t in [0, inf), traced as one packet (Embree's rtcIntersect8,
+  // coherent: the rays of neighbouring pixels share the BVH's traversal), into hits[i]. Embree runs the same
+  // watertight triangle test per lane, so a ray gets the hit Intersect gives it (tests/scene/ray_caster_test.cc);
+  // a ray through the very edge between two triangles may, rarely, get the other one (one pixel of 43 draft
+  // frames of the bundled sample). Always the same hit for the same packet, on any thread.
+  void Intersect8(const Eigen::Vector3d* origins_enu_m, const Eigen::Vector3d* unit_directions, int count,
+                  std::optional<RayHit>* hits) const;
   // Whether anything lies on the segment (any hit; cheaper than Intersect).
   bool Occluded(const Eigen::Vector3d& origin_enu_m, const Eigen::Vector3d& direction, double min_distance_m,
                 double max_distance_m) const;
@@ -52,6 +60,8 @@ class RayCaster {
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
 
  private:
+  RayHit Refine(const Eigen::Vector3d& origin_enu_m, const Eigen::Vector3d& unit_direction, uint32_t face,
+                float t_float, float u, float v) const;
   struct Embree;
   std::unique_ptr<Embree> embree_;
   Eigen::Vector3d centre_enu_m_;  // positions are stored minus this, in float

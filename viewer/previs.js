@@ -56,7 +56,9 @@ view.layers.enableAll();
 view.layers.disable(LAYER_CAMERA_ONLY);
 const controls = new OrbitControls(view, canvas);
 controls.enableDamping = false;
-const shotCamera = new THREE.PerspectiveCamera(40, data.camera.width_px / data.camera.height_px, 0.1, size * 20);
+// Far enough for the ground past the mesh's edge to reach its haze (below).
+const shotCamera = new THREE.PerspectiveCamera(40, data.camera.width_px / data.camera.height_px, 0.1,
+                                               Math.max(size * 20, 15000));
 shotCamera.layers.set(0);
 shotCamera.layers.enable(LAYER_CAMERA_ONLY);
 
@@ -123,7 +125,134 @@ async function loadMesh() {
   if (!meshInfo.has_colors) geometry.computeVertexNormals();
   const mesh = new THREE.Mesh(geometry, material);
   scene.add(mesh);
+  addGroundPastEdge(geometry, material.map ? material.map.image : null);
   return T;
+}
+
+// ---- the ground past the mesh's edge, as `cinepath render` draws it (docs/render.md, "The horizon") ----
+// A plane at the height of the mesh's border, coloured by the border ring carried outward (each 5-degree sector
+// of azimuth about the ring's centre takes the mean colour of its border faces, fading into their mean beyond
+// the ring's radius), hazed toward the sky with distance (a 5 km visibility). The faces, their sectors, the
+// height, centre and radius come from the page's data (scene/border_ring.h); the colours are taken here, at
+// each face's centroid, from the mesh's colours and texture, and averaged in linear light. Drawn first and
+// without depth, so the mesh covers it wherever the mesh is seen; in the camera view only, as render's frames.
+const GROUND_BLEND_M = 150;
+const GROUND_VISIBILITY_M = 5000;
+const linearFromSrgb = (c) => (c <= 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4));
+function borderFaceColors(geometry, image) {
+  const g = meshInfo.ground, index = geometry.index.array;
+  const colors = geometry.attributes.color ? geometry.attributes.color.array : null;
+  const uv = geometry.attributes.uv ? geometry.attributes.uv.array : null;
+  let texels = null, tw = 0, th = 0;
+  if (image && uv) {
+    // The texture at up to 1024 x 1024 (a box-filtered copy is plenty for a mean per sector).
+    tw = Math.min(image.width, 1024);
+    th = Math.min(image.height, 1024);
+    const c = document.createElement('canvas');
+    c.width = tw;
+    c.height = th;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(image, 0, 0, tw, th);
+    texels = ctx.getImageData(0, 0, tw, th).data;
+  }
+  return g.faces.map((f) => {
+    const color = [0, 0, 0];
+    const centroidUv = [0, 0];
+    for (let corner = 0; corner < 3; ++corner) {
+      const v = index[3 * f + corner];
+      for (let a = 0; a < 3; ++a) color[a] += (colors ? linearFromSrgb(colors[3 * v + a] / 255) : 1) / 3;
+      if (uv) for (let a = 0; a < 2; ++a) centroidUv[a] += uv[2 * v + a] / 65535 / 3;
+    }
+    if (!colors && !texels) color.fill(0.5);
+    if (texels) {
+      const x = Math.min(tw - 1, Math.max(0, Math.floor((centroidUv[0] - Math.floor(centroidUv[0])) * tw)));
+      const y = Math.min(th - 1, Math.max(0, Math.floor((centroidUv[1] - Math.floor(centroidUv[1])) * th)));
+      for (let a = 0; a < 3; ++a) color[a] *= linearFromSrgb(texels[4 * (y * tw + x) + a] / 255);
+    }
+    return color;
+  });
+}
+function addGroundPastEdge(geometry, image) {
+  const g = meshInfo.ground;
+  if (!g || !g.faces.length) return;
+  const faceColors = borderFaceColors(geometry, image);
+  // Mean per sector (scene/border_ring.h, SectorColors); an empty sector takes the nearest filled one on each
+  // side, weighted by nearness.
+  const n = g.sectors, sum = Array.from({ length: n }, () => [0, 0, 0]), count = new Array(n).fill(0);
+  const mean = [0, 0, 0];
+  faceColors.forEach((c, i) => {
+    for (let a = 0; a < 3; ++a) sum[g.face_sectors[i]][a] += c[a];
+    ++count[g.face_sectors[i]];
+    for (let a = 0; a < 3; ++a) mean[a] += c[a] / faceColors.length;
+  });
+  const sectorMean = (k) => sum[k].map((v) => v / count[k]);
+  const sectors = [];
+  for (let k = 0; k < n; ++k) {
+    if (count[k] > 0) {
+      sectors.push(sectorMean(k));
+      continue;
+    }
+    let lo = 1, hi = 1;
+    while (count[(k - lo + n) % n] === 0) ++lo;
+    while (count[(k + hi) % n] === 0) ++hi;
+    const a = sectorMean((k - lo + n) % n), b = sectorMean((k + hi) % n);
+    sectors.push(a.map((v, i) => (hi * v + lo * b[i]) / (lo + hi)));
+  }
+  // Smoothed around the ring as render does (weights r + 1 - |d| over +-r sectors).
+  const r = g.smooth_sectors, smooth = [];
+  for (let k = 0; k < n; ++k) {
+    const c = [0, 0, 0];
+    let weight = 0;
+    for (let d = -r; d <= r; ++d) {
+      const w = r + 1 - Math.abs(d), s = sectors[(k + d + n) % n];
+      for (let a = 0; a < 3; ++a) c[a] += w * s[a];
+      weight += w;
+    }
+    smooth.push(new THREE.Vector3(c[0] / weight, c[1] / weight, c[2] / weight));
+  }
+  const sky = new THREE.Color(SKY);
+  const material = new THREE.ShaderMaterial({
+    uniforms: {
+      sectors: { value: smooth },
+      meanColor: { value: new THREE.Vector3(...mean) },
+      centre: { value: new THREE.Vector2(g.centre_m[0], g.centre_m[1]) },
+      radius: { value: g.radius_m },
+      hazeColor: { value: new THREE.Vector3(linearFromSrgb(sky.r), linearFromSrgb(sky.g), linearFromSrgb(sky.b)) },
+    },
+    vertexShader: `varying vec3 vWorld;
+      void main() {
+        vec4 world = modelMatrix * vec4(position, 1.0);
+        vWorld = world.xyz;
+        gl_Position = projectionMatrix * viewMatrix * world;
+      }`,
+    fragmentShader: `uniform vec3 sectors[${n}];
+      uniform vec3 meanColor, hazeColor;
+      uniform vec2 centre;
+      uniform float radius;
+      varying vec3 vWorld;
+      vec3 srgb(vec3 c) {
+        return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+      }
+      void main() {
+        vec2 d = vec2(vWorld.x - centre.x, -(vWorld.z - centre.y));  // east, north of the ring's centre
+        float s = (atan(d.y, d.x) + 3.14159265) / 6.28318531 * ${n}.0 - 0.5;
+        float k0 = floor(s);
+        int a = int(mod(k0, ${n}.0)), b = int(mod(k0 + 1.0, ${n}.0));
+        vec3 ring = mix(sectors[a], sectors[b], s - k0);
+        vec3 color = mix(ring, meanColor, 1.0 - exp(-max(0.0, length(d) - radius) / ${GROUND_BLEND_M}.0));
+        float haze = 1.0 - exp(-3.0 * distance(vWorld, cameraPosition) / ${GROUND_VISIBILITY_M}.0);
+        gl_FragColor = vec4(srgb(mix(color, hazeColor, haze)), 1.0);
+      }`,
+    depthWrite: false,
+    side: THREE.FrontSide,
+  });
+  const extent = 2 * shotCamera.far;
+  const plane = new THREE.Mesh(new THREE.PlaneGeometry(extent, extent), material);
+  plane.rotation.x = -Math.PI / 2;  // facing up: a camera below the plane does not see it
+  plane.position.set(g.centre_m[0], g.height_m, g.centre_m[1]);
+  plane.renderOrder = -1;
+  plane.layers.set(LAYER_CAMERA_ONLY);
+  scene.add(plane);
 }
 
 // ---- ground grid with metres, north arrow ----

@@ -7,6 +7,7 @@
 #include "core/reframe.h"
 #include "core/scene_file.h"
 #include "core/three_frame.h"
+#include "scene/border_ring.h"
 #include "scene/glb_reader.h"
 #include "viewer/base64.h"
 #include "viewer/embedded_assets.h"
@@ -39,7 +40,7 @@ std::string JsDataUrl(std::string_view code) { return "data:text/javascript;base
 
 std::string CompactJson(const Json& document) { return JsonForScriptElement(document.dump()); }
 
-Json MeshJson(const MeshPayload& mesh, const std::string& source) {
+Json MeshJson(const MeshPayload& mesh, const std::string& source, const Json& ground) {
   return {{"source", source},
           {"vertices", mesh.num_vertices},
           {"triangles", mesh.num_triangles},
@@ -51,7 +52,24 @@ Json MeshJson(const MeshPayload& mesh, const std::string& source) {
           {"index_bytes", mesh.index_bytes},
           {"min_m", mesh.min_three_m},
           {"max_m", mesh.max_three_m},
-          {"inflated_bytes", mesh.inflated_bytes}};
+          {"inflated_bytes", mesh.inflated_bytes},
+          {"ground", ground}};
+}
+
+// The ground past the mesh's edge, as `render` draws it (scene/border_ring.h; docs/render.md, "The
+// horizon"), in three.js's frame: the plane's height (y), the ring's centre (x, z) and radius, and the
+// border faces with their sectors. The page colours each face at its centroid from the mesh's colours
+// and texture, averages them per sector as render does, and draws the plane (viewer/previs.js).
+Json GroundJson(const scene::SceneMesh& mesh) {
+  const scene::BorderRing ring = scene::FindBorderRing(mesh);
+  const Eigen::Vector3d centre = ThreeFromEnu({ring.centre_m.x(), ring.centre_m.y(), ring.height_m});
+  return {{"height_m", RoundToDecimals(centre.y(), 3)},
+          {"centre_m", Json::array({RoundToDecimals(centre.x(), 3), RoundToDecimals(centre.z(), 3)})},
+          {"radius_m", RoundToDecimals(ring.radius_m, 3)},
+          {"sectors", scene::BorderRing::kSectors},
+          {"smooth_sectors", scene::BorderRing::kSmoothSectors},
+          {"faces", ring.faces},
+          {"face_sectors", ring.sectors}};
 }
 
 // Where the photos that built the scene were taken (scene.json's `cameras`, written by `cinepath mesh`),
@@ -138,6 +156,7 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
   std::optional<Geodetic> origin = plan.origin;
   std::optional<MeshPayload> mesh;
   std::string mesh_source;
+  Json ground;
   Json photos = Json::array();
   if (options.scene) {
     const SceneFile scene = ReadSceneFile(*options.scene);
@@ -150,7 +169,9 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
       origin = scene.origin;
     }
     photos = PhotoPositionsJson(scene);
-    mesh = EncodeMeshPayload(scene::ReadGlbFile(glb));
+    const scene::SceneMesh scene_mesh = scene::ReadGlbFile(glb);
+    mesh = EncodeMeshPayload(scene_mesh);
+    ground = GroundJson(scene_mesh);
     mesh_source = glb.filename().string();
     page.mesh_triangles = mesh->num_triangles;
   }
@@ -167,15 +188,16 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
       team.single ? PageDataJson(plan, plan_name, origin) : TeamPageDataJson(team, primary, plan_name, origin);
   const std::string js =
       team.single ? std::string(PrevisJs()) : std::string(PrevisJs()) + "\n" + std::string(PrevisTeamJs());
-  page.html = FillTemplate(std::string(PrevisHtml()),
-                           {{"TITLE", HtmlEscape("cinepath view: " + plan_name)},
-                            {"THREE_URL", JsDataUrl(ThreeModuleJs())},
-                            {"CONTROLS_URL", JsDataUrl(OrbitControlsJs())},
-                            {"DATA_JSON", CompactJson(WithPhotos(data, photos))},
-                            {"MESH_JSON", mesh ? CompactJson(MeshJson(*mesh, mesh_source)) : std::string("null")},
-                            {"MESH_BASE64", mesh ? Base64Encode(mesh->deflated) : std::string()},
-                            {"FRAMES_JSON", CompactJson(frames)},
-                            {"PREVIS_JS", js}});
+  page.html =
+      FillTemplate(std::string(PrevisHtml()),
+                   {{"TITLE", HtmlEscape("cinepath view: " + plan_name)},
+                    {"THREE_URL", JsDataUrl(ThreeModuleJs())},
+                    {"CONTROLS_URL", JsDataUrl(OrbitControlsJs())},
+                    {"DATA_JSON", CompactJson(WithPhotos(data, photos))},
+                    {"MESH_JSON", mesh ? CompactJson(MeshJson(*mesh, mesh_source, ground)) : std::string("null")},
+                    {"MESH_BASE64", mesh ? Base64Encode(mesh->deflated) : std::string()},
+                    {"FRAMES_JSON", CompactJson(frames)},
+                    {"PREVIS_JS", js}});
   return page;
 }
 

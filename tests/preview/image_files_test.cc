@@ -201,3 +201,30 @@ TEST(Srgb8, Ends) {
 
 }  // namespace
 }  // namespace cinepath::preview
+
+namespace cinepath::preview {
+namespace {
+
+// The table gives LinearToSrgb8's byte for every 61st float in [0, 1] (17 M of them), for the 7 floats
+// around each of the 255 steps, and at the ends (below 0, 1 and above, infinity, NaN).
+TEST(SrgbEncoding, TheTableGivesTheTransferFunctionsBytes) {
+  auto at = [](uint32_t bits) {
+    float x;
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+  };
+  for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 61)
+    ASSERT_EQ(LinearToSrgb8ByTable(at(bits)), LinearToSrgb8(at(bits))) << bits;
+  for (int v = 1; v <= 255; ++v) {  // the steps themselves, to the bit
+    uint32_t lo = 0, hi = 0x3f800000u;
+    while (hi - lo > 1) (LinearToSrgb8(at(lo + (hi - lo) / 2)) >= v ? hi : lo) = lo + (hi - lo) / 2;
+    for (uint32_t b = hi - 3; b <= hi + 3; ++b) EXPECT_EQ(LinearToSrgb8ByTable(at(b)), LinearToSrgb8(at(b))) << v;
+  }
+  for (float x :
+       {-1.0f, 0.0f, 1.0f, 2.0f, std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+    EXPECT_EQ(LinearToSrgb8ByTable(x), LinearToSrgb8(x)) << x;
+  }
+}
+
+}  // namespace
+}  // namespace cinepath::preview

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # `cinepath render` through the real binary, on the bundled sample:
-#   - two shards (--shard 0/2, 1/2) give exactly the files of one full run, byte for byte;
+#   - two shards (--shard 0/2, 1/2) give exactly the files of one full run, byte for byte, and so does a run
+#     on one core;
 #   - the GNU parallel example of docs/scale-out.md gives the same files again;
 #   - a missing mesh, a GLB without geometry, a frame range outside the plan and an unwritable output
 #     folder exit 2 and write nothing; --video without ffmpeg says so;
-#   - --overlay, --contact-sheet, --aov and --format exr write what they promise, the same bytes every run.
+#   - --overlay, --contact-sheet, --aov and --format exr write what they promise, the same bytes every run;
+#   - a camera at the scene's edge looking out level sees the ground past the edge: a finite depth below the
+#     horizon, unless --backdrop none.
 #   render_cli.sh CINEPATH SOURCE_DIR
 set -euo pipefail
 CINEPATH=$1
@@ -27,6 +30,13 @@ n=$(ls "$work/full" | wc -l)
 "${render[@]}" --shard 1/2 -o "$work/shards"
 diff -r "$work/full" "$work/shards" > /dev/null || fail "two shards differ from one full run"
 echo "shards: $n frames identical to one run"
+# The thread count: the same frames on one core (taskset: TBB and Embree see one), lens rays and packets
+# included (the orbit's frames are blurred: standard traces them through the lens, eight rays a packet).
+if command -v taskset > /dev/null; then
+  taskset -c 0 "${render[@]}" -o "$work/one_core"
+  diff -r "$work/full" "$work/one_core" > /dev/null || fail "one core gives other bytes than every core"
+  echo "threads: $n frames identical on one core and on all"
+fi
 
 # Memory at start-up: the textures stay 8-bit in memory, and no OpenImageIO is loaded. One small frame of the
 # draft sample (a 2048² atlas) peaked at 234 MB when its texels were linear floats, 162-165 MB with 8-bit
@@ -118,3 +128,35 @@ if command -v oiiotool > /dev/null; then
   [[ $mask_range == "0.000000 1.000000" ]] || fail "mask AOV spans '$mask_range', expected 0 (ground) to 1 (the subject)"
 fi
 echo "extras: EXR frames, depth, blur and mask AOVs, contact sheet; EXR bytes the same on a second run"
+
+# The horizon: a camera at the bundled scene's eastern edge (the easternmost photo's place), looking east and
+# level. With the ground past the edge no pixel below the horizon (the lower half of the image) has an infinite
+# depth; with --backdrop none the rays past the mesh's edge do.
+if command -v oiiotool > /dev/null; then
+  # The bundled shots planned on the scene (the scene's origin, so the plan's ENU is the scene's).
+  "$CINEPATH" plan "$sample/shots.json" --scene "$work/scene/scene.json" -o "$work/edge_base.json"
+  python3 - "$work/edge_base.json" "$work/scene/scene.json" "$work/edge_plan.json" <<'PY'
+import json, sys
+plan, scene = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+east = max((c["position_enu_m"] for c in scene["cameras"]), key=lambda p: p[0])
+sample = plan["samples"][0]
+sample["position_enu_m"] = east
+# Camera x right = south, y down, z forward = east: the quaternion (w, x, y, z) of the matrix with those columns.
+sample["world_from_camera"] = [0.5, -0.5, 0.5, -0.5]
+json.dump(plan, open(sys.argv[3], "w"))
+PY
+  below_horizon_inf() {  # below_horizon_inf DEPTH.exr: how many lower-half pixels have an infinite depth
+    oiiotool --dumpdata "$1" | awk -F'[(),: ]+' '$2 == "Pixel" && $4 + 0.5 > h / 2 && $5 ~ /inf/ {n++}
+      END {print n + 0}' h=54
+  }
+  for backdrop in ground none; do
+    "$CINEPATH" render "$work/edge_plan.json" --scene "$work/scene/scene.json" --frames 0 --width-px 96 --spp 1 \
+      --backdrop $backdrop --aov depth -o "$work/edge_$backdrop"
+  done
+  oiiotool --info "$work/edge_ground/frame_000000.depth.exr" | grep -Eq "96 x +54" || fail "depth AOV not 96 x 54"
+  ground_inf=$(below_horizon_inf "$work/edge_ground/frame_000000.depth.exr")
+  none_inf=$(below_horizon_inf "$work/edge_none/frame_000000.depth.exr")
+  [[ $ground_inf -eq 0 ]] || fail "--backdrop ground: $ground_inf pixels below the horizon at infinite depth"
+  [[ $none_inf -gt 0 ]] || fail "--backdrop none: no pixel below the horizon at infinite depth (is the camera at the edge?)"
+  echo "horizon: 0 of 2592 pixels below the horizon at infinite depth with the ground, $none_inf with --backdrop none"
+fi

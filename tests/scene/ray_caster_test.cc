@@ -37,6 +37,42 @@ TEST(RayCaster, HitsTheClosestSurfaceWithItsNormalAndFace) {
   EXPECT_FALSE(rc.Intersect(Vector3d(20, 0, 100), -Vector3d::UnitZ(), 0, 99.0));
 }
 
+// Packets of eight (and of fewer) rays give each ray the hit Intersect gives it: a fan of rays from one
+// point over a ground and a roof, some missing everything, none through an edge.
+TEST(RayCaster, PacketsOfEightHitWhatSingleRaysHit) {
+  SceneMesh m;
+  AddSquare(m, 0, 0, 0, 50);
+  AddSquare(m, 3.3, -2.1, 10, 5);
+  const RayCaster rc(m);
+  const Vector3d origin(0.37, 0.21, 30);
+  for (int count = 1; count <= 8; ++count) {
+    for (int row = 0; row < 20; ++row) {
+      Vector3d origins[8], directions[8];
+      for (int i = 0; i < count; ++i) {
+        origins[i] = origin;
+        directions[i] = Vector3d(0.13 * (i - 3.5) + 0.011 * row, 0.09 * (row - 10) + 0.003 * i, -1).normalized();
+      }
+      std::optional<RayHit> hits[8];
+      rc.Intersect8(origins, directions, count, hits);
+      for (int i = 0; i < count; ++i) {
+        const auto single = rc.Intersect(origins[i], directions[i]);
+        ASSERT_EQ(single.has_value(), hits[i].has_value()) << count << " " << row << " " << i;
+        if (!single) continue;
+        EXPECT_EQ(single->face, hits[i]->face);
+        EXPECT_EQ(single->distance_m, hits[i]->distance_m);
+        EXPECT_EQ(single->u, hits[i]->u);
+        EXPECT_EQ(single->v, hits[i]->v);
+      }
+    }
+  }
+  // Rays that miss everything (pointing up) and a bad count.
+  Vector3d up[2] = {Vector3d::UnitZ(), Vector3d(0.1, 0, 1).normalized()}, at[2] = {origin, origin};
+  std::optional<RayHit> none[2];
+  rc.Intersect8(at, up, 2, none);
+  EXPECT_FALSE(none[0] || none[1]);
+  EXPECT_THROW(rc.Intersect8(at, up, 9, none), InternalError);
+}
+
 TEST(RayCaster, OcclusionAndTheHighestSurfaceBelow) {
   SceneMesh m;
   AddSquare(m, 0, 0, 0, 50);

@@ -115,7 +115,9 @@ aspect=$(node -e 'const p = JSON.parse(require("fs").readFileSync(process.argv[1
   console.log(p.camera.height_px / p.camera.width_px)' "$work/plan.json")
 main_rect="0,0,$((WIDTH - 420)),$((HEIGHT - 64))"
 camera_rect="$((WIDTH - 410)),31,401,$(awk -v a="$aspect" 'BEGIN {printf "%d", 403 * a - 2}')"
-browse "file://$work/live.html#t=20" --screenshot="$work/shot_3d.png" > /dev/null
+# t = 33.3 s: the reveal, whose camera has the horizon in view. (At t = 20 s the flyby looks down enough that
+# the ground past the mesh's edge, which the camera view draws as render does, fills the picture's top.)
+browse "file://$work/live.html#t=33.3" --screenshot="$work/shot_3d.png" > /dev/null
 cp "$work/shot_3d.png" "$ARTIFACTS/view_3d.png"
 oiiotool "$work/shot_3d.png" --cut "$(geometry "$camera_rect")" -o "$ARTIFACTS/view_camera.png"
 read -r _ main_std _ < <(region_stats "$work/shot_3d.png" "$(geometry "$main_rect")")

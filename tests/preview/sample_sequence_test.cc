@@ -1,0 +1,45 @@
+#include "preview/sample_sequence.h"
+
+#include <cmath>
+#include <set>
+
+#include <gtest/gtest.h>
+
+namespace cinepath::preview {
+namespace {
+
+// Owen scrambling keeps the (0,2)-sequence's stratification: the first 2^k lens samples of a pixel fall one
+// in each of 2^k equal intervals of either axis, and in each of the 2^k cells of any dyadic grid
+// 2^a x 2^(k - a); pixels get different points.
+TEST(SampleSequence, OwenScrambledLensSamplesStayStratified) {
+  for (uint32_t x : {0u, 7u, 631u}) {
+    const SampleSequence sequence(90, x, 17);
+    for (int k : {2, 4, 6}) {
+      const int n = 1 << k;
+      for (int a = 0; a <= k; ++a) {
+        std::set<std::pair<int, int>> cells;
+        for (int i = 0; i < n; ++i) {
+          const PixelSample s = sequence.Get(uint32_t(i));
+          ASSERT_TRUE(s.lens_u >= 0 && s.lens_u < 1 && s.lens_v >= 0 && s.lens_v < 1);
+          cells.insert({int(std::floor(s.lens_u * (1 << a))), int(std::floor(s.lens_v * (1 << (k - a))))});
+        }
+        EXPECT_EQ(cells.size(), size_t(n)) << "pixel " << x << ", " << n << " samples, grid 2^" << a;
+      }
+    }
+  }
+  EXPECT_NE(SampleSequence(90, 0, 17).Get(0).lens_u, SampleSequence(90, 1, 17).Get(0).lens_u);
+  EXPECT_EQ(SampleSequence(90, 5, 17).Get(3).lens_v, SampleSequence(90, 5, 17).Get(3).lens_v);
+}
+
+// Each bit of a scrambled value depends only on the bits above it: the top 8 bits of 0 .. 255 (as fractions)
+// come out as a permutation of 0 .. 255.
+TEST(SampleSequence, OwenScrambleIsAPermutationOfDyadicIntervals) {
+  for (uint32_t seed : {0u, 1u, 0xdeadbeefu}) {
+    std::set<uint32_t> top;
+    for (uint32_t v = 0; v < 256; ++v) top.insert(OwenScramble(v << 24, seed) >> 24);
+    EXPECT_EQ(top.size(), 256u) << seed;
+  }
+}
+
+}  // namespace
+}  // namespace cinepath::preview
