@@ -472,6 +472,8 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
     SurfaceTrimReport trim_report;
     SurfaceTrimOptions trim = *options.trim;
     trim.min_spacing_m = std::max(trim.min_spacing_m, poisson_resolution_m);
+    // Poisson: settle the surface onto the points where they lie on a plane (step 4 of the trim).
+    if (method == SurfaceMethod::kPoisson && trim.settle_factor == 0) trim.settle_factor = 3.0;
     if (method == SurfaceMethod::kHeightField) {
       // The height field's vertices are the points themselves and its faces span only the hull: the
       // distance tests would cut the sparse, clumped areas of a sparse SfM cloud into islands (measured
