@@ -269,6 +269,7 @@ Json SurfaceTrimReport::ToJson() const {
     j["settle_moves_refused"] = settle_moves_refused;
     j["max_settle_move_m"] = RoundToDecimals(max_settle_move_m, 4);
   }
+  if (options.max_spacing_ratio > 0) j["spacings_capped"] = spacings_capped;
   j["faces_out"] = faces_out;
   j["median_spacing_m"] = RoundToDecimals(median_spacing_m, 4);
   j["median_point_spacing_m"] = RoundToDecimals(median_point_spacing_m, 4);
@@ -286,6 +287,7 @@ Json SurfaceTrimReport::ToJson() const {
   criteria["spike_min_m"] = options.spike_min_m;
   criteria["spike_passes"] = options.spike_passes;
   if (options.settle_factor > 0) criteria["settle_factor"] = options.settle_factor;
+  if (options.max_spacing_ratio > 0) criteria["max_spacing_ratio"] = options.max_spacing_ratio;
   j["criteria"] = std::move(criteria);
   return j;
 }
@@ -341,6 +343,16 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
       if (points.positions_m[i].allFinite()) finite.push_back(point_spacing[i]);
     }
     report.median_point_spacing_m = Median(finite);
+  }
+  // The spacing that sets a criterion is at most max_spacing_ratio × the median: where the points thin
+  // out to metres apart, a face that far from all of them has no point under it.
+  if (options.max_spacing_ratio > 0 && report.median_point_spacing_m > 0) {
+    const double cap_m = options.max_spacing_ratio * report.median_point_spacing_m;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (point_spacing[i] > cap_m || spacing[i] > std::max(cap_m, options.min_spacing_m)) ++report.spacings_capped;
+      point_spacing[i] = std::min(point_spacing[i], cap_m);
+      spacing[i] = std::min(spacing[i], std::max(cap_m, options.min_spacing_m));
+    }
   }
 
   // How far each vertex and each face centroid is from the data, in local spacings; each face's

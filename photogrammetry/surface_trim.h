@@ -70,6 +70,9 @@ struct SurfaceTrimOptions {
   double spike_min_m = 0.25;
   int spike_passes = 3;
   double settle_factor = 0;  // 0 = skip step 4 (the Poisson path of surface_pipeline.cc sets it)
+  // Every local spacing at most this × the points' median spacing (0 = no cap; the Poisson path sets it):
+  // in a thin outer ring the points are metres apart, and 3 such spacings kept faces 60 m from any point.
+  double max_spacing_ratio = 0;
 };
 
 struct SurfaceTrimReport {
@@ -91,6 +94,7 @@ struct SurfaceTrimReport {
   int64_t settle_vertices_moved = 0;     // step 4
   int64_t settle_moves_refused = 0;      // step 4: moves taken back (a face would turn)
   double max_settle_move_m = 0;          // the longest such move
+  int64_t spacings_capped = 0;           // points whose spacing max_spacing_ratio capped
   double median_spacing_m = 0;           // median local spacing over the data points
   double median_point_spacing_m = 0;     // the same, not floored by min_spacing_m (the points' own)
   SurfaceTrimOptions options;            // the criteria, as run

@@ -5,13 +5,13 @@
 // exact truth"):
 // - the run ends with exit 0 (bug 2026-11-27: SIGFPE inside CGAL's Poisson refinement, from points
 //   COLMAP left twice; surface_poisson.h, MergeCoincidentPoints);
-// - within 45 m of the orbits' target, where the two orbits (radius 32 and 50 m) see the scene densely:
-//   at least 95 % of the mesh's distinct vertex positions within 0.3 m of the true surface, and the 99th
-//   percentile within 0.6 m (rule 1);
-// - over the whole mesh, which reaches 90 m out onto the ground the orbits see only thinly and obliquely:
-//   at least 70 % within 0.3 m (measured 72.9 %). Rule 1 over the whole mesh (95 %, p99 0.6 m) and the
-//   trim's border fit staying within two point spacings (max_border_extension_m 55 m in the outer ring)
-//   are not met yet: printed, not asserted.
+// - at least 95 % of the mesh's distinct vertex positions within 0.3 m of the true surface, and the 99th
+//   percentile within 0.6 m (rule 1; measured 96.3 %, 0.484 m). The trim judges faces against at most
+//   4 median point spacings, so the mesh ends where the points thin out (about 50 m from the centre;
+//   the ~200 points scattered over the ground beyond carry no surface);
+// - the same within 45 m of the orbits' target (radius 32 and 50 m), where they see the scene densely.
+// The trim's border fit staying within two point spacings is not met yet (max_border_extension_m 6.9 m
+// against 1.2 m): printed, not asserted.
 //
 // Its own executable (it runs the real `cinepath` binary, ~45 s on the shared machine), label "mesh_truth".
 #include <gtest/gtest.h>
@@ -61,7 +61,8 @@ TEST_P(ObliqueTruth, MeshIsAsTrueAsItsPoints) {
               d.CountIn(0, 45), d.Quantile(0.5, 0, 45), d.Quantile(0.99, 0, 45), 100 * d.ShareWithin(0.3, 0, 45));
   EXPECT_GE(d.ShareWithin(0.3, 0, 45), 0.95);
   EXPECT_LE(d.Quantile(0.99, 0, 45), 0.6);
-  EXPECT_GE(d.ShareWithin(0.3), 0.70);
+  EXPECT_GE(d.ShareWithin(0.3), 0.95);
+  EXPECT_LE(d.Quantile(0.99), 0.6);
 
   // The trim's border fit: how far a border vertex moved out, against the points' own spacing.
   const cinepath::Json scene = cinepath::Json::parse(ReadText(out / "scene.json"));
