@@ -130,6 +130,48 @@ TEST(BundleAdjust, TheFocalLengthThePhotosMeasureIsKeptWhereTheGeometryResolvesI
   EXPECT_DOUBLE_EQ(forced.focal[0].after_px, 0.94 * 900);
 }
 
+// The rule's boundary, from the two figures scene.json reports. The same oblique views of relief (EXIF
+// prior 6 % low), with the thresholds put just above both measured figures and then just below one of
+// them: above both, the views cannot separate focal length from depth and the focal length is held at the
+// prior; below either one, the focal length the photos measure is kept. Which way the cameras look
+// plays no part beyond these two figures.
+TEST(BundleAdjust, TheFocalRuleDecidesFromDepthReliefAndViewSpreadAlone) {
+  testing::SyntheticOptions o;
+  o.terrain_relief_m = 12;
+  const auto scene = testing::MakeSyntheticScene(o);
+  std::map<uint32_t, Eigen::Vector3d> gps;
+  for (const auto& [id, im] : scene.model_enu.images) gps[id] = im.ProjectionCenter();
+  const std::map<uint32_t, double> rounded_exif = {{1, 0.94 * 900}};
+  const ColmapModel oblique = Tilted(o, scene.model_enu, 0.6, -0.6);
+
+  ColmapModel probe = oblique;
+  const BundleAdjustReport measured = BundleAdjustEnu(probe, gps, rounded_exif, BundleAdjustOptions());
+  const double relief = measured.depth_relief_ratio, spread_deg = measured.view_axis_spread_deg;
+  ASSERT_GT(relief, 0);
+  ASSERT_GT(spread_deg, 0);
+
+  BundleAdjustOptions above_both;
+  above_both.min_depth_relief_ratio = relief * 1.05;
+  above_both.min_view_axis_spread_deg = spread_deg + 0.5;
+  ColmapModel held_model = oblique;
+  const BundleAdjustReport held = BundleAdjustEnu(held_model, gps, rounded_exif, above_both);
+  EXPECT_FALSE(held.geometry_resolves_focal);
+  EXPECT_TRUE(held.focal[0].held_at_prior);
+  EXPECT_DOUBLE_EQ(held.focal[0].after_px, 0.94 * 900);
+
+  for (int which = 0; which < 2; ++which) {  // just below the spread threshold, then just below the relief one
+    BundleAdjustOptions below_one = above_both;
+    if (which == 0) below_one.min_view_axis_spread_deg = spread_deg - 0.5;
+    if (which == 1) below_one.min_depth_relief_ratio = relief * 0.95;
+    ColmapModel kept_model = oblique;
+    const BundleAdjustReport kept = BundleAdjustEnu(kept_model, gps, rounded_exif, below_one);
+    EXPECT_TRUE(kept.geometry_resolves_focal) << which;
+    EXPECT_TRUE(kept.focal[0].measured_by_images) << which;
+    EXPECT_FALSE(kept.focal[0].held_at_prior) << which;
+    EXPECT_NEAR(kept.focal[0].after_px, 900, 4.5) << which;
+  }
+}
+
 TEST(BundleAdjust, ControlPointsAloneHoldTheSceneWhereTheSurveySaysIt) {
   testing::SyntheticOptions o;
   o.pixel_noise_px = 0.3;
