@@ -352,6 +352,18 @@ SurfaceMethod GuardPoisson(SurfaceMethod method, SurfaceMethod requested, const 
   return SurfaceMethod::kHeightField;
 }
 
+// The 2.5D height field of the points at the preset's density; its report goes into `step`.
+TriangleMesh HeightFieldStep(const PointCloud& points, const QualityDefaults& defaults, Json* step) {
+  HeightFieldOptions height_field;
+  height_field.max_points = defaults.height_field_points;
+  HeightFieldReport surface_report;
+  const CurrentStep running("surface: height field (CGAL)");
+  TriangleMesh mesh = HeightFieldSurface(points, height_field, &surface_report);
+  (*step)["step"] = "height_field";
+  step->update(surface_report.ToJson());
+  return mesh;
+}
+
 // CGAL's Poisson reconstruction on the guarded points (PoissonInputProblem, MergeCoincidentPoints), and
 // where CGAL still fails (its surface mesher meets a point twice on a nearly flat nadir cloud; the solver
 // does not converge) once more at twice the spacing, a coarser surface. Nothing when both fail: `step`
@@ -425,13 +437,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
     Json step;
     method = GuardPoisson(method, options.method, filtered, &step);
     if (method == SurfaceMethod::kHeightField) {
-      HeightFieldOptions height_field;
-      height_field.max_points = defaults.height_field_points;
-      HeightFieldReport surface_report;
-      const CurrentStep running("surface: height field (CGAL)");
-      mesh = HeightFieldSurface(filtered, height_field, &surface_report);
-      step["step"] = "height_field";
-      step.update(surface_report.ToJson());
+      mesh = HeightFieldStep(filtered, defaults, &step);
     } else {
       PoissonOptions poisson;
       poisson.spacing_factor = defaults.poisson_spacing_factor;
@@ -450,14 +456,8 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
                          "; use --surface height-field");
       } else {
         method = SurfaceMethod::kHeightField;
-        HeightFieldOptions height_field;
-        height_field.max_points = defaults.height_field_points;
-        HeightFieldReport surface_report;
-        const CurrentStep running("surface: height field (CGAL)");
-        mesh = HeightFieldSurface(filtered, height_field, &surface_report);
-        step["step"] = "height_field";
         step["fallback_from"] = "poisson";
-        step.update(surface_report.ToJson());
+        mesh = HeightFieldStep(filtered, defaults, &step);
       }
     }
     step["method_requested"] = SurfaceMethodName(options.method);
