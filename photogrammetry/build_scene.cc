@@ -242,6 +242,10 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
       Tell(log.warning, "the surface step fell back from " + step["fallback_from"].get<std::string>() + " to " +
                             step["step"].get<std::string>() + ": " + step["fallback_reason"].get<std::string>());
     }
+    if (step.contains("coarser_after_failure")) {
+      Tell(log.warning, "the Poisson surface was made at twice the spacing (coarser) after CGAL failed at the first: " +
+                            step["coarser_after_failure"].get<std::string>());
+    }
   }
 
   // The texture from the photos, and scene.glb written again with it.

@@ -71,6 +71,36 @@ std::vector<Point> FinitePoints(const PointCloud& cloud) {
   return points;
 }
 
+// The guard of MergeCoincidentPoints on the solver's input: drops every point merged into an earlier one,
+// and reports how many and within what distance.
+void MergeCoincident(const PoissonOptions& options, std::vector<PointWithNormal>* points, std::vector<uint32_t>* source,
+                     PoissonReport* report) {
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(points->size());
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  double largest_coordinate = 0;
+  for (const auto& pn : *points) {
+    positions.emplace_back(pn.first.x(), pn.first.y(), pn.first.z());
+    lo = lo.cwiseMin(positions.back());
+    hi = hi.cwiseMax(positions.back());
+    largest_coordinate = std::max(largest_coordinate, positions.back().cwiseAbs().maxCoeff());
+  }
+  if (positions.empty()) return;
+  const double tolerance_m = options.coincident_distance_ratio * std::max((hi - lo).norm(), largest_coordinate);
+  report->coincident_distance_m = tolerance_m;
+  const std::vector<uint32_t> into = MergeCoincidentPoints(positions, tolerance_m);
+  size_t kept = 0;
+  for (size_t j = 0; j < points->size(); ++j) {
+    if (into[j] != j) continue;
+    (*points)[kept] = (*points)[j];
+    (*source)[kept] = (*source)[j];
+    ++kept;
+  }
+  report->coincident_points_merged = static_cast<int64_t>(points->size() - kept);
+  points->resize(kept);
+  source->resize(kept);
+}
+
 }  // namespace
 
 std::optional<std::string> PoissonInputProblem(const PointCloud& cloud) {
@@ -89,9 +119,31 @@ std::optional<std::string> PoissonInputProblem(const PointCloud& cloud) {
   return std::nullopt;
 }
 
+std::vector<uint32_t> MergeCoincidentPoints(const std::vector<Eigen::Vector3d>& positions_m, double tolerance_m) {
+  std::vector<uint32_t> into(positions_m.size());
+  std::iota(into.begin(), into.end(), 0u);
+  if (!(tolerance_m > 0)) return into;
+  const internal::PointSearch search(positions_m);
+  const double tolerance2 = tolerance_m * tolerance_m;
+  for (uint32_t i = 0; i < positions_m.size(); ++i) {
+    if (into[i] != i || !positions_m[i].allFinite()) continue;
+    // The neighbours within the tolerance: ask for more until the farthest returned is beyond it.
+    for (int k = 8;; k *= 4) {
+      const auto near = search.Nearest(positions_m[i], k);
+      for (const auto& [d2, j] : near) {
+        if (d2 <= tolerance2 && j > i && into[j] == j) into[j] = i;
+      }
+      if (near.size() < static_cast<size_t>(k) || near.back().first > tolerance2) break;
+    }
+  }
+  return into;
+}
+
 Json PoissonReport::ToJson() const {
   Json j;
   j["points"] = points;
+  j["coincident_points_merged"] = coincident_points_merged;
+  j["coincident_distance_m"] = coincident_distance_m;
   j["normals_estimated"] = normals_estimated;
   j["normals_flipped_toward_cameras"] = normals_flipped_toward_cameras;
   j["normals_oriented_up"] = normals_oriented_up;
@@ -116,9 +168,14 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     points.emplace_back(Point(p.x(), p.y(), p.z()), n);
     source.push_back(i);
   }
-  report.points = static_cast<int64_t>(points.size());
   if (const auto problem = PoissonInputProblem(cloud)) {
     throw InputError("poisson: " + *problem + ": CGAL's Poisson solver needs points that span a volume");
+  }
+  MergeCoincident(options, &points, &source, &report);
+  report.points = static_cast<int64_t>(points.size());
+  if (points.size() < 10) {
+    throw InputError("poisson: fewer than 10 distinct points (" + std::to_string(points.size()) +
+                     ") once coincident points are merged");
   }
   const int k = std::max(3, std::min<int>(options.normal_neighbours, static_cast<int>(points.size()) - 1));
 
@@ -189,9 +246,9 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     std::string what = e.message();
     while (!what.empty() && std::isspace(static_cast<unsigned char>(what.back()))) what.pop_back();
     // A nearly flat cloud seen from above gives an implicit function the surface mesher cannot sample
-    // (it meets the same point twice); the height field is the surface for such a scene.
-    throw RuntimeError("poisson: CGAL's surface mesher failed (" + what +
-                       "); a nearly flat, nadir scene needs --surface height-field");
+    // (it meets the same point twice); the height field is the surface for such a scene (the pipeline
+    // falls back to it, or names it).
+    throw RuntimeError("poisson: CGAL's surface mesher failed (" + what + ")");
   }
   report.faces_reconstructed = static_cast<int64_t>(sm.number_of_faces());
 

@@ -200,6 +200,51 @@ void FitBorderToData(TriangleMesh& mesh, const PointCloud& points, const interna
   }
 }
 
+// Step 4: each vertex with data points under it (its nearest point within settle_factor × that point's
+// spacing) goes along the normal of the plane of those points (within settle_factor × spacing, at
+// least 8) onto that plane, when they lie on one (RMS off it under a third of a spacing; not at a crease,
+// where two surfaces' points meet). A vertex without points under it stays. Poisson's implicit surface
+// is a smooth average of the points: where they are thin (an orbit's outer ring, spacing of metres), it
+// bows metres away from them between the points. Moves are made together, with step 2c's guard against
+// faces turning.
+void SettleOntoData(TriangleMesh& mesh, const PointCloud& points, const internal::PointSearch& search,
+                    const std::vector<double>& point_spacing, const SurfaceTrimOptions& options,
+                    SurfaceTrimReport* report) {
+  constexpr int kSettleNeighbours = 24;
+  const size_t n = mesh.num_vertices();
+  std::vector<Eigen::Vector3d> target = mesh.vertices_m;
+  std::vector<char> moved(n, 0);
+  ForEachIndex(n, [&](size_t i) {
+    const Eigen::Vector3d& p = mesh.vertices_m[i];
+    const auto near = search.Nearest(p, kSettleNeighbours);
+    const double s = point_spacing[near.front().second];
+    const double radius_m = options.settle_factor * s;
+    if (!(s > 0) || std::sqrt(near.front().first) > radius_m) return;
+    std::vector<Eigen::Vector3d> around;
+    for (const auto& hit : near) {
+      if (hit.first <= radius_m * radius_m) around.push_back(points.positions_m[hit.second]);
+    }
+    if (around.size() < 8) return;
+    const internal::FittedPlane plane = internal::FitPlane(around);
+    if (!plane.valid) return;
+    double off_plane_m2 = 0;
+    for (const auto& q : around) off_plane_m2 += std::pow((q - plane.centroid).dot(plane.normal), 2);
+    if (!(off_plane_m2 < around.size() * std::pow(s / 3, 2))) return;
+    const double h = (p - plane.centroid).dot(plane.normal);
+    if (h == 0) return;
+    target[i] = p - h * plane.normal;
+    moved[i] = 1;
+  });
+  std::vector<int> halvings;
+  report->settle_moves_refused += internal::KeepFacesFromTurning(mesh, target, moved, halvings);
+  for (size_t i = 0; i < n; ++i) {
+    if (!moved[i]) continue;
+    ++report->settle_vertices_moved;
+    report->max_settle_move_m = std::max(report->max_settle_move_m, (target[i] - mesh.vertices_m[i]).norm());
+    mesh.vertices_m[i] = target[i];
+  }
+}
+
 }  // namespace
 
 Json SurfaceTrimReport::ToJson() const {
@@ -219,6 +264,12 @@ Json SurfaceTrimReport::ToJson() const {
   j["max_border_extension_m"] = RoundToDecimals(max_border_extension_m, 4);
   j["spike_vertices_flattened"] = spike_vertices_flattened;
   j["max_spike_height_m"] = RoundToDecimals(max_spike_height_m, 4);
+  if (options.settle_factor > 0) {  // (absent where step 4 does not run: the height field's report unchanged)
+    j["settle_vertices_moved"] = settle_vertices_moved;
+    j["settle_moves_refused"] = settle_moves_refused;
+    j["max_settle_move_m"] = RoundToDecimals(max_settle_move_m, 4);
+  }
+  if (options.max_spacing_ratio > 0) j["spacings_capped"] = spacings_capped;
   j["faces_out"] = faces_out;
   j["median_spacing_m"] = RoundToDecimals(median_spacing_m, 4);
   j["median_point_spacing_m"] = RoundToDecimals(median_point_spacing_m, 4);
@@ -235,6 +286,8 @@ Json SurfaceTrimReport::ToJson() const {
   criteria["spike_factor"] = options.spike_factor;
   criteria["spike_min_m"] = options.spike_min_m;
   criteria["spike_passes"] = options.spike_passes;
+  if (options.settle_factor > 0) criteria["settle_factor"] = options.settle_factor;
+  if (options.max_spacing_ratio > 0) criteria["max_spacing_ratio"] = options.max_spacing_ratio;
   j["criteria"] = std::move(criteria);
   return j;
 }
@@ -290,6 +343,16 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
       if (points.positions_m[i].allFinite()) finite.push_back(point_spacing[i]);
     }
     report.median_point_spacing_m = Median(finite);
+  }
+  // The spacing that sets a criterion is at most max_spacing_ratio × the median: where the points thin
+  // out to metres apart, a face that far from all of them has no point under it.
+  if (options.max_spacing_ratio > 0 && report.median_point_spacing_m > 0) {
+    const double cap_m = options.max_spacing_ratio * report.median_point_spacing_m;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (point_spacing[i] > cap_m || spacing[i] > std::max(cap_m, options.min_spacing_m)) ++report.spacings_capped;
+      point_spacing[i] = std::min(point_spacing[i], cap_m);
+      spacing[i] = std::min(spacing[i], std::max(cap_m, options.min_spacing_m));
+    }
   }
 
   // How far each vertex and each face centroid is from the data, in local spacings; each face's
@@ -507,6 +570,10 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
       report.spike_vertices_flattened += flattened;
       out.vertices_m = std::move(moved);
     }
+  }
+  // 4. Onto the points.
+  if (options.settle_factor > 0 && search.size() > 0 && !out.faces.empty()) {
+    SettleOntoData(out, points, search, point_spacing, options, &report);
   }
   report.faces_out = static_cast<int64_t>(out.num_faces());
   if (report_out) *report_out = report;

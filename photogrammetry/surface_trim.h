@@ -39,6 +39,12 @@
 // 3. Spikes: a vertex whose distance to the least-squares plane of its one-ring neighbours exceeds
 //    max(spike_min_m, spike_factor × the mean length of its edges) is moved onto that plane (smoothed,
 //    not cut); up to spike_passes passes. The report keeps the largest such height found.
+// 4. Onto the points: a vertex with data points under it (its nearest point within settle_factor × that
+//    point's own spacing) goes along the normal of the plane of the points within that radius (8 at
+//    least) onto it, when they lie on one (RMS under a third of a spacing: not at a crease). Where the
+//    points are thin (an orbit's outer ring) Poisson's smooth implicit surface bows away from them between
+//    the points by metres; the points themselves are within centimetres. A move that would turn a face by
+//    more than 60° is halved or not made, as in 2c.
 #pragma once
 
 #include <cstdint>
@@ -63,6 +69,10 @@ struct SurfaceTrimOptions {
   double spike_factor = 1.0;          // 0 = skip step 3
   double spike_min_m = 0.25;
   int spike_passes = 3;
+  double settle_factor = 0;  // 0 = skip step 4 (the Poisson path of surface_pipeline.cc sets it)
+  // Every local spacing at most this × the points' median spacing (0 = no cap; the Poisson path sets it):
+  // in a thin outer ring the points are metres apart, and 3 such spacings kept faces 60 m from any point.
+  double max_spacing_ratio = 0;
 };
 
 struct SurfaceTrimReport {
@@ -81,6 +91,10 @@ struct SurfaceTrimReport {
   double max_border_extension_m = 0;     // the longest such move
   int64_t spike_vertices_flattened = 0;  // step 3 (a vertex flattened in two passes counts twice)
   double max_spike_height_m = 0;         // largest distance to the ring plane among flattened vertices
+  int64_t settle_vertices_moved = 0;     // step 4
+  int64_t settle_moves_refused = 0;      // step 4: moves taken back (a face would turn)
+  double max_settle_move_m = 0;          // the longest such move
+  int64_t spacings_capped = 0;           // points whose spacing max_spacing_ratio capped
   double median_spacing_m = 0;           // median local spacing over the data points
   double median_point_spacing_m = 0;     // the same, not floored by min_spacing_m (the points' own)
   SurfaceTrimOptions options;            // the criteria, as run

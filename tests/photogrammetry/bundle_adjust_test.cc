@@ -92,20 +92,30 @@ TEST(BundleAdjust, ObliqueViewsOfReliefAreRecognizedAsResolvingTheFocalLength) {
   ASSERT_TRUE(r.focal[0].images_sigma_ratio);
 }
 
+// A survey of 12 m relief with exact GPS at the camera centres and an EXIF prior 6 % below the true
+// 900 px (a 35 mm equivalent rounded by the camera).
+struct ReliefSurvey {
+  testing::SyntheticOptions o;
+  testing::SyntheticScene scene;
+  std::map<uint32_t, Eigen::Vector3d> gps;
+  std::map<uint32_t, double> rounded_exif = {{1, 0.94 * 900}};
+  ColmapModel Oblique() const { return Tilted(o, scene.model_enu, 0.6, -0.6); }  // every camera tilted 34 deg
+  ReliefSurvey() {
+    o.terrain_relief_m = 12;
+    scene = testing::MakeSyntheticScene(o);
+    for (const auto& [id, im] : scene.model_enu.images) gps[id] = im.ProjectionCenter();
+  }
+};
+
 // Both sides of the focal-length rule, with an EXIF prior 6 % below the true 900 px (a 35 mm equivalent
 // rounded by the camera). Oblique views of relief measure the focal length: it is kept, the prior only a
 // weak pull. The flat nadir survey cannot: the focal length is held at the prior (the ambiguity of a
 // flat scene seen from above).
 TEST(BundleAdjust, TheFocalLengthThePhotosMeasureIsKeptWhereTheGeometryResolvesIt) {
-  testing::SyntheticOptions o;
-  o.terrain_relief_m = 12;
-  const auto scene = testing::MakeSyntheticScene(o);
-  std::map<uint32_t, Eigen::Vector3d> gps;
-  for (const auto& [id, im] : scene.model_enu.images) gps[id] = im.ProjectionCenter();
-  const std::map<uint32_t, double> rounded_exif = {{1, 0.94 * 900}};
+  const ReliefSurvey survey;
 
-  ColmapModel oblique = Tilted(o, scene.model_enu, 0.6, -0.6);
-  const BundleAdjustReport measured = BundleAdjustEnu(oblique, gps, rounded_exif, BundleAdjustOptions());
+  ColmapModel oblique = survey.Oblique();
+  const BundleAdjustReport measured = BundleAdjustEnu(oblique, survey.gps, survey.rounded_exif, BundleAdjustOptions());
   EXPECT_TRUE(measured.geometry_resolves_focal);
   EXPECT_GT(measured.view_axis_spread_deg, 20.0);
   EXPECT_TRUE(measured.focal[0].measured_by_images);
@@ -116,7 +126,7 @@ TEST(BundleAdjust, TheFocalLengthThePhotosMeasureIsKeptWhereTheGeometryResolvesI
   testing::SyntheticOptions flat;
   const auto nadir_scene = testing::MakeSyntheticScene(flat);
   ColmapModel nadir = nadir_scene.model_enu;
-  const BundleAdjustReport held = BundleAdjustEnu(nadir, gps, rounded_exif, BundleAdjustOptions());
+  const BundleAdjustReport held = BundleAdjustEnu(nadir, survey.gps, survey.rounded_exif, BundleAdjustOptions());
   EXPECT_FALSE(held.geometry_resolves_focal);
   EXPECT_FALSE(held.focal[0].measured_by_images);
   EXPECT_TRUE(held.focal[0].held_at_prior);
@@ -125,9 +135,46 @@ TEST(BundleAdjust, TheFocalLengthThePhotosMeasureIsKeptWhereTheGeometryResolvesI
   // Without the rule (the behaviour before it) the oblique views were held at the rounded prior too.
   BundleAdjustOptions old_rule;
   old_rule.keep_measured_focal = false;
-  ColmapModel oblique_held = Tilted(o, scene.model_enu, 0.6, -0.6);
-  const BundleAdjustReport forced = BundleAdjustEnu(oblique_held, gps, rounded_exif, old_rule);
+  ColmapModel oblique_held = survey.Oblique();
+  const BundleAdjustReport forced = BundleAdjustEnu(oblique_held, survey.gps, survey.rounded_exif, old_rule);
   EXPECT_DOUBLE_EQ(forced.focal[0].after_px, 0.94 * 900);
+}
+
+// The rule's boundary, from the two figures scene.json reports. The same oblique views of relief (EXIF
+// prior 6 % low), with the thresholds put just above both measured figures and then just below one of
+// them: above both, the views cannot separate focal length from depth and the focal length is held at the
+// prior; below either one, the focal length the photos measure is kept. Which way the cameras look
+// plays no part beyond these two figures.
+TEST(BundleAdjust, TheFocalRuleDecidesFromDepthReliefAndViewSpreadAlone) {
+  const ReliefSurvey survey;
+  const ColmapModel oblique = survey.Oblique();
+
+  ColmapModel probe = oblique;
+  const BundleAdjustReport measured = BundleAdjustEnu(probe, survey.gps, survey.rounded_exif, BundleAdjustOptions());
+  const double relief = measured.depth_relief_ratio, spread_deg = measured.view_axis_spread_deg;
+  ASSERT_GT(relief, 0);
+  ASSERT_GT(spread_deg, 0);
+
+  BundleAdjustOptions above_both;
+  above_both.min_depth_relief_ratio = relief * 1.05;
+  above_both.min_view_axis_spread_deg = spread_deg + 0.5;
+  ColmapModel held_model = oblique;
+  const BundleAdjustReport held = BundleAdjustEnu(held_model, survey.gps, survey.rounded_exif, above_both);
+  EXPECT_FALSE(held.geometry_resolves_focal);
+  EXPECT_TRUE(held.focal[0].held_at_prior);
+  EXPECT_DOUBLE_EQ(held.focal[0].after_px, 0.94 * 900);
+
+  for (int which = 0; which < 2; ++which) {  // just below the spread threshold, then just below the relief one
+    BundleAdjustOptions below_one = above_both;
+    if (which == 0) below_one.min_view_axis_spread_deg = spread_deg - 0.5;
+    if (which == 1) below_one.min_depth_relief_ratio = relief * 0.95;
+    ColmapModel kept_model = oblique;
+    const BundleAdjustReport kept = BundleAdjustEnu(kept_model, survey.gps, survey.rounded_exif, below_one);
+    EXPECT_TRUE(kept.geometry_resolves_focal) << which;
+    EXPECT_TRUE(kept.focal[0].measured_by_images) << which;
+    EXPECT_FALSE(kept.focal[0].held_at_prior) << which;
+    EXPECT_NEAR(kept.focal[0].after_px, 900, 4.5) << which;
+  }
 }
 
 TEST(BundleAdjust, ControlPointsAloneHoldTheSceneWhereTheSurveySaysIt) {

@@ -1,6 +1,5 @@
 // How far a cinepath mesh stands from the exact surface of a synthetic scene (tests/data/photogrammetry/
-// oblique/: truth.ply, the rendered geometry in local ENU metres about the scene's origin, which
-// `cinepath mesh --refs refs_gps.txt` also uses, so mesh and truth share one frame).
+// oblique/: truth.ply, the rendered geometry in local ENU metres about truth.json's origin).
 //
 // Each distinct vertex position of the mesh (texture-seam copies counted once) is measured to the
 // nearest point of the truth's triangles (an exact closest-point query); the distribution is reported,
@@ -12,8 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <vector>
 
+#include "core/geodesy.h"
+#include "core/json.h"
 #include "photogrammetry/mesh_distance.h"
 #include "photogrammetry/ply_reader.h"
 #include "scene/glb_reader.h"
@@ -51,17 +53,32 @@ struct TruthDistances {
   }
 };
 
-inline TruthDistances MeasureAgainstTruth(const std::filesystem::path& glb, const std::filesystem::path& truth_ply,
-                                          const Eigen::Vector2d& centre_en_m) {
-  const photogrammetry::TriangleMesh truth = photogrammetry::ReadPly(truth_ply).mesh;
+// The scene's ENU frame (scene.json's origin, which `cinepath mesh` takes as the references' mean unless
+// --origin says otherwise) is not the truth's (truth.json's origin): each vertex goes through WGS84
+// from one to the other (exact, GeographicLib).
+inline TruthDistances MeasureAgainstTruth(const std::filesystem::path& scene_dir,
+                                          const std::filesystem::path& truth_dir) {
+  const Json truth_json = Json::parse(std::ifstream(truth_dir / "truth.json"));
+  const Json scene_json = Json::parse(std::ifstream(scene_dir / "scene.json"));
+  const Json& to = truth_json["origin"];
+  const Json& so = scene_json["origin"];
+  const EnuFrame truth_frame(
+      Geodetic{to["latitude_deg"].get<double>(), to["longitude_deg"].get<double>(), to["height_m"].get<double>()});
+  const EnuFrame scene_frame(
+      Geodetic{so["lat_deg"].get<double>(), so["lon_deg"].get<double>(), so["height_m"].get<double>()});
+  const Json& target = truth_json["cameras"][0]["look_at_enu_m"];
+  const Eigen::Vector2d centre_en_m(target[0].get<double>(), target[1].get<double>());
+
+  const photogrammetry::TriangleMesh truth = photogrammetry::ReadPly(truth_dir / "truth.ply").mesh;
   const photogrammetry::MeshDistanceIndex index(truth, "truth");
-  std::vector<Eigen::Vector3d> positions = scene::ReadGlbFile(glb).positions_enu_m;
+  std::vector<Eigen::Vector3d> positions = scene::ReadGlbFile(scene_dir / "scene.glb").positions_enu_m;
   std::sort(positions.begin(), positions.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
     return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
   });
   positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
   TruthDistances out;
-  for (const auto& p : positions) {
+  for (const auto& scene_p : positions) {
+    const Eigen::Vector3d p = truth_frame.EnuFromGeodetic(scene_frame.GeodeticFromEnu(scene_p));
     out.distance_m.push_back(index.DistanceM(p));
     out.radius_m.push_back((p.head<2>() - centre_en_m).norm());
   }

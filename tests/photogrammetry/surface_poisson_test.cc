@@ -1,6 +1,7 @@
 #include "photogrammetry/surface_poisson.h"
 
 #include <cmath>
+#include <csignal>
 #include <random>
 #include <vector>
 
@@ -188,6 +189,63 @@ TEST(PoissonSurface, APlaneOffByOneMillimetreIsAVolume) {
   cloud.positions_m[17].z() += 1e-3;
   EXPECT_FALSE(PoissonInputProblem(cloud).has_value());
   EXPECT_FALSE(PoissonInputProblem(SphereCloud(100, 2.0, Eigen::Vector3d(1, 2, 3))).has_value());
+}
+
+// Bug 2026-11-27: `cinepath mesh` died of SIGFPE inside CGAL's Poisson refinement on the oblique house
+// (COLMAP left 191 points twice, and some 4e-16 m apart), and on facade photos. Two points a few ulps
+// apart make cells whose rounded circumcentre falls outside their own sphere; CGAL's refinement inserts it
+// anyway, corrupts its triangulation and divides by zero in an exact circumcentre (surface_poisson.h,
+// MergeCoincidentPoints). A small noisy ground of 100 points (a hash, no random generator: the same
+// doubles everywhere) with one point repeated 1 ulp away, in six variants: CGAL 5.5 divides by zero on
+// variants 1 and 5.
+PointCloud GroundWithANearDuplicate(int variant) {
+  auto hash = [](double x) {
+    const double h = std::sin(x) * 43758.5453;
+    return h - std::floor(h);
+  };
+  PointCloud cloud;
+  for (int i = 0; i < 100; ++i) {
+    const double x = 20 * hash(i * 12.9898 + variant) - 10, y = 20 * hash(i * 78.233 + variant) - 10;
+    cloud.positions_m.emplace_back(x, y, -28 + 0.02 * (hash(i * 39.346) - 0.5));
+    cloud.normals.emplace_back(0, 0, 1);
+  }
+  const Eigen::Vector3d p = cloud.positions_m[37];
+  cloud.positions_m.emplace_back(std::nextafter(p.x(), INFINITY), p.y(), p.z());
+  cloud.normals.emplace_back(0, 0, 1);
+  return cloud;
+}
+
+TEST(PoissonSurfaceDeathTest, PointsOneUlpApartMadeCgalDivideByZero) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  PoissonOptions unguarded;
+  unguarded.coincident_distance_ratio = 0;
+  auto run = [&] {
+    for (int variant = 0; variant < 6; ++variant) PoissonSurface(GroundWithANearDuplicate(variant), unguarded, nullptr);
+  };
+#if defined(__SANITIZE_ADDRESS__)
+  EXPECT_DEATH(run(), "FPE");  // AddressSanitizer reports the signal itself
+#else
+  EXPECT_EXIT(run(), ::testing::KilledBySignal(SIGFPE), "");  // GMP's division by zero raises SIGFPE
+#endif
+}
+
+TEST(PoissonSurface, PointsOneUlpApartAreMergedAndTheSolverRuns) {
+  for (int variant = 0; variant < 6; ++variant) {
+    PoissonReport report;
+    const TriangleMesh mesh = PoissonSurface(GroundWithANearDuplicate(variant), PoissonOptions{}, &report);
+    EXPECT_GT(mesh.num_faces(), 0u) << variant;
+    EXPECT_EQ(report.coincident_points_merged, 1) << variant;
+    EXPECT_EQ(report.points, 100) << variant;
+    EXPECT_GT(report.coincident_distance_m, 0) << variant;
+    EXPECT_LT(report.coincident_distance_m, 1e-3) << variant;
+  }
+}
+
+TEST(MergeCoincidentPoints, EachPointWithinTheToleranceOfAnEarlierOneGoesToIt) {
+  const std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {1, 0, 0}, {0, 0, 0}, {1e-7, 0, 0}, {1, 1e-5, 0}, {5, 5, 5}};
+  const std::vector<uint32_t> into = MergeCoincidentPoints(p, 1e-6);
+  EXPECT_EQ(into, (std::vector<uint32_t>{0, 1, 0, 0, 4, 5}));
+  EXPECT_EQ(MergeCoincidentPoints(p, 0), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
 }
 
 }  // namespace

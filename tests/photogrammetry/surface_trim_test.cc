@@ -286,6 +286,50 @@ TEST(TrimSurfaceToData, StretchedEarsAndStraysGoInABoundedNumberOfPasses) {
   EXPECT_EQ(report.border_ears_cut, 0);
 }
 
+// Step 4: a surface bowed up to 1 m between points that lie on a plane (a sparse ground, 2 m apart) goes
+// onto their plane; at a crease (a wall standing on the ground) the points lie on no one plane and the
+// vertices there stay.
+TEST(TrimSurfaceToData, SettlesABowedSurfaceOntoThePointsPlaneButNotAtACrease) {
+  PointCloud points;
+  for (int i = 0; i <= 20; ++i) {
+    for (int j = 0; j <= 20; ++j) points.positions_m.emplace_back(2.0 * i, 2.0 * j, 0.1 * i);  // a 5.7 % slope
+  }
+  for (int j = 0; j <= 20; ++j) {
+    for (int k = 1; k <= 5; ++k) points.positions_m.emplace_back(40.0, 2.0 * j, 4.0 + 2.0 * k);  // the wall
+  }
+  TriangleMesh mesh;
+  const int n = 41;  // vertices every metre over the ground, bowed up by 1 m in the middle
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double x = i, y = j;
+      mesh.vertices_m.emplace_back(x, y, 0.05 * x + std::sin(M_PI * x / 40) * std::sin(M_PI * y / 40));
+    }
+  }
+  for (int i = 0; i + 1 < n; ++i) {
+    for (int j = 0; j + 1 < n; ++j) {
+      const uint32_t a = i * n + j, b = a + n;
+      mesh.faces.push_back({a, b, b + 1});
+      mesh.faces.push_back({a, b + 1, a + 1});
+    }
+  }
+  SurfaceTrimOptions options;
+  options.far_factor = options.border_factor = options.border_edge_factor = options.ear_edge_factor = 0;
+  options.border_pull_factor = options.spike_factor = 0;
+  options.settle_factor = 3;
+  SurfaceTrimReport report;
+  const TriangleMesh out = TrimSurfaceToData(mesh, points, options, &report);
+  ASSERT_EQ(out.num_faces(), mesh.num_faces());
+  EXPECT_GT(report.settle_vertices_moved, 1000);
+  EXPECT_NEAR(report.max_settle_move_m, 1.0, 0.05);
+  for (const auto& v : out.vertices_m) {
+    if (v.x() > 33) continue;  // within 3 spacings of the crease: the wall's points join the fit there
+    EXPECT_NEAR(v.z(), 0.05 * v.x(), 1e-6) << v.transpose();
+  }
+  // Beside the wall the vertices kept their bow (a vertex 2 m from it, in the middle: 0.1 m of bow left).
+  const Eigen::Vector3d& beside = out.vertices_m[38 * n + 20];
+  EXPECT_GT(beside.z() - 0.05 * beside.x(), 0.1);
+}
+
 TEST(FilterPoints, KeepsAnOutlierFreeTerrainAndSaysWhyItDropsPoints) {
   PointCloud cloud = testing::TerrainCloud(40, 40, 1.0);
   PointFilterReport report;
