@@ -251,6 +251,8 @@ class PlanOptimizer {
     return term == "limits" || term == "keep_out" || term == "separation" || term == "out_of_shot";
   }
   void AddTeamTerms(size_t k, double max_deviation_m);
+  void AddClearanceTerm(const SampleBase& base, const Eigen::Vector3d& position, int shot, double max_deviation_m);
+  void AddAdherenceTerms();
 
   const OptimizeInput& input_;
   const Trajectory& plan_;
@@ -448,24 +450,7 @@ void PlanOptimizer::AddTerms() {
       AddSampleTerm("keep_out", keep_out, base, 1);
     }
     if (!input_.others.empty()) AddTeamTerms(k, max_dev);
-    if (scene_->surface && scene_->surface->num_faces() > 0) {
-      const auto closest = scene_->surface->Closest(sample.position_enu_m);
-      if (closest && closest->distance_m < options_.clearance_margin_m + max_dev + 0.5) {
-        auto* clearance = new ClearanceCost(base, scene_->surface.get(),
-                                            options_.clearance_margin_m * (1 + options_.limit_margin), w.clearance);
-        const int first = base.knots.first_knot;
-        Constraint c;
-        c.shot = shot;
-        c.update = [this, clearance, first](bool reset) {
-          return reset ? clearance->ResetShift() : clearance->UpdateShifts(KnotsFrom(first).data());
-        };
-        c.binding = [clearance](std::set<std::string>* names) {
-          if (clearance->shift_m() > 0) names->insert("mesh_clearance");
-        };
-        constraints_.push_back(std::move(c));
-        AddBlock("clearance", clearance, first);
-      }
-    }
+    AddClearanceTerm(base, sample.position_enu_m, shot, max_dev);
   }
 
   // Smoothness per spline segment, adherence per knot.
@@ -478,6 +463,47 @@ void PlanOptimizer::AddTerms() {
                g.first_knot + seg);
     }
   }
+  AddAdherenceTerms();
+
+  // Fixed channels: held by a shot, or touched by no term.
+  for (size_t i = 0; i < knots_.size(); ++i) {
+    std::vector<int> fixed;
+    for (int c = 0; c < kNumChannels; ++c) {
+      if (held_[i][c] || !touched_[i][c]) fixed.push_back(c);
+    }
+    if (static_cast<int>(fixed.size()) == kNumChannels) {
+      problem_.SetParameterBlockConstant(knots_[i].data());
+    } else if (!fixed.empty()) {
+      problem_.SetManifold(knots_[i].data(), new ceres::SubsetManifold(kNumChannels, fixed));
+    }
+  }
+}
+
+// clearance: a sample within reach of the mesh (its margin plus the deviation allowed) keeps the margin.
+void PlanOptimizer::AddClearanceTerm(const SampleBase& base, const Eigen::Vector3d& position, int shot,
+                                     double max_deviation_m) {
+  if (!scene_->surface || scene_->surface->num_faces() == 0) return;
+  const auto closest = scene_->surface->Closest(position);
+  if (!closest || closest->distance_m >= options_.clearance_margin_m + max_deviation_m + 0.5) return;
+  auto* clearance =
+      new ClearanceCost(base, scene_->surface.get(), options_.clearance_margin_m * (1 + options_.limit_margin),
+                        options_.weights.clearance);
+  const int first = base.knots.first_knot;
+  Constraint c;
+  c.shot = shot;
+  c.update = [this, clearance, first](bool reset) {
+    return reset ? clearance->ResetShift() : clearance->UpdateShifts(KnotsFrom(first).data());
+  };
+  c.binding = [clearance](std::set<std::string>* names) {
+    if (clearance->shift_m() > 0) names->insert("mesh_clearance");
+  };
+  constraints_.push_back(std::move(c));
+  AddBlock("clearance", clearance, first);
+}
+
+// adherence per knot, with what is left of the deviation allowed at every sample the knot moves.
+void PlanOptimizer::AddAdherenceTerms() {
+  const CostWeights& w = options_.weights;
   std::vector<double> knot_deviation(knots_.size(), options_.max_deviation_m);
   std::vector<bool> seen(knots_.size(), false);
   std::vector<int> knot_shot(knots_.size(), -1);  // the shot of the last sample that moves with the knot
@@ -511,19 +537,6 @@ void PlanOptimizer::AddTerms() {
     terms_["adherence"].push_back(problem_.AddResidualBlock(
         new ceres::AutoDiffCostFunction<AdherenceCost, AdherenceCost::kNumResiduals, kNumChannels>(f), nullptr,
         knots_[i].data()));
-  }
-
-  // Fixed channels: held by a shot, or touched by no term.
-  for (size_t i = 0; i < knots_.size(); ++i) {
-    std::vector<int> fixed;
-    for (int c = 0; c < kNumChannels; ++c) {
-      if (held_[i][c] || !touched_[i][c]) fixed.push_back(c);
-    }
-    if (static_cast<int>(fixed.size()) == kNumChannels) {
-      problem_.SetParameterBlockConstant(knots_[i].data());
-    } else if (!fixed.empty()) {
-      problem_.SetManifold(knots_[i].data(), new ceres::SubsetManifold(kNumChannels, fixed));
-    }
   }
 }
 
