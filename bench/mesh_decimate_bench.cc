@@ -553,7 +553,8 @@ int main(int argc, char** argv) {
 
   if (presets) {
     Json table = Json::array();
-    for (pg::Quality quality : {pg::Quality::kDraft, pg::Quality::kStandard, pg::Quality::kFinal}) {
+    for (cinepath::Quality quality :
+         {cinepath::Quality::kDraft, cinepath::Quality::kStandard, cinepath::Quality::kFinal}) {
       pg::SurfacePipelineOptions options;
       options.quality = quality;
       start = std::chrono::steady_clock::now();
@@ -561,9 +562,9 @@ int main(int argc, char** argv) {
       const pg::SurfacePipelineResult r = pg::BuildSurfaceFromMesh(input, nullptr, options);
       const double s = Seconds(start);
       const double cpu = CpuSeconds() - cpu0;
-      std::fprintf(stderr, "preset %-8s %8.2f s  %9zu faces  hausdorff %.4f m\n", pg::QualityName(quality), s,
+      std::fprintf(stderr, "preset %-8s %8.2f s  %9zu faces  hausdorff %.4f m\n", cinepath::QualityName(quality), s,
                    r.mesh.num_faces(), r.report["output"]["hausdorff_m"].get<double>());
-      table.push_back({{"quality", pg::QualityName(quality)},
+      table.push_back({{"quality", cinepath::QualityName(quality)},
                        {"seconds", s},
                        {"cpu_seconds", cpu},
                        {"faces_out", r.mesh.num_faces()},

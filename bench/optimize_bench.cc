@@ -36,9 +36,8 @@ int main(int argc, char** argv) {
       "| quality | mesh | wall (s) | faces indexed | objective | stages kept | alpha | raw broke | worst still broken "
       "| cost before | cost after | feasible after | min clearance after (m) | iterations |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const auto quality : {optimizer::OptimizeQuality::kDraft, optimizer::OptimizeQuality::kStandard,
-                             optimizer::OptimizeQuality::kFinal}) {
-    if (!only_quality.empty() && only_quality != optimizer::OptimizeQualityName(quality)) continue;
+  for (const auto quality : {Quality::kDraft, Quality::kStandard, Quality::kFinal}) {
+    if (!only_quality.empty() && only_quality != QualityName(quality)) continue;
     for (const bool with_mesh : {false, true}) {
       if (!only_mesh.empty() && only_mesh != (with_mesh ? "terrain" : "none")) continue;
       optimizer::OptimizeInput in;
@@ -68,7 +67,7 @@ int main(int argc, char** argv) {
         kept += std::string(kept.empty() ? "" : " ") + (stage["kept"].get<bool>() ? "y" : "n");
       }
       std::printf("| %s | %s | %.3f | %s | %.6g | %s | %.4g | %s | %s | %.4g | %.4g | %s | %s | %d |\n",
-                  optimizer::OptimizeQualityName(quality), with_mesh ? "1 M faces" : "none", s,
+                  QualityName(quality), with_mesh ? "1 M faces" : "none", s,
                   with_mesh ? std::to_string(rep["clearance"]["faces_indexed"].get<size_t>()).c_str() : "-",
                   rep["objective"].get<double>(), kept.c_str(), rep["guard"]["alpha"].get<double>(), raw_broke.c_str(),
                   worst.c_str(), rep["total"]["before"].get<double>(), rep["total"]["after"].get<double>(),

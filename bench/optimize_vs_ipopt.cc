@@ -136,8 +136,7 @@ int main(int argc, char** argv) {
       "|---|---|---|---|---|---|---|\n");
   for (const bool with_mesh : {false, true}) {
     for (const bool ipopt : {false, true}) {
-      optimizer::OptimizeOptions options =
-          optimizer::OptimizeOptions::ForQuality(optimizer::ParseOptimizeQuality(quality));
+      optimizer::OptimizeOptions options = optimizer::OptimizeOptions::ForQuality(ParseQuality(quality));
       const int max_iterations = options.max_iterations;
       if (ipopt) {
         options.external_solver = [max_iterations](ceres::Problem* p, const std::vector<double*>& b,

@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
   std::printf(
       "| quality | one drone (CPU s) | team (CPU s) | team / one | separation after | in_shot after | feasible flights "
       "|\n|---|---|---|---|---|---|---|\n");
-  for (const auto quality : {optimizer::OptimizeQuality::kDraft, optimizer::OptimizeQuality::kStandard}) {
+  for (const auto quality : {Quality::kDraft, Quality::kStandard}) {
     const auto options = optimizer::OptimizeOptions::ForQuality(quality);
     optimizer::OptimizeInput one;
     one.plan = team.flights[0].plan;
@@ -90,9 +90,9 @@ int main(int argc, char** argv) {
     const double team_s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     int feasible = 0;
     for (const auto& f : r.plan.flights) feasible += f.plan.feasibility.feasible();
-    std::printf("| %s | %.2f | %.2f | %.1f | %zu | %zu | %d / %d |\n", optimizer::OptimizeQualityName(quality), one_s,
-                team_s, team_s / one_s, Count(r.plan.team.conflicts, "separation"),
-                Count(r.plan.team.conflicts, "in_shot"), feasible, drones);
+    std::printf("| %s | %.2f | %.2f | %.1f | %zu | %zu | %d / %d |\n", QualityName(quality), one_s, team_s,
+                team_s / one_s, Count(r.plan.team.conflicts, "separation"), Count(r.plan.team.conflicts, "in_shot"),
+                feasible, drones);
   }
   return 0;
 }

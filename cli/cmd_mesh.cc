@@ -83,8 +83,7 @@ class MeshCommand : public Command {
         ->check(PositiveFinite());
     app.add_option("--sensor-width-mm", options_.sensor_width_mm, "Sensor width for EXIF FocalLength -> pixels")
         ->check(PositiveFinite());
-    app.add_option("--quality", quality_, "draft | standard | final")
-        ->check(CLI::IsMember({"draft", "standard", "final"}));
+    AddQualityOption(app, &quality_, "Poisson depth, height-field density, face budget, simplifier, texture size");
     app.add_option("--surface", surface_, "auto | height-field | poisson");
     app.add_option("--target-faces", options_.surface.target_faces, "Simplify to at most N faces")
         ->check(PositiveFinite());

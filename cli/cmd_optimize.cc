@@ -28,8 +28,7 @@ class OptimizeCommand : public Command {
   void Setup(CLI::App& app) override {
     app.add_option("plan", plan_path_, "plan.json (docs/plan-format.md)")->required();
     app.add_option("--scene", scene_path_, "scene.json: clearance from its mesh and lines of sight through it");
-    app.add_option("--quality", quality_, "draft | standard | final: knot spacing, iterations, tolerance")
-        ->check(CLI::IsMember({"draft", "standard", "final"}));
+    AddQualityOption(app, &quality_, "knot spacing, iterations, tolerance, multiplier rounds");
     app.add_option("--report", report_path_, "Also write report.json: every cost and limit before and after");
     app.add_flag("--strict", strict_,
                  "Exit 3 (writing nothing) when a limit is still broken or the subject still hidden after optimizing");
@@ -55,7 +54,7 @@ class OptimizeCommand : public Command {
       inputs.push_back(scene_path_);
       inputs.push_back(glb.string());
     }
-    const TeamOptimizeResult result = OptimizeTeam(input, OptimizeOptions::ForQuality(ParseOptimizeQuality(quality_)));
+    const TeamOptimizeResult result = OptimizeTeam(input, OptimizeOptions::ForQuality(ParseQuality(quality_)));
     if (strict_ && !result.failure.empty()) {
       throw InfeasibleError("after optimizing, " + result.failure + " (--strict; nothing written)");
     }

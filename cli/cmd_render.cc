@@ -60,8 +60,7 @@ class RenderCommand : public Command {
     app.add_option("--frames", frames_, "Sample range A-B (zero-based, inclusive)");
     app.add_option("--every", every_, "Keep every N-th sample of the range")->check(CLI::PositiveNumber);
     app.add_option("--shard", shard_, "i/N: this machine's share (every N-th selected frame from the i-th)");
-    app.add_option("--quality", quality_, "draft (pinhole + gather blur) | standard | final")
-        ->check(CLI::IsMember({"draft", "standard", "final"}));
+    AddQualityOption(app, &quality_, "draft is a pinhole ray with gathered blur; standard and final sample the lens");
     app.add_option("--spp", spp_, "Cap on rays per pixel (overrides the preset's)")->check(CLI::PositiveNumber);
     app.add_option("--min-spp", min_spp_, "Rays for every pixel at least, sharp ones too (a converged reference)")
         ->check(CLI::PositiveNumber);
@@ -96,7 +95,7 @@ class RenderCommand : public Command {
     if (!frames_.empty()) options_.frames.range = ParseFrameRange(frames_);
     options_.frames.every = size_t(every_);
     if (!shard_.empty()) options_.frames.shard = ParseShard(shard_);
-    options_.quality = ParseRenderQuality(quality_);
+    options_.quality = ParseQuality(quality_);
     if (spp_) options_.max_samples = *spp_;
     if (min_spp_) options_.min_samples = *min_spp_;
     options_.format = ParseImageFormat(format_);

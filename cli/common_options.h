@@ -14,6 +14,7 @@
 
 #include "core/depfile.h"
 #include "core/progress.h"
+#include "core/quality.h"
 
 namespace cinepath::cli {
 
@@ -37,6 +38,13 @@ inline const CLI::Validator& PositiveFinite() {
 // profile, core/plan_file.h TeamPlanNotes).
 inline void PrintWarnings(const std::string& command, const std::vector<std::string>& lines) {
   for (const auto& line : lines) std::cerr << "cinepath " << command << ": warning: " << line << "\n";
+}
+
+// --quality draft|standard|final (core/quality.h), with what this stage's rungs trade, e.g.
+// "knot spacing, iterations, tolerance": one list of choices and one help line for every stage.
+inline CLI::Option* AddQualityOption(CLI::App& app, std::string* quality, const std::string& what) {
+  return app.add_option("--quality", *quality, "Speed for accuracy: " + what + " (default " + *quality + ")")
+      ->check(CLI::IsMember(QualityNames()));
 }
 
 class CommonOptions {

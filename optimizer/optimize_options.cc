@@ -4,23 +4,7 @@
 
 namespace cinepath::optimizer {
 
-OptimizeQuality ParseOptimizeQuality(const std::string& name) {
-  if (name == "draft") return OptimizeQuality::kDraft;
-  if (name == "standard") return OptimizeQuality::kStandard;
-  if (name == "final") return OptimizeQuality::kFinal;
-  throw InputError("--quality: expected draft, standard or final, got \"" + name + "\"");
-}
-
-const char* OptimizeQualityName(OptimizeQuality quality) {
-  switch (quality) {
-    case OptimizeQuality::kDraft: return "draft";
-    case OptimizeQuality::kStandard: return "standard";
-    case OptimizeQuality::kFinal: return "final";
-  }
-  return "standard";
-}
-
-OptimizeOptions OptimizeOptions::ForQuality(OptimizeQuality quality) {
+OptimizeOptions OptimizeOptions::ForQuality(Quality quality) {
   // {knot spacing s, iterations per solve, function tolerance, visibility rounds, multiplier rounds}
   // (docs/optimize.md).
   struct Preset {
@@ -31,9 +15,7 @@ OptimizeOptions OptimizeOptions::ForQuality(OptimizeQuality quality) {
     int multiplier_rounds;
   };
   static constexpr Preset kDraft{1.0, 30, 1e-5, 1, 4}, kStandard{0.5, 100, 1e-8, 4, 6}, kFinal{0.25, 300, 1e-10, 6, 8};
-  const Preset& p = quality == OptimizeQuality::kDraft   ? kDraft
-                    : quality == OptimizeQuality::kFinal ? kFinal
-                                                         : kStandard;
+  const Preset& p = quality == Quality::kDraft ? kDraft : quality == Quality::kFinal ? kFinal : kStandard;
   OptimizeOptions o;
   o.quality = quality;
   o.knot_spacing_s = p.knot_spacing_s;

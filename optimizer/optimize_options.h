@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/quality.h"
+
 namespace ceres {
 class Problem;
 }
@@ -17,10 +19,6 @@ namespace cinepath::optimizer {
 // the channels held fixed; it leaves the solution in the blocks and returns its iteration count.
 using ExternalSolver = std::function<int(ceres::Problem* problem, const std::vector<double*>& blocks,
                                          const std::vector<std::vector<int>>& fixed_channels)>;
-
-enum class OptimizeQuality { kDraft, kStandard, kFinal };
-OptimizeQuality ParseOptimizeQuality(const std::string& name);  // InputError for anything else
-const char* OptimizeQualityName(OptimizeQuality quality);
 
 // The weight of each cost term: residuals are made dimensionless first (docs/optimize.md, "Costs"),
 // so a weight says how much one unit of that term matters against one unit of another.
@@ -40,7 +38,7 @@ struct CostWeights {
 };
 
 struct OptimizeOptions {
-  OptimizeQuality quality = OptimizeQuality::kStandard;
+  Quality quality = Quality::kStandard;
   double knot_spacing_s = 0.5;       // one set of variables per knot (docs/optimize.md, "Knots")
   int max_iterations = 100;          // per round
   double function_tolerance = 1e-8;  // Ceres: relative cost change that ends a round
@@ -52,7 +50,7 @@ struct OptimizeOptions {
   CostWeights weights;
   ExternalSolver external_solver;  // empty: Ceres (always, outside the peer benchmark)
 
-  static OptimizeOptions ForQuality(OptimizeQuality quality);
+  static OptimizeOptions ForQuality(Quality quality);
 };
 
 }  // namespace cinepath::optimizer

@@ -895,7 +895,7 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
   report["version"] = 1;
   report["plan"] = std::filesystem::path(input_.plan_source).filename().string();
   report["scene"] = input_.mesh ? Json(input_.scene_source) : Json(nullptr);
-  report["quality"] = OptimizeQualityName(options_.quality);
+  report["quality"] = QualityName(options_.quality);
   report["knot_spacing_s"] = options_.knot_spacing_s;
   Json terms = Json::object();
   for (const auto& [name, value] : before_terms.items()) {
@@ -1135,7 +1135,7 @@ OptimizeResult PlanOptimizer::Run() {
 
   Json record = Json::object();
   record["by"] = "cinepath optimize";
-  record["quality"] = OptimizeQualityName(options_.quality);
+  record["quality"] = QualityName(options_.quality);
   record["knot_spacing_s"] = options_.knot_spacing_s;
   record["scene"] = input_.mesh ? Json(input_.scene_source) : Json(nullptr);
   Json names = Json::array();
@@ -1158,9 +1158,9 @@ OptimizeResult PlanOptimizer::Run() {
 // and no preset breaks a limit more than a cheaper one does, by construction.
 OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options) {
   QuietCeresLogging();
-  std::vector<OptimizeQuality> ladder = {OptimizeQuality::kDraft};
-  if (options.quality != OptimizeQuality::kDraft) ladder.push_back(OptimizeQuality::kStandard);
-  if (options.quality == OptimizeQuality::kFinal) ladder.push_back(OptimizeQuality::kFinal);
+  std::vector<Quality> ladder = {Quality::kDraft};
+  if (options.quality != Quality::kDraft) ladder.push_back(Quality::kStandard);
+  if (options.quality == Quality::kFinal) ladder.push_back(Quality::kFinal);
   const std::shared_ptr<const SceneIndex> scene = IndexScene(input, options);
   std::optional<PlanSamples> targets;  // the first stage's samples: where every stage aims the goals
   OptimizeResult kept;
@@ -1188,7 +1188,7 @@ OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& o
     solve_s += result.report["solver"]["time_s"].get<double>();
     const bool keep = i == 0 || objective <= kept_objective;
     Json entry = Json::object();
-    entry["quality"] = OptimizeQualityName(ladder[i]);
+    entry["quality"] = QualityName(ladder[i]);
     entry["objective"] = RoundToDecimals(objective, 9);
     entry["alpha"] = result.report["guard"]["alpha"];
     entry["kept"] = keep;
@@ -1201,7 +1201,7 @@ OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& o
   // The report of the result kept, its costs before taken on the plan as given, the ladder and the work
   // of every stage.
   Json& report = kept.report;
-  report["quality"] = OptimizeQualityName(options.quality);
+  report["quality"] = QualityName(options.quality);
   for (auto& [name, term] : report["terms"].items()) {
     if (first_report["terms"].contains(name)) term["before"] = first_report["terms"][name]["before"];
   }
@@ -1210,7 +1210,7 @@ OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& o
   report["solver"]["time_s"] = RoundToDecimals(solve_s, 4);
   report["objective"] = RoundToDecimals(kept_objective, 9);
   report["ladder"] = stages;
-  kept.plan.optimized["quality"] = OptimizeQualityName(options.quality);
+  kept.plan.optimized["quality"] = QualityName(options.quality);
   kept.plan.optimized["cost_before"] = first_report["total"]["before"];
   kept.plan.optimized["iterations"] = iterations;
   return kept;

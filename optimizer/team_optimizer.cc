@@ -107,7 +107,7 @@ TeamOptimizeResult OptimizeTeam(const TeamOptimizeInput& input, const OptimizeOp
 
   Json record = Json::object();
   record["by"] = "cinepath optimize";
-  record["quality"] = OptimizeQualityName(options.quality);
+  record["quality"] = QualityName(options.quality);
   record["sweeps"] = 2;
   record["conflicts_before"] = before.team.conflicts.size();
   record["conflicts_after"] = result.plan.team.conflicts.size();

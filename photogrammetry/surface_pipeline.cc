@@ -283,22 +283,6 @@ Json StartReport(const SurfacePipelineOptions& options, const char* input) {
 
 }  // namespace
 
-Quality ParseQuality(const std::string& text, const std::string& where) {
-  if (text == "draft") return Quality::kDraft;
-  if (text == "standard") return Quality::kStandard;
-  if (text == "final") return Quality::kFinal;
-  throw InputError(Located(where, "must be draft, standard or final, not '" + text + "'"));
-}
-
-const char* QualityName(Quality quality) {
-  switch (quality) {
-    case Quality::kDraft: return "draft";
-    case Quality::kStandard: return "standard";
-    case Quality::kFinal: return "final";
-  }
-  return "?";
-}
-
 SurfaceMethod ParseSurfaceMethod(const std::string& text, const std::string& where) {
   if (text == "auto") return SurfaceMethod::kAuto;
   if (text == "height-field") return SurfaceMethod::kHeightField;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/json.h"
+#include "core/quality.h"
 #include "photogrammetry/mesh_decimate.h"
 #include "photogrammetry/mesh_decimate_for_plan.h"
 #include "photogrammetry/point_cloud.h"
@@ -24,13 +25,9 @@
 
 namespace cinepath::photogrammetry {
 
-// --quality draft|standard|final: the speed/accuracy knob of every expensive step (Poisson depth,
+// `Quality` (core/quality.h) is the speed/accuracy knob of every expensive step here (Poisson depth,
 // height-field density, default face budget, simplifier, Hausdorff sample count). The table is in
 // surface_pipeline.cc (QualityDefaults) and in docs/mesh.md.
-enum class Quality { kDraft, kStandard, kFinal };
-// Parses "draft" | "standard" | "final"; throws InputError naming `where` otherwise.
-Quality ParseQuality(const std::string& text, const std::string& where = "--quality");
-const char* QualityName(Quality quality);
 
 enum class SurfaceMethod {
   kAuto,         // height field when the cameras look down on the points (nadir capture), else Poisson

@@ -6,10 +6,10 @@
 
 namespace cinepath::preview {
 
-SamplingPreset PresetFor(RenderQuality quality) {
+SamplingPreset PresetFor(Quality quality) {
   SamplingPreset preset;
   switch (quality) {
-    case RenderQuality::kDraft:
+    case Quality::kDraft:
       preset.gather_blur = true;
       preset.edge_samples = 4;
       // Only the edges a frame shows at a glance: objects, depth steps and strong colour steps (texture
@@ -18,13 +18,13 @@ SamplingPreset PresetFor(RenderQuality quality) {
       preset.max_samples = 4;
       preset.motion_blur = false;
       break;
-    case RenderQuality::kStandard:
+    case Quality::kStandard:
       preset.edge_samples = 4;
       preset.samples_per_blur_px2 = 1.0;
       preset.min_blurred_samples = 16;
       preset.max_samples = 128;
       break;
-    case RenderQuality::kFinal:
+    case Quality::kFinal:
       preset.edge_samples = 16;
       preset.samples_per_blur_px2 = 4.0;
       preset.min_blurred_samples = 64;
@@ -32,13 +32,6 @@ SamplingPreset PresetFor(RenderQuality quality) {
       break;
   }
   return preset;
-}
-
-RenderQuality ParseRenderQuality(const std::string& text) {
-  if (text == "draft") return RenderQuality::kDraft;
-  if (text == "standard") return RenderQuality::kStandard;
-  if (text == "final") return RenderQuality::kFinal;
-  throw InputError("--quality: expected draft, standard or final, got '" + text + "'");
 }
 
 ImageFormat ParseImageFormat(const std::string& text) {

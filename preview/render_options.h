@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "core/quality.h"
 #include "preview/frame_selection.h"
 
 namespace cinepath::preview {
 
-enum class RenderQuality { kDraft, kStandard, kFinal };
 enum class Shading { kFlat, kSun };
 enum class ImageFormat { kPng, kExr, kJpg };
 enum class Exposure { kFixed, kPhysical };
@@ -40,7 +40,7 @@ struct SamplingPreset {
   bool motion_blur = true;
 };
 
-SamplingPreset PresetFor(RenderQuality quality);
+SamplingPreset PresetFor(Quality quality);
 
 struct SunDirection {
   double azimuth_deg = 135;  // compass, clockwise from north
@@ -50,7 +50,7 @@ struct SunDirection {
 struct RenderOptions {
   std::filesystem::path output_dir;
   FrameSelection frames;
-  RenderQuality quality = RenderQuality::kStandard;
+  Quality quality = Quality::kStandard;
   std::optional<int> max_samples;  // --spp: the cap on rays per pixel (overrides the preset's)
   std::optional<int> min_samples;  // --min-spp: rays for every pixel at least (raises the cap to it)
   ImageFormat format = ImageFormat::kPng;
@@ -67,8 +67,8 @@ struct RenderOptions {
   std::optional<std::filesystem::path> video;
 };
 
-// "draft" | "standard" | "final" -> RenderQuality, etc.; InputError naming the flag otherwise.
-RenderQuality ParseRenderQuality(const std::string& text);
+// "png" | "exr" | "jpg" -> ImageFormat, etc.; InputError naming the flag otherwise (the quality's parser
+// is core/quality.h's ParseQuality).
 ImageFormat ParseImageFormat(const std::string& text);
 Shading ParseShading(const std::string& text);
 Backdrop ParseBackdrop(const std::string& text);

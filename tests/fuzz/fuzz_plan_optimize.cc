@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace cinepath;
   auto team = fuzz::ReadPlanInput(data, size);
   if (!team) return 0;
-  optimizer::OptimizeOptions options = optimizer::OptimizeOptions::ForQuality(optimizer::OptimizeQuality::kDraft);
+  optimizer::OptimizeOptions options = optimizer::OptimizeOptions::ForQuality(Quality::kDraft);
   options.visibility_rounds = 1;
   options.external_solver = [](ceres::Problem* problem, const std::vector<double*>&,
                                const std::vector<std::vector<int>>&) {

@@ -79,7 +79,7 @@ void ExpectNoWorse(const Standing& before, const Standing& after, const std::str
   EXPECT_GT(after.lowest_m, 0.0) << what;
 }
 
-OptimizeResult Optimize(const Trajectory& plan, const scene::SceneMesh& mesh, OptimizeQuality quality) {
+OptimizeResult Optimize(const Trajectory& plan, const scene::SceneMesh& mesh, Quality quality) {
   OptimizeInput in;
   in.plan = plan;
   in.plan_source = "test_plan.json";
@@ -173,7 +173,7 @@ TEST(OptimizerRules, ObstaclesBetweenShotsAndSubjectsWithEveryProfile) {
     for (const Case& c : BlockedCases(profile)) {
       const Standing before = Measure(c.plan, &c.mesh);
       ASSERT_GT(before.blocked, 0) << c.name;  // the obstacle is in the way
-      const OptimizeResult r = Optimize(c.plan, c.mesh, OptimizeQuality::kDraft);
+      const OptimizeResult r = Optimize(c.plan, c.mesh, Quality::kDraft);
       const Standing after = Measure(r.plan, &c.mesh);
       ExpectNoWorse(before, after, c.name);
       // The report counts what the test counts, and says what it kept.
@@ -196,13 +196,13 @@ TEST(OptimizerRules, TheSolveItselfKeepsTheLimitsOnTheChaseOverAPillar) {
   for (const std::string profile : {"px4-multirotor", "dji-m30", "dji-mini4pro"}) {
     const Case c = std::move(BlockedCases(profile)[1]);
     ASSERT_EQ(c.name, "chase/" + profile);
-    for (const int rounds : {0, OptimizeOptions::ForQuality(OptimizeQuality::kDraft).multiplier_rounds}) {
+    for (const int rounds : {0, OptimizeOptions::ForQuality(Quality::kDraft).multiplier_rounds}) {
       OptimizeInput in;
       in.plan = c.plan;
       in.plan_source = "test_plan.json";
       in.mesh = &c.mesh;
       in.scene_source = "test_scene.json";
-      OptimizeOptions options = OptimizeOptions::ForQuality(OptimizeQuality::kDraft);
+      OptimizeOptions options = OptimizeOptions::ForQuality(Quality::kDraft);
       options.multiplier_rounds = rounds;
       const Json guard = OptimizePlan(in, options).report["guard"];
       if (rounds == 0) {  // the penalties alone: the guard cuts the change back
@@ -227,7 +227,7 @@ TEST(OptimizerRules, DoubleSidedGroundAndAWallKeepTheOrbitAboveGroundAndFeasible
     const Standing before = Measure(c.plan, &c.mesh);
     ASSERT_TRUE(before.worst_excess.empty());  // feasible
     {
-      const OptimizeResult r = Optimize(c.plan, c.mesh, OptimizeQuality::kStandard);
+      const OptimizeResult r = Optimize(c.plan, c.mesh, Quality::kStandard);
       const Standing after = Measure(r.plan, &c.mesh);
       const std::string what = both_windings ? "two windings" : "one winding";
       EXPECT_TRUE(after.worst_excess.empty()) << what << ": " << r.failure;
@@ -285,10 +285,10 @@ TEST(OptimizerRules, RandomFeasiblePlansStayFeasibleAtEveryPreset) {
     const Standing before = Measure(plan, &mesh);
     if (!before.worst_excess.empty() || before.crossings > 0) continue;  // not a feasible plan: draw again
     ++checked;
-    for (const OptimizeQuality q : {OptimizeQuality::kDraft, OptimizeQuality::kStandard, OptimizeQuality::kFinal}) {
+    for (const Quality q : {Quality::kDraft, Quality::kStandard, Quality::kFinal}) {
       const OptimizeResult r = Optimize(plan, mesh, q);
       const Standing after = Measure(r.plan, &mesh);
-      const std::string what = "draw " + std::to_string(tried) + " (" + profile + "), " + OptimizeQualityName(q);
+      const std::string what = "draw " + std::to_string(tried) + " (" + profile + "), " + QualityName(q);
       EXPECT_TRUE(after.worst_excess.empty())
           << what << ": " << (after.worst_excess.empty() ? "" : after.worst_excess.begin()->first);
       EXPECT_LE(after.blocked, before.blocked) << what;
@@ -308,7 +308,7 @@ TEST(OptimizerRules, TheQualityLadderClimbs) {
               {"time_s": 12, "position_enu_m": [12, 12, 20], "heading_deg": 0, "pitch_deg": -10}]}]})");
   ASSERT_FALSE(Measure(plan, nullptr).worst_excess.empty());
   std::vector<OptimizeResult> results;
-  for (const OptimizeQuality q : {OptimizeQuality::kDraft, OptimizeQuality::kStandard, OptimizeQuality::kFinal}) {
+  for (const Quality q : {Quality::kDraft, Quality::kStandard, Quality::kFinal}) {
     OptimizeInput in;
     in.plan = plan;
     results.push_back(OptimizePlan(in, OptimizeOptions::ForQuality(q)));

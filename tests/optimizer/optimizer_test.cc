@@ -81,7 +81,7 @@ void AddStillActor(Trajectory* plan, const std::string& name, const Eigen::Vecto
 }
 
 OptimizeResult Optimize(const Trajectory& plan, const scene::SceneMesh* mesh = nullptr,
-                        OptimizeQuality quality = OptimizeQuality::kStandard) {
+                        Quality quality = Quality::kStandard) {
   OptimizeInput in;
   in.plan = plan;
   in.plan_source = "test_plan.json";
@@ -171,8 +171,8 @@ TEST(Optimizer, BackgroundBlurGoalMovesTheCameraBackAndZoomsInAtEveryPreset) {
   plan.shots[0].intent.background_blur_px = goal_px;
   double lo = d0, hi = 1000;  // the analytic minimal distance: blur_px(d) = goal
   for (int i = 0; i < 100; ++i) (blur_px((lo + hi) / 2) < goal_px ? lo : hi) = (lo + hi) / 2;
-  for (OptimizeQuality quality : {OptimizeQuality::kDraft, OptimizeQuality::kStandard, OptimizeQuality::kFinal}) {
-    SCOPED_TRACE(OptimizeQualityName(quality));
+  for (Quality quality : {Quality::kDraft, Quality::kStandard, Quality::kFinal}) {
+    SCOPED_TRACE(QualityName(quality));
     const OptimizeResult r = Optimize(plan, nullptr, quality);
     const TrajectorySample& s = r.plan.samples[15];
     const double d = (s.position_enu_m - Eigen::Vector3d(0, 0, 0.9)).norm();
@@ -208,7 +208,7 @@ TEST(Optimizer, AGoalThatCannotBeReachedNamesTheLimitItGaveWayTo) {
     plan.shots[0].intent.max_deviation_m = max_deviation_m;
     const double planned_px = BlurCircleMm(f0, 2.8, d0, d0 + 50) * cam.width_px / cam.sensor_width_mm;
     plan.shots[0].intent.background_blur_px = 2.5 * planned_px;
-    const Json shot = Optimize(plan, nullptr, OptimizeQuality::kStandard).report["shots"][0];
+    const Json shot = Optimize(plan, nullptr, Quality::kStandard).report["shots"][0];
     const double reached = shot["background_blur_px_min"].get<double>() / shot["background_blur_px_goal"].get<double>();
     bool deviation_bound = false;
     for (const auto& name : shot["binding_limits"]) deviation_bound = deviation_bound || name == "max_deviation";
@@ -281,7 +281,7 @@ TEST(Optimizer, WallBetweenOrbitAndSubjectIsSeenOver) {
     return n;
   };
   ASSERT_GT(blocked(plan), 30);
-  const OptimizeResult r = Optimize(plan, &mesh, OptimizeQuality::kStandard);
+  const OptimizeResult r = Optimize(plan, &mesh, Quality::kStandard);
   EXPECT_EQ(blocked(r.plan), 0);
   EXPECT_EQ(r.report["occlusion"]["blocked_fraction_after"].get<double>(), 0.0);
   EXPECT_GT(r.report["occlusion"]["blocked_fraction_before"].get<double>(), 0.0);

@@ -49,7 +49,7 @@ TEST(TeamOptimizer, CrossingChasesAreSeparatedWithASharedSmallChange) {
   for (const auto& c : in.plan.team.conflicts) breaches += c.limit == "separation";
   ASSERT_EQ(breaches, 1u);  // |a - b| = sqrt(2) |3 t - 21| < 5 m for |t - 7| < 1.18 s
 
-  const TeamOptimizeResult out = OptimizeTeam(in, OptimizeOptions::ForQuality(OptimizeQuality::kStandard));
+  const TeamOptimizeResult out = OptimizeTeam(in, OptimizeOptions::ForQuality(Quality::kStandard));
   for (const auto& c : out.plan.team.conflicts) {
     EXPECT_NE(c.limit, "separation") << c.start_time_s << " " << c.end_time_s << " " << c.worst_value;
   }
@@ -72,7 +72,7 @@ TEST(TeamOptimizer, CrossingChasesAreSeparatedWithASharedSmallChange) {
   EXPECT_EQ(out.report["team"]["conflicts_before"].size(), in.plan.team.conflicts.size());
 
   // Deterministic: the same bytes again.
-  const TeamOptimizeResult again = OptimizeTeam(in, OptimizeOptions::ForQuality(OptimizeQuality::kStandard));
+  const TeamOptimizeResult again = OptimizeTeam(in, OptimizeOptions::ForQuality(Quality::kStandard));
   EXPECT_EQ(TeamPlanToText(again.plan), TeamPlanToText(out.plan));
 }
 
@@ -96,7 +96,7 @@ TEST(TeamOptimizer, ADroneInTheLiveShotIsMovedOutOfIt) {
   size_t seen_before = 0;
   for (const auto& c : in.plan.team.conflicts) seen_before += c.limit == "in_shot";
   ASSERT_EQ(seen_before, 2u);  // b in a's shot for 0-5 s, a in b's for 5-10 s
-  const TeamOptimizeResult out = OptimizeTeam(in, OptimizeOptions::ForQuality(OptimizeQuality::kStandard));
+  const TeamOptimizeResult out = OptimizeTeam(in, OptimizeOptions::ForQuality(Quality::kStandard));
   for (const auto& c : out.plan.team.conflicts) {
     ADD_FAILURE() << c.limit << " " << c.drone << " sees " << c.other << " " << c.start_time_s << "-" << c.end_time_s
                   << " s, " << c.worst_value << " " << c.unit;
@@ -110,10 +110,10 @@ TEST(TeamOptimizer, OneDroneIsOptimizedExactlyAsBefore) {
   team.single = true;
   TeamOptimizeInput in;
   in.plan = team;
-  const TeamOptimizeResult out = OptimizeTeam(in, OptimizeOptions::ForQuality(OptimizeQuality::kDraft));
+  const TeamOptimizeResult out = OptimizeTeam(in, OptimizeOptions::ForQuality(Quality::kDraft));
   OptimizeInput single;
   single.plan = team.flights[0].plan;
-  const OptimizeResult alone = OptimizePlan(single, OptimizeOptions::ForQuality(OptimizeQuality::kDraft));
+  const OptimizeResult alone = OptimizePlan(single, OptimizeOptions::ForQuality(Quality::kDraft));
   EXPECT_EQ(TeamPlanToText(out.plan), PlanToText(alone.plan));
 }
 

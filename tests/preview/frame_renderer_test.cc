@@ -67,7 +67,7 @@ Trajectory StillCamera(const Eigen::Vector3d& camera, double focal_mm, double f_
   return plan;
 }
 
-FrameSettings Settings(RenderQuality quality, int max_samples) {
+FrameSettings Settings(Quality quality, int max_samples) {
   FrameSettings settings;
   settings.width_px = kWidth;
   settings.height_px = kHeight;
@@ -99,7 +99,7 @@ scene::SceneMesh GroundPatch() {
 // --backdrop none, the rays that miss the patch below the horizon see flat grey at infinite depth.
 TEST(FrameRenderer, TheGroundContinuesPastTheMeshToTheHorizon) {
   const Trajectory plan = StillCamera({0, 0, 10}, 24, 8, 30);
-  FrameSettings settings = Settings(RenderQuality::kStandard, 4);
+  FrameSettings settings = Settings(Quality::kStandard, 4);
   settings.height_px = 160;  // tall enough to see the patch, the ground past it and the sky
   Trajectory tall = plan;
   tall.camera.height_px = 160;
@@ -178,7 +178,7 @@ double FitBlurDiameter(const std::vector<double>& profile, double guess) {
 TEST(FrameRenderer, AnEdgeOutOfFocusBlursOverTheBlurCircle) {
   const Eigen::Vector3d camera(0, 0, 0);
   const Trajectory plan = StillCamera(camera, 100, 1.4, 3);
-  const FrameImage image = Render(Wall(camera, 20), plan, Settings(RenderQuality::kFinal, 512));
+  const FrameImage image = Render(Wall(camera, 20), plan, Settings(Quality::kFinal, 512));
   const double predicted = ThinLensCamera(plan.camera, kWidth, kHeight, 100, 1.4, 3).BlurPx(20);
   ASSERT_GT(predicted, 10);  // the test means something only when the blur spans many pixels
   const double fitted = FitBlurDiameter(ColumnProfile(image), predicted);
@@ -191,7 +191,7 @@ TEST(FrameRenderer, ThePlaneOfFocusRendersSharp) {
   for (const Eigen::Vector3d camera : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10000, -10000, 300)}) {
     const Trajectory plan = StillCamera(camera, 100, 1.4, 20);
     const std::vector<double> profile =
-        ColumnProfile(Render(Wall(camera, 20), plan, Settings(RenderQuality::kStandard, 128)));
+        ColumnProfile(Render(Wall(camera, 20), plan, Settings(Quality::kStandard, 128)));
     // The edge projects onto the boundary between columns 119 and 120: no float jitter at 14 km.
     EXPECT_LT(profile[118], 1e-6) << camera.transpose();
     EXPECT_LT(profile[119], 1e-6) << camera.transpose();
@@ -203,9 +203,9 @@ TEST(FrameRenderer, ThePlaneOfFocusRendersSharp) {
 TEST(FrameRenderer, ALargeFNumberMatchesAPinholeRender) {
   const Eigen::Vector3d camera(0, 0, 0);
   const FrameImage pinhole =
-      Render(Wall(camera, 20), StillCamera(camera, 100, 1.4, 20), Settings(RenderQuality::kStandard, 128));
+      Render(Wall(camera, 20), StillCamera(camera, 100, 1.4, 20), Settings(Quality::kStandard, 128));
   const FrameImage stopped_down =
-      Render(Wall(camera, 20), StillCamera(camera, 100, 64, 3), Settings(RenderQuality::kStandard, 128));
+      Render(Wall(camera, 20), StillCamera(camera, 100, 64, 3), Settings(Quality::kStandard, 128));
   double max_difference = 0;
   for (size_t i = 0; i < pinhole.rgb_linear.size(); ++i) {
     max_difference = std::max(max_difference, double((pinhole.rgb_linear[i] - stopped_down.rgb_linear[i]).norm()));
@@ -217,7 +217,7 @@ TEST(FrameRenderer, AUniformEmitterGivesAUniformImage) {
   const Eigen::Vector3d camera(0, 0, 0);
   const Eigen::Vector3f color(0.3f, 0.5f, 0.7f);
   const FrameImage image =
-      Render(Wall(camera, 20, color), StillCamera(camera, 100, 1.4, 3), Settings(RenderQuality::kStandard, 64));
+      Render(Wall(camera, 20, color), StillCamera(camera, 100, 1.4, 3), Settings(Quality::kStandard, 64));
   for (const auto& c : image.rgb_linear) ASSERT_LT((c - color).norm(), 1e-5);
   EXPECT_GT(image.total_samples, uint64_t(kWidth) * kHeight * 16);  // it was blurred, and sampled so
 }
@@ -244,7 +244,7 @@ TEST(FrameRenderer, AMotionStreakHasTheProjectedLengthOfSpeedTimesShutter) {
   for (const auto& s : plan.samples) runner.positions_enu_m.emplace_back(speed_m_s * s.time_s - 1.0 / 3, 20, -0.9);
   plan.subjects.push_back(runner);
   scene::SceneMesh black_wall = Wall(camera, 40, Eigen::Vector3f::Zero());
-  FrameSettings settings = Settings(RenderQuality::kFinal, 256);
+  FrameSettings settings = Settings(Quality::kFinal, 256);
   const FrameImage moving = Render(black_wall, plan, settings);
   settings.preset.motion_blur = false;
   const FrameImage still = Render(black_wall, plan, settings);
@@ -259,7 +259,7 @@ TEST(FrameRenderer, AMotionStreakHasTheProjectedLengthOfSpeedTimesShutter) {
 TEST(FrameRenderer, PhysicalExposureDoublesWhenTheShutterDoubles) {
   const Eigen::Vector3d camera(0, 0, 0);
   const Eigen::Vector3f color(0.1f, 0.2f, 0.3f);
-  FrameSettings settings = Settings(RenderQuality::kStandard, 16);
+  FrameSettings settings = Settings(Quality::kStandard, 16);
   settings.exposure = Exposure::kPhysical;
   const FrameImage fast = Render(Wall(camera, 20, color), StillCamera(camera, 100, 4, 20, 1.0 / 100), settings);
   const FrameImage slow = Render(Wall(camera, 20, color), StillCamera(camera, 100, 4, 20, 1.0 / 50), settings);
@@ -280,7 +280,7 @@ TEST(FrameRenderer, ASubjectPlannedAtAFrameHeightFractionFillsItInTheImage) {
   person.height_m = 1.8;
   person.positions_enu_m.assign(3, Eigen::Vector3d(0, 20, -0.9));
   plan.subjects.push_back(person);
-  FrameSettings settings = Settings(RenderQuality::kStandard, 64);
+  FrameSettings settings = Settings(Quality::kStandard, 64);
   settings.width_px = 320;
   settings.height_px = 180;
   const FrameImage image = Render(Wall(camera, 40, Eigen::Vector3f::Zero()), plan, settings);
@@ -303,7 +303,7 @@ TEST(FrameRenderer, TheMaskAovLabelsEachSubjectAndNothingElse) {
     person.positions_enu_m.assign(3, Eigen::Vector3d(east, 20, -0.9));
     plan.subjects.push_back(person);
   }
-  FrameSettings settings = Settings(RenderQuality::kStandard, 4);
+  FrameSettings settings = Settings(Quality::kStandard, 4);
   settings.width_px = 320;
   settings.height_px = 180;
   const FrameImage image = Render(Wall(camera, 40, Eigen::Vector3f::Zero()), plan, settings);
@@ -335,7 +335,7 @@ TEST(FrameRenderer, AovListFollowsTheTable) {
 TEST(FrameRenderer, TheSamePixelsOnOneThreadAndOnAll) {
   const Eigen::Vector3d camera(0, 0, 0);
   const Trajectory plan = StillCamera(camera, 100, 1.4, 3);
-  const FrameSettings settings = Settings(RenderQuality::kStandard, 64);
+  const FrameSettings settings = Settings(Quality::kStandard, 64);
   const FrameImage all = Render(Wall(camera, 20), plan, settings);
   FrameImage one;
   tbb::task_arena arena(1);
@@ -374,7 +374,7 @@ TEST(FrameRenderer, OneRayPerPixelStillGoesThroughTheLens) {
   const Trajectory plan = StillCamera(camera, 100, 1.4, 3);
   const double predicted = ThinLensCamera(plan.camera, kWidth, kHeight, 100, 1.4, 3).BlurPx(20);
   ASSERT_GT(predicted, 10);
-  const std::vector<double> profile = ColumnProfile(Render(Wall(camera, 20), plan, Settings(RenderQuality::kFinal, 1)));
+  const std::vector<double> profile = ColumnProfile(Render(Wall(camera, 20), plan, Settings(Quality::kFinal, 1)));
   int between = 0;
   for (double p : profile) between += p > 0.05 && p < 0.95 ? 1 : 0;
   EXPECT_GT(between, predicted / 2) << "columns between dark and bright: " << between;
@@ -382,7 +382,7 @@ TEST(FrameRenderer, OneRayPerPixelStillGoesThroughTheLens) {
 
 TEST(FrameRenderer, MinSamplesReachesEveryPixelSharpOnesToo) {
   const Eigen::Vector3d camera(0, 0, 0);
-  FrameSettings settings = Settings(RenderQuality::kStandard, 64);
+  FrameSettings settings = Settings(Quality::kStandard, 64);
   settings.preset.min_samples = 8;
   const FrameImage image = Render(Wall(camera, 20), StillCamera(camera, 100, 1.4, 20), settings);
   for (uint16_t n : image.samples) ASSERT_GE(n, 8);
