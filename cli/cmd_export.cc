@@ -41,14 +41,17 @@ class ExportCommand : public Command {
                    "scene.json: its WGS84 origin when the plan has none, and its mesh's ground under the first "
                    "sample as home (take-off), or to check --home against; for gltf-camera and nuke-chan the "
                    "frame the cameras are written in, and gltf-camera's mesh");
+    std::vector<std::string> missions, cameras;
+    for (const auto& f : exporter::Formats())
+      (f.kind == exporter::FormatKind::kMission ? missions : cameras).push_back(f.name);
     app.add_option("--format", format_names_,
-                   "Output format (repeatable): qgc-plan, qgc-wpl, mavlink-bin, dji-wpml, dji-msdk-json, "
-                   "litchi-csv (missions); gltf-camera, nuke-chan (camera tracks)")
+                   "Output format (repeatable): " + JoinNames(missions) + " (missions); " + JoinNames(cameras) +
+                       " (camera tracks)")
         ->required();
     app.add_option("--firmware", firmware_name_, "MAVLink target firmware: px4 (default) or ardupilot");
     app.add_option("--drone", drone_name_,
-                   "Drone profile to check the missions against: px4-multirotor, ardupilot-copter, dji-m30, "
-                   "dji-mini4pro (docs/drones.md; default: the plan's drone block)");
+                   "Drone profile to check the missions against: " + JoinNames(DroneProfileNames()) +
+                       " (docs/drones.md; default: the plan's drone block)");
     app.add_option("--altitude-ref", altitude_ref_name_, "relative (default, to home), amsl (EGM96) or ellipsoid");
     app.add_option("--home", home_text_,
                    "Home / take-off point LAT,LON,ALT (ALT metres AMSL); default: the ground under the first sample "

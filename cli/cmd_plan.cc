@@ -7,6 +7,7 @@
 
 #include "cli/command.h"
 #include "cli/common_options.h"
+#include "core/drone_profiles.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/ground.h"
@@ -16,6 +17,7 @@
 #include "shots/plan_plot.h"
 #include "shots/planner.h"
 #include "shots/shot_list.h"
+#include "shots/shot_type.h"
 #include "shots/team_planner.h"
 
 namespace cinepath::cli {
@@ -24,7 +26,10 @@ namespace {
 class PlanCommand : public Command {
  public:
   void Setup(CLI::App& app) override {
-    app.add_option("shots", shots_path_, "Shot list (shots.json, docs/plan.md)")->required();
+    app.add_option("shots", shots_path_,
+                   "Shot list (shots.json, docs/plan.md); shot types " + JoinNames(shots::ShotTypeNames()) +
+                       "; drones " + JoinNames(DroneProfileNames()))
+        ->required();
     app.add_option("--scene", scene_path_,
                    "scene.json: its origin places the plan on WGS84, and its mesh is the ground (heights above "
                    "ground, actors on the ground, terrain clearance)");

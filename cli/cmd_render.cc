@@ -79,8 +79,9 @@ class RenderCommand : public Command {
     app.add_option("--backdrop", backdrop_,
                    "ground (default: the ground continues past the mesh's edge as a hazed plane) | none")
         ->check(CLI::IsMember({"ground", "none"}));
-    app.add_option("--aov", aov_,
-                   "Extra EXR images per frame, comma-separated: depth (m), blur (blur-circle px), mask (subject id)");
+    std::vector<std::string> aovs;
+    for (const auto& info : AovTable()) aovs.push_back(std::string(info.name) + " (" + info.unit + ")");
+    app.add_option("--aov", aov_, "Extra EXR images per frame, comma-separated: " + JoinNames(aovs));
     app.add_flag("--overlay", options_.overlay, "Burn in the frame's time, shot and lens, and a rule-of-thirds guide");
     app.add_option("--contact-sheet", contact_sheet_, "Also write a labelled grid of the rendered frames (PNG/JPEG)");
     app.add_option("--video", video_, "Also write an H.264 MP4 at the plan's frame rate / --every (needs ffmpeg)");

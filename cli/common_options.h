@@ -40,6 +40,18 @@ inline void PrintWarnings(const std::string& command, const std::vector<std::str
   for (const auto& line : lines) std::cerr << "cinepath " << command << ": warning: " << line << "\n";
 }
 
+// "a, b, c": the names of a registry (formats, drones, shot types, AOVs) for a help text, so that --help
+// lists what the code declares rather than a hand-kept copy.
+template <typename Names>
+std::string JoinNames(const Names& names, const char* separator = ", ") {
+  std::string out;
+  for (const auto& name : names) {
+    if (!out.empty()) out += separator;
+    out += name;
+  }
+  return out;
+}
+
 // --quality draft|standard|final (core/quality.h), with what this stage's rungs trade, e.g.
 // "knot spacing, iterations, tolerance": one list of choices and one help line for every stage.
 inline CLI::Option* AddQualityOption(CLI::App& app, std::string* quality, const std::string& what) {

@@ -77,6 +77,9 @@ struct DepthOfField {
 // s = +inf gives near = H - f, far = +inf.
 DepthOfField DepthOfFieldLimits(double focal_length_mm, double f_number, double focus_distance_m, double coc_mm);
 
+// Aperture difference in stops: 2 log2(n1 / n0) (a stop is a factor sqrt(2) of f-number).
+inline double StopsBetween(double n0, double n1) { return 2.0 * std::log2(n1 / n0); }
+
 // Angle of view across a sensor extent: 2 atan(extent / (2 f)), radians (focus at infinity, no
 // focus breathing).
 double FieldOfViewRad(double sensor_extent_mm, double focal_length_mm);

@@ -8,6 +8,8 @@ namespace cinepath {
 
 Eigen::Vector3d ThreeFromEnu(const Eigen::Vector3d& enu_m) { return {enu_m.x(), enu_m.z(), -enu_m.y()}; }
 
+Eigen::Vector3d EnuFromThree(const Eigen::Vector3d& three) { return {three.x(), -three.z(), three.y()}; }
+
 Eigen::Quaterniond ThreeCameraFromWorldFromCamera(const Eigen::Quaterniond& world_from_camera) {
   Eigen::Matrix3d three_from_enu;
   three_from_enu << 1, 0, 0, 0, 0, 1, 0, -1, 0;

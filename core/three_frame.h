@@ -12,7 +12,10 @@
 
 namespace cinepath {
 
-Eigen::Vector3d ThreeFromEnu(const Eigen::Vector3d& enu_m);
+// The one axis swap between the scene frame and the Y-up frame: the GLB writer, the GLB reader, the
+// previs page and the camera-track exports all go through these two.
+Eigen::Vector3d ThreeFromEnu(const Eigen::Vector3d& enu_m);  // (e, n, u) -> (e, u, -n)
+Eigen::Vector3d EnuFromThree(const Eigen::Vector3d& three);  // (x, y, z) -> (x, -z, y)
 
 // The orientation of a three.js camera that sees what the plan's camera sees (unit, w >= 0).
 Eigen::Quaterniond ThreeCameraFromWorldFromCamera(const Eigen::Quaterniond& world_from_camera);

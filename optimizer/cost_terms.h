@@ -153,7 +153,7 @@ struct LimitsCost {
   // range at (1 - margin), would grow its multiplier for ever).
   std::array<bool, kNumChannels> free = {true, true, true, true, true, true, true, true};
 
-  // The feasibility check's name of each residual's limit (shots/feasibility.h).
+  // The feasibility check's name of each residual's limit (core/feasibility.h).
   static constexpr const char* kLimitName[kNumResiduals] = {
       "horizontal_speed", "climb_rate",        "descent_rate",       "horizontal_acceleration", "jerk",
       "yaw_rate",         "gimbal_pitch_rate", "focal_length_rate",  "aperture_rate",           "gimbal_pitch_min",

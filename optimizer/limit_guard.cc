@@ -16,8 +16,7 @@ namespace {
 
 constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 
-shots::LimitSeries Series(const std::string& limit, const std::string& unit, double limit_value, bool is_minimum,
-                          size_t n) {
+LimitSeries Series(const std::string& limit, const std::string& unit, double limit_value, bool is_minimum, size_t n) {
   return {limit, unit, limit_value, is_minimum, std::vector<double>(n, kNotMeasured)};
 }
 
@@ -78,7 +77,7 @@ LimitGuard::LimitGuard(const Trajectory& input, GuardSetup setup) : input_(input
 LimitMeasure LimitGuard::Measure(const Trajectory& plan) const {
   std::unique_ptr<scene::CasterGround> ground;
   if (setup_.caster) ground = std::make_unique<scene::CasterGround>(*setup_.caster, setup_.scene_source);
-  LimitMeasure m = shots::MeasureLimits(plan, setup_.cut_before, {}, ground.get());
+  LimitMeasure m = MeasureLimits(plan, setup_.cut_before, {}, ground.get());
   const size_t n = plan.samples.size();
   const auto position = [&](size_t k) -> const Eigen::Vector3d& { return plan.samples[k].position_enu_m; };
 
@@ -114,7 +113,7 @@ LimitMeasure LimitGuard::Measure(const Trajectory& plan) const {
 std::vector<std::string> LimitGuard::WorseThanInput(const LimitMeasure& candidate) const {
   std::vector<std::string> worse;
   for (size_t i = 0; i < candidate.size(); ++i) {
-    const shots::LimitSeries& c = candidate[i];
+    const LimitSeries& c = candidate[i];
     const double slack = 1e-9 * std::max(1.0, std::fabs(c.limit_value));
     for (size_t k = 0; k < c.values.size(); ++k) {
       if (c.Excess(k) > allowed_[i][k] + slack) {
@@ -154,8 +153,7 @@ GuardedPlan KeepNeverWorse(const LimitGuard& guard, const std::function<Trajecto
 Json StillBroken(const LimitMeasure& measure, const Trajectory& plan, std::string* first_message) {
   std::vector<std::pair<FeasibilityViolation, double>> ranges;  // with how far it is broken
   for (const auto& series : measure) {
-    for (const auto& v : shots::ViolationsOf(series, plan))
-      ranges.emplace_back(v, std::fabs(v.worst_value - v.limit_value));
+    for (const auto& v : ViolationsOf(series, plan)) ranges.emplace_back(v, std::fabs(v.worst_value - v.limit_value));
   }
   std::stable_sort(ranges.begin(), ranges.end(),
                    [](const auto& a, const auto& b) { return a.first.start_time_s < b.first.start_time_s; });

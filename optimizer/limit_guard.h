@@ -1,6 +1,6 @@
 // Rule 2 of `cinepath optimize`: the output is never worse than its input (docs/optimize.md, "Never worse
 // than the input"). Every hard limit is measured at every sample of a plan: the drone's and the lens's
-// limits as `plan`'s own check takes them (shots::MeasureLimits, with the terrain under the camera when
+// limits as `plan`'s own check takes them (MeasureLimits, with the terrain under the camera when
 // there is a scene), the deviation from the input against each shot's max_deviation_m, and with a scene:
 // the distance to the nearest surface against the clearance margin, the path between two samples passing
 // through a surface, and the subject hidden by the scene (ray casts). A candidate is never worse when, for
@@ -21,17 +21,17 @@
 
 #include <Eigen/Core>
 
+#include "core/feasibility.h"
 #include "core/json.h"
 #include "core/trajectory.h"
 #include "scene/ray_caster.h"
 #include "scene/surface_distance.h"
-#include "shots/feasibility.h"
 
 namespace cinepath::optimizer {
 
 // What the guard measures a plan with. Every vector has one entry per sample of the input.
 struct GuardSetup {
-  std::vector<bool> cut_before;                           // as shots::CheckFeasibility takes it
+  std::vector<bool> cut_before;                           // as CheckFeasibility takes it
   std::vector<int> shot_of_sample;                        // -1: none (the sample is then taken alone)
   std::vector<Eigen::Vector3d> origin_enu_m;              // the plan as given to `optimize` (the reference may be a
                                                           // cheaper preset's result): deviation is measured from it
@@ -44,7 +44,7 @@ struct GuardSetup {
 };
 
 // Every limit of one plan, sample by sample, in a fixed order.
-using LimitMeasure = std::vector<shots::LimitSeries>;
+using LimitMeasure = std::vector<LimitSeries>;
 
 // `input` is the reference a candidate must not be worse than: the plan as given, or in a later stage of
 // the quality ladder the cheaper preset's accepted result (itself never worse than the plan as given).

@@ -17,6 +17,7 @@
 
 #include "core/ceres_logging.h"
 #include "core/error.h"
+#include "core/feasibility.h"
 #include "core/geodesy.h"
 #include "core/ground.h"
 #include "core/number_format.h"
@@ -30,7 +31,6 @@
 #include "scene/caster_ground.h"
 #include "scene/ray_caster.h"
 #include "scene/surface_distance.h"
-#include "shots/feasibility.h"
 
 namespace cinepath::optimizer {
 namespace {
@@ -868,7 +868,7 @@ Trajectory PlanOptimizer::Apply(double alpha) const {
   }
   std::unique_ptr<scene::CasterGround> ground;
   if (scene_->caster) ground = std::make_unique<scene::CasterGround>(*scene_->caster, input_.scene_source);
-  out.feasibility = shots::CheckFeasibility(out, split_.cut_before, {}, ground.get());
+  out.feasibility = CheckFeasibility(out, split_.cut_before, {}, ground.get());
   return out;
 }
 
@@ -922,7 +922,7 @@ Json PlanOptimizer::Report(const Trajectory& optimized, const Json& before_terms
   };
   std::unique_ptr<scene::CasterGround> ground;
   if (scene_->caster) ground = std::make_unique<scene::CasterGround>(*scene_->caster, input_.scene_source);
-  const FeasibilityReport before = shots::CheckFeasibility(input_.plan, split_.cut_before, {}, ground.get());
+  const FeasibilityReport before = CheckFeasibility(input_.plan, split_.cut_before, {}, ground.get());
   const auto wb = worst(before), wa = worst(optimized.feasibility);
   std::set<std::string> names;
   for (const auto& [n, v] : wb) names.insert(n);

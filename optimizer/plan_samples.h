@@ -25,7 +25,7 @@ struct PlanSamples {
   std::vector<SampleGroup> groups;
   std::vector<int> group_of_sample;
   std::vector<int> shot_of_sample;  // index into Trajectory::shots, -1 when the sample names none
-  std::vector<bool> cut_before;     // as shots::CheckFeasibility takes it
+  std::vector<bool> cut_before;     // as CheckFeasibility takes it
   std::vector<SampleBase> bases;
   int num_knots = 0;
 };

@@ -4,8 +4,8 @@
 #include <chrono>
 
 #include "core/number_format.h"
+#include "core/team_checks.h"
 #include "optimizer/optimizer.h"
-#include "shots/team_checks.h"
 
 namespace cinepath::optimizer {
 namespace {
@@ -77,14 +77,14 @@ TeamOptimizeResult OptimizeTeam(const TeamOptimizeInput& input, const OptimizeOp
     OptimizeResult r = one(team.flights[0].plan, {});
     result.plan = team;
     result.plan.flights[0].plan = std::move(r.plan);
-    if (!team.single) shots::CheckTeam(result.plan);
+    if (!team.single) CheckTeam(result.plan);
     result.report = std::move(r.report);
     result.failure = std::move(r.failure);
     return result;
   }
 
   TeamPlan before = team;
-  shots::CheckTeam(before);
+  CheckTeam(before);
   std::vector<Trajectory> paths;
   for (const auto& f : team.flights) paths.push_back(f.plan);
 
@@ -103,7 +103,7 @@ TeamOptimizeResult OptimizeTeam(const TeamOptimizeInput& input, const OptimizeOp
 
   result.plan = team;
   for (size_t i = 0; i < team.flights.size(); ++i) result.plan.flights[i].plan = paths[i];
-  shots::CheckTeam(result.plan);
+  CheckTeam(result.plan);
 
   Json record = Json::object();
   record["by"] = "cinepath optimize";

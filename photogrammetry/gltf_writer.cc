@@ -16,6 +16,7 @@
 #include "scene/tinygltf_config.h"  // the one tinygltf configuration (scene/tinygltf_impl.cc)
 
 #include "core/error.h"
+#include "core/three_frame.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -169,10 +170,6 @@ DracoResult EncodeDraco(const VertexData& data, const GlbWriteOptions& options) 
 
 }  // namespace
 
-Eigen::Vector3f GltfFromEnu(const Eigen::Vector3d& enu_m) {
-  return Eigen::Vector3f(static_cast<float>(enu_m.x()), static_cast<float>(enu_m.z()), static_cast<float>(-enu_m.y()));
-}
-
 float LinearFromSrgb8(uint8_t value) {
   const double c = value / 255.0;
   const double linear = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
@@ -212,7 +209,7 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbTexture* texture, co
   data.positions.reserve(3 * mesh_enu.num_vertices());
   for (const Eigen::Vector3d& v : mesh_enu.vertices_m) {
     if (!v.allFinite()) throw InputError("glb: a vertex position is not finite");
-    const Eigen::Vector3f g = GltfFromEnu(v);
+    const Eigen::Vector3f g = ThreeFromEnu(v).cast<float>();  // glTF is Y-up: (e, u, -n)
     data.positions.insert(data.positions.end(), {g.x(), g.y(), g.z()});
   }
   float srgb_to_linear[256];

@@ -32,8 +32,6 @@ struct GlbWriteOptions {
   Json extras;                      // copied into asset.extras and scene.extras (object or null)
 };
 
-// glTF position of an ENU point: (e, u, −n).
-Eigen::Vector3f GltfFromEnu(const Eigen::Vector3d& enu_m);
 // Linear value of an 8-bit sRGB channel (IEC 61966-2-1).
 float LinearFromSrgb8(uint8_t value);
 

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/glb_container.h"
+#include "core/three_frame.h"
 #include "scene/tinygltf_config.h"
 
 namespace cinepath::scene {
@@ -373,7 +374,7 @@ void GlbDecoder::AddMesh(int mesh_index, const Eigen::Matrix4d& gltf_from_mesh, 
       const Eigen::Vector4d g(prim.position.values[3 * i], prim.position.values[3 * i + 1],
                               prim.position.values[3 * i + 2], 1.0);
       const Eigen::Vector4d w = gltf_from_mesh * g;
-      const Eigen::Vector3d enu(w.x(), -w.z(), w.y());
+      const Eigen::Vector3d enu = EnuFromThree(w.head<3>());
       if (!enu.allFinite()) Fail(where, "a position is not finite");
       out->positions_enu_m.push_back(enu);
       if (colors) {

@@ -32,8 +32,6 @@ double InterpolateFNumber(double n0, double n1, double w) {
 
 double InterpolateShutterS(double t0_s, double t1_s, double w) { return InterpolateFocalLengthMm(t0_s, t1_s, w); }
 
-double StopsBetween(double n0, double n1) { return 2.0 * std::log2(n1 / n0); }
-
 double FramingFocalLengthMm(double image_height_mm, double subject_height_m, double distance_m,
                             double height_fraction) {
   if (!(subject_height_m > 0) || !(distance_m > 0) || !(height_fraction > 0) || !(image_height_mm > 0)) {

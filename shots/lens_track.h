@@ -21,8 +21,7 @@ double InterpolateFocusDistanceM(double s0_m, double s1_m, double w);  // +inf a
 double InterpolateFNumber(double n0, double n1, double w);
 double InterpolateShutterS(double t0_s, double t1_s, double w);
 
-// Aperture difference in stops: 2 log2(n1 / n0).
-double StopsBetween(double n0, double n1);
+// Aperture difference in stops: core/optics.h StopsBetween.
 
 // The focal length that makes a subject of `subject_height_m` at `distance_m` fill
 // `height_fraction` of the frame height (0 < fraction). InputError for non-positive input.

@@ -8,8 +8,8 @@
 #include "core/angles.h"
 #include "core/easing.h"
 #include "core/error.h"
+#include "core/feasibility.h"
 #include "core/rotation.h"
-#include "shots/feasibility.h"
 #include "shots/lens_track.h"
 #include "shots/shot_pose.h"
 

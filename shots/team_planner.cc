@@ -6,8 +6,8 @@
 
 #include "core/error.h"
 #include "core/number_format.h"
+#include "core/team_checks.h"
 #include "shots/lens_track.h"
-#include "shots/team_checks.h"
 
 namespace cinepath::shots {
 namespace {

@@ -1,6 +1,6 @@
 // `cinepath plan` for several drones (shots.json "drones"): each drone's shots planned as one flight
 // (shots/planner.h), on one clock, then the edit's matched focus and the team checks
-// (shots/team_checks.h). docs/plan.md, "Several drones".
+// (core/team_checks.h). docs/plan.md, "Several drones".
 #pragma once
 
 #include "core/team_plan.h"

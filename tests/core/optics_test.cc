@@ -18,6 +18,12 @@ double BlurExactMm(double f_mm, double n, double s_m, double d_m) {
   return 1000.0 * a * std::fabs(d_m - s_m) / d_m * f / (s_m - f);
 }
 
+TEST(Optics, StopsBetweenApertures) {
+  EXPECT_NEAR(StopsBetween(2.8, 5.6), 2.0, 1e-12);
+  EXPECT_NEAR(StopsBetween(4, 2), -2.0, 1e-12);
+  EXPECT_NEAR(StopsBetween(1.4, 1.4 * std::sqrt(2.0)), 1.0, 1e-12);
+}
+
 TEST(Optics, HyperfocalKnownAnswer) {
   // 50 mm f/2.8, c = 0.03 mm: H = 2500/(2.8*0.03) + 50 mm = 29811.9 mm.
   EXPECT_NEAR(HyperfocalDistanceM(50, 2.8, 0.03), 29.81190476, 1e-8);

@@ -21,6 +21,15 @@ TEST(ThreeFrame, EnuToYUp) {
   EXPECT_EQ(ThreeFromEnu({1, 2, 3}), Eigen::Vector3d(1, 3, -2));
 }
 
+TEST(ThreeFrame, EnuFromThreeUndoesItExactly) {
+  for (const Eigen::Vector3d enu :
+       {Eigen::Vector3d(1.5, 2.5, 3.5), Eigen::Vector3d(-1e7, 0.1, -0.0), Eigen::Vector3d(3e-9, -7, 1e5)}) {
+    EXPECT_EQ(EnuFromThree(ThreeFromEnu(enu)), enu);
+    EXPECT_EQ(ThreeFromEnu(EnuFromThree(enu)), enu);
+  }
+  EXPECT_EQ(EnuFromThree({1, 3, -2}), Eigen::Vector3d(1, 2, 3));
+}
+
 TEST(ThreeFrame, LevelCameraLookingNorth) {
   const Eigen::Quaterniond q = ThreeCameraFromWorldFromCamera(LookingAlong({0, 1, 0}, {1, 0, 0}));
   // A three.js camera looks along its -Z, with +Y up on the screen and +X right.

@@ -12,10 +12,10 @@
 #include <gtest/gtest.h>
 
 #include "core/drone_profiles.h"
+#include "core/feasibility.h"
 #include "optimizer/optimizer.h"
 #include "scene/caster_ground.h"
 #include "scene/ray_caster.h"
-#include "shots/feasibility.h"
 #include "tests/optimizer/test_scenes.h"
 
 namespace cinepath::optimizer {
@@ -43,7 +43,7 @@ Standing Measure(const Trajectory& plan, const scene::SceneMesh* mesh) {
   }
   Standing out;
   const std::vector<bool> cut(plan.samples.size(), false);  // one shot
-  for (const auto& series : shots::MeasureLimits(plan, cut, {}, ground.get())) {
+  for (const auto& series : MeasureLimits(plan, cut, {}, ground.get())) {
     for (size_t k = 0; k < series.values.size(); ++k) {
       if (series.Excess(k) > 0)
         out.worst_excess[series.limit] = std::max(out.worst_excess[series.limit], series.Excess(k));

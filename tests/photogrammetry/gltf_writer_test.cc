@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/three_frame.h"
 #include "surface_test_meshes.h"
 
 namespace cinepath::photogrammetry {
@@ -49,13 +50,6 @@ TriangleMesh OneTriangle() {
   mesh.faces = {{0, 1, 2}};
   mesh.colors_rgb = {{255, 0, 0}, {0, 128, 0}, {0, 0, 10}};
   return mesh;
-}
-
-TEST(GltfFromEnu, StoresEastUpMinusNorth) {
-  const Eigen::Vector3f g = GltfFromEnu(Eigen::Vector3d(1.5, 2.5, 3.5));
-  EXPECT_FLOAT_EQ(g.x(), 1.5f);
-  EXPECT_FLOAT_EQ(g.y(), 3.5f);
-  EXPECT_FLOAT_EQ(g.z(), -2.5f);
 }
 
 TEST(LinearFromSrgb8, MatchesTheSrgbTransferFunction) {
@@ -133,7 +127,7 @@ TEST(WriteGlb, DracoGlbDecodesToTheSameMesh) {
   const double extent_m = 78.0;  // largest side of the 78 m × 58 m grid
   float first[3];
   // Find the decoded point closest to vertex 0 in the glTF frame.
-  const Eigen::Vector3f want = GltfFromEnu(mesh.vertices_m[0]);
+  const Eigen::Vector3f want = ThreeFromEnu(mesh.vertices_m[0]).cast<float>();
   double best = 1e9;
   for (uint32_t i = 0; i < out.num_points(); ++i) {
     attribute->GetMappedValue(draco::PointIndex(i), first);

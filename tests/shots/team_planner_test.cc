@@ -8,7 +8,7 @@
 #include "core/angles.h"
 #include "core/error.h"
 #include "core/plan_file.h"
-#include "shots/team_checks.h"
+#include "core/team_checks.h"
 
 namespace cinepath::shots {
 namespace {

@@ -15,7 +15,7 @@
 #include "core/ground.h"
 #include "core/trajectory.h"
 
-namespace cinepath::shots {
+namespace cinepath {
 
 // What the planner asked of the lens before clamping to the camera's ranges (one per sample).
 struct LensRequest {
@@ -49,4 +49,4 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
 std::vector<LimitSeries> MeasureLimits(const Trajectory& plan, const std::vector<bool>& cut_before,
                                        const std::vector<LensRequest>& requests, const Ground* ground = nullptr);
 
-}  // namespace cinepath::shots
+}  // namespace cinepath

@@ -1,4 +1,4 @@
-#include "shots/feasibility.h"
+#include "core/feasibility.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,8 @@
 #include "core/angles.h"
 #include "core/error.h"
 #include "core/optics.h"
-#include "shots/lens_track.h"
 
-namespace cinepath::shots {
+namespace cinepath {
 namespace {
 
 constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
@@ -220,4 +219,4 @@ FeasibilityReport CheckFeasibility(const Trajectory& plan, const std::vector<boo
   return report;
 }
 
-}  // namespace cinepath::shots
+}  // namespace cinepath

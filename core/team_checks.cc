@@ -1,4 +1,4 @@
-#include "shots/team_checks.h"
+#include "core/team_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/optics.h"
 
-namespace cinepath::shots {
+namespace cinepath {
 namespace {
 
 // Merges broken samples of one (limit, drone, other) into ranges.
@@ -118,4 +118,4 @@ void CheckTeam(TeamPlan& plan) {
   }
 }
 
-}  // namespace cinepath::shots
+}  // namespace cinepath

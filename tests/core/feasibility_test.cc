@@ -1,4 +1,4 @@
-#include "shots/feasibility.h"
+#include "core/feasibility.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "core/drone_profiles.h"
 
-namespace cinepath::shots {
+namespace cinepath {
 namespace {
 
 // A straight climb at a constant rate, sampled at 10 Hz.
@@ -107,4 +107,4 @@ TEST(Feasibility, AltitudeAndLensRequests) {
 }
 
 }  // namespace
-}  // namespace cinepath::shots
+}  // namespace cinepath

@@ -16,7 +16,7 @@
 
 #include "core/team_plan.h"
 
-namespace cinepath::shots {
+namespace cinepath {
 
 inline constexpr double kInShotMinDiameterPx = 1.0;
 
@@ -33,4 +33,4 @@ double ProjectedBodyDiameterPx(const CameraSpec& camera, const Eigen::Vector3d& 
 // Leaves focus_matches alone.
 void CheckTeam(TeamPlan& plan);
 
-}  // namespace cinepath::shots
+}  // namespace cinepath
