@@ -259,24 +259,6 @@ void WriteAovs(const FrameImage& frame, const fs::path& path, const RenderOption
   }
 }
 
-// One frame written as `path` (and its AOVs beside it); its thumbnail when asked.
-void WriteFrame(const FrameImage& frame, const Trajectory& plan, size_t k, const fs::path& path,
-                const RenderOptions& options, int width, int height, RenderSummary* summary) {
-  if (options.format == ImageFormat::kExr) {
-    std::vector<float> values(frame.rgb_linear.size() * 3);
-    for (size_t i = 0; i < frame.rgb_linear.size(); ++i) {
-      for (int c = 0; c < 3; ++c) values[3 * i + c] = frame.rgb_linear[i][c];
-    }
-    WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
-  } else {
-    Srgb8Image encoded = EncodeSrgb8(frame.rgb_linear, width, height);
-    if (options.overlay) BurnOverlay(&encoded, plan, k);
-    WriteSrgb8Atomic(path, encoded);
-  }
-  summary->outputs.push_back(path.string());
-  WriteAovs(frame, path, options, width, height, summary);
-}
-
 // The same frame (and AOVs) under another name, byte for byte.
 void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& options, RenderSummary* summary) {
   WriteFileAtomic(to, ReadFileToString(from));
@@ -289,26 +271,112 @@ void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& op
   }
 }
 
-// A plan for several drones (docs/render.md, "Several drones"): OUTPUT/<drone>/frame_%06d.<ext> for each
-// flight's selected samples (the selection is of sample indexes on the shared clock), and with an edit
-// OUTPUT/edit/frame_%06d.<ext>: frame k is the live drone's frame k (before the first cut, the first
-// cut's drone; a flight that has ended holds its last sample), copied from its folder when it was
-// rendered there. The edit's contact sheet, each tile labelled with its time and drone, goes to
-// OUTPUT/edit/contact_sheet.png, or with --contact-sheet PATH beside PATH as STEM.edit.EXT (PATH then
-// holds every drone's tiles).
-RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader& loader, const fs::path& plan_json,
-                         const fs::path& scene_json, const RenderOptions& options, const RenderLog& log) {
+// One flight's frames: `targets` (sample index, file) rendered in order, each written (encoded, its
+// AOVs, the video's frame, its thumbnail when `thumbs` asks) on another thread while the next renders:
+// the encoders run on one core, and the render's rows fill the other. One frame is written at a time, in
+// order, so the files, the video and the log are as with one thread.
+struct FrameWriting {
+  const RenderOptions& options;
+  const FrameSettings& settings;
+  VideoWriter* video = nullptr;
+  std::map<size_t, Srgb8Image>* thumbs = nullptr;
+  std::function<void(const RenderedFrame&)> frame_done;
+};
+
+void RenderFlightFrames(const PreviewScene& scene, const Trajectory& plan,
+                        const std::vector<std::pair<size_t, fs::path>>& targets, const FrameWriting& writing_options,
+                        RenderSummary* summary) {
+  using Clock = std::chrono::steady_clock;
+  const RenderOptions& options = writing_options.options;
+  const int width = writing_options.settings.width_px, height = writing_options.settings.height_px;
+  VideoWriter* video = writing_options.video;
+  tbb::task_group writing;
+  std::exception_ptr write_error;
+  struct WaitOnExit {
+    tbb::task_group& group;
+    ~WaitOnExit() { group.wait(); }
+  } wait_on_exit{writing};
+  auto finish_writing = [&] {
+    writing.wait();
+    if (write_error) std::rethrow_exception(write_error);
+  };
+  for (const auto& [k, path] : targets) {
+    const auto start = Clock::now();
+    auto frame = std::make_shared<const FrameImage>(RenderFrame(scene, plan, k, writing_options.settings));
+    const double render_s = std::chrono::duration<double>(Clock::now() - start).count();
+    finish_writing();  // the previous frame's
+    writing.run([&, frame, k = k, path = path, render_s] {
+      try {
+        const auto write_start = Clock::now();
+        Srgb8Image encoded;
+        if (options.format != ImageFormat::kExr || video) {
+          encoded = EncodeSrgb8(frame->rgb_linear, width, height);
+          if (options.overlay) BurnOverlay(&encoded, plan, k);
+        }
+        if (options.format == ImageFormat::kExr) {
+          std::vector<float> values(frame->rgb_linear.size() * 3);
+          for (size_t i = 0; i < frame->rgb_linear.size(); ++i) {
+            for (int c = 0; c < 3; ++c) values[3 * i + c] = frame->rgb_linear[i][c];
+          }
+          WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
+        } else {
+          WriteSrgb8Atomic(path, encoded);
+        }
+        summary->outputs.push_back(path.string());
+        WriteAovs(*frame, path, options, width, height, summary);
+        if (video) video->Add(encoded);
+        if (writing_options.thumbs) (*writing_options.thumbs)[k] = Thumbnail(*frame);
+        const double write_s = std::chrono::duration<double>(Clock::now() - write_start).count();
+        RenderedFrame rendered{k, render_s + write_s, double(frame->total_samples) / (double(width) * height)};
+        summary->frames.push_back(rendered);
+        if (writing_options.frame_done) writing_options.frame_done(rendered);
+      } catch (...) {
+        write_error = std::current_exception();
+      }
+    });
+  }
+  finish_writing();
+}
+
+}  // namespace
+
+// One drone's frames go into OUTPUT; a plan of several drones' (docs/render.md, "Several drones") into
+// OUTPUT/<drone>/frame_%06d.<ext> for each flight's selected samples (the selection is of sample indexes
+// on the shared clock), and with an edit OUTPUT/edit/frame_%06d.<ext>: frame k is the live drone's frame k
+// (before the first cut, the first cut's drone; a flight that has ended holds its last sample), copied
+// from its folder when it was rendered there. The edit's contact sheet, each tile labelled with its time
+// and drone, goes to OUTPUT/edit/contact_sheet.png, or with --contact-sheet PATH beside PATH as
+// STEM.edit.EXT (PATH then holds every drone's tiles).
+RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, const RenderOptions& options,
+                         const RenderLog& log) {
   RenderSummary summary;
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point step_start = Clock::now();
+  auto step = [&](const std::string& name) {
+    const Clock::time_point now = Clock::now();
+    if (log.step_done) log.step_done(name, std::chrono::duration<double>(now - step_start).count());
+    step_start = now;
+  };
+  // Everything that can be refused, before anything is written.
+  const SceneFile scene_file = ReadSceneFile(scene_json);
+  SceneLoader loader(scene_file);
+  TeamPlan team = ReadTeamPlanFile(plan_json);
+  summary.notes = TeamPlanNotes(team);
   summary.inputs.push_back(plan_json.string());
-  for (const auto& flight : team.flights) CheckDroneFolderName(flight.name, plan_json.string(), {"edit"});
+  const bool single = team.single;  // one drone: its frames in OUTPUT itself, no edit
+  if (!single) {
+    for (const auto& flight : team.flights) CheckDroneFolderName(flight.name, plan_json.string(), {"edit"});
+  }
+  // A plan planned about another origin than the mesh's is moved into the mesh's frame (exact).
   if (scene_file.origin) team = ReframeToOrigin(std::move(team), *scene_file.origin);
-  if (options.video) {
+  if (options.video && !single) {
     throw InputError("--video: " + plan_json.string() +
                      " holds several drones; their frames and the edit's are image sequences (docs/render.md)");
   }
   const std::vector<size_t> frames = SelectFrames(team.SampleCount(), options.frames);
   if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");
-  // One output size for every drone (the edit cuts between them): the first flight's camera's.
+  // One output size for every drone (the edit cuts between them): the first flight's camera's. Plain
+  // variables, not a structured binding (clang 14, which the fuzz build uses, cannot capture those).
   const std::pair<int, int> size = OutputSize(team.flights.front().plan.camera, options.width_px);
   const int width = size.first, height = size.second;
   for (const auto& flight : team.flights) {
@@ -318,7 +386,7 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader
                        std::to_string(h) + " px, drone " + team.flights.front().name + "'s " + std::to_string(width) +
                        "x" + std::to_string(height) + ": the edit needs one frame size (give the cameras one aspect)");
     }
-    for (size_t k : frames) {
+    for (size_t k : frames) {  // the lens of every frame, as the camera will take it
       if (k >= flight.plan.samples.size()) break;
       const auto& s = flight.plan.samples[k];
       ThinLensCamera(flight.plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
@@ -327,18 +395,32 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader
   summary.inputs.push_back(scene_json.string());
   const fs::path& glb = scene_file.RequireMesh();
   summary.inputs.push_back(glb.string());
+  if (options.video && FindOnPath("ffmpeg").empty()) {
+    throw RuntimeError("--video needs ffmpeg on PATH (Debian package ffmpeg); nothing was rendered");
+  }
   const bool has_edit = !team.edit.empty();
   const bool sheets = has_edit || options.contact_sheet;
   if (options.overlay || sheets) RequireLabelFont();
   const SunDirection sun = SunForOptions(options, team.flights.front().plan, scene_file);
   CheckWritableFolder(options.output_dir);
-  for (const auto& flight : team.flights) CheckWritableFolder(options.output_dir / flight.name);
+  auto folder_of = [&](size_t f) { return single ? options.output_dir : options.output_dir / team.flights[f].name; };
+  if (!single) {
+    for (size_t f = 0; f < team.flights.size(); ++f) CheckWritableFolder(folder_of(f));
+  }
   if (has_edit) CheckWritableFolder(options.output_dir / "edit");
+  step("read plan.json and scene.json, check the options");
   loader.Wait(log);
-  const scene::SceneMesh& mesh = loader.mesh();
+  step("wait for the GLB and its textures");
+  // Every frame allocates the same few image-sized buffers: keep freed ones in the heap instead of
+  // returning them to the kernel, so the next frame does not page-fault them in again (measured: a
+  // fifth of a draft frame's time went to page faults and zeroing).
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   const FrameSettings settings = SettingsFor(options, width, height);
+  std::unique_ptr<VideoWriter> video;
+  if (options.video) {
+    video = std::make_unique<VideoWriter>(*options.video, width, height, team.frame_rate_hz / options.frames.every);
+  }
 
   // The (flight, sample) of the edit's frame k.
   auto edit_source = [&](size_t k) {
@@ -369,32 +451,36 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader
   size_t done = 0;
   for (size_t f = 0; f < team.flights.size(); ++f) {
     const Trajectory& plan = team.flights[f].plan;
-    const PreviewScene scene(mesh, loader.textures(), plan, options.shading, sun, options.backdrop);
-    auto render = [&](size_t k, const fs::path& path) {
-      const auto start = std::chrono::steady_clock::now();
-      const FrameImage frame = RenderFrame(scene, plan, k, settings);
-      WriteFrame(frame, plan, k, path, options, width, height, &summary);
-      if (sheets) thumbs[f][k] = Thumbnail(frame);
-      RenderedFrame rendered{k, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                             double(frame.total_samples) / (double(width) * height)};
-      summary.frames.push_back(rendered);
-      if (log.frame_done) log.frame_done(rendered, ++done, total);
-    };
+    const bool last = f + 1 == team.flights.size();  // the last flight takes the mesh, the others a copy
+    const PreviewScene scene(last ? std::move(loader.mesh()) : loader.mesh(),
+                             last ? std::move(loader.textures()) : loader.textures(), plan, options.shading, sun,
+                             options.backdrop);
+    if (log.step_done) {
+      log.step_done("BVH", scene.load_times().bvh_s);
+      log.step_done("ground past the edge", scene.load_times().ground_s);
+    }
+    std::vector<std::pair<size_t, fs::path>> targets;
     for (size_t k : frames) {
       if (k >= plan.samples.size()) break;
-      render(k, options.output_dir / team.flights[f].name / FrameFileName(k, options.format));
+      targets.push_back({k, folder_of(f) / FrameFileName(k, options.format)});
     }
     for (const auto& [ef, j] : extra) {
       if (ef != f) continue;
       const fs::path path = options.output_dir / "edit" / (".held_" + FrameFileName(j, options.format));
-      render(j, path);
+      targets.push_back({j, path});
       held[{ef, j}] = path;
     }
+    FrameWriting writing{options, settings, video.get(), sheets ? &thumbs[f] : nullptr,
+                         [&](const RenderedFrame& rendered) {
+                           if (log.frame_done) log.frame_done(rendered, ++done, total);
+                         }};
+    RenderFlightFrames(scene, plan, targets, writing, &summary);
   }
 
   auto tile_label = [&](size_t f, size_t j, size_t k) {
     const Trajectory& plan = team.flights[f].plan;
     std::vector<std::string> lines = LabelLines(plan, j);
+    if (single) return lines;
     lines[0] = "#" + std::to_string(k) + "  t " + FormatFixed(double(k) / team.frame_rate_hz, 3) + " s  " +
                team.flights[f].name + "  " + plan.samples[j].shot;
     return lines;
@@ -406,8 +492,7 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader
       const auto [f, j] = edit_source(k);
       const fs::path to = options.output_dir / "edit" / FrameFileName(k, options.format);
       const auto h = held.find({f, j});
-      const fs::path from =
-          h != held.end() ? h->second : options.output_dir / team.flights[f].name / FrameFileName(j, options.format);
+      const fs::path from = h != held.end() ? h->second : folder_of(f) / FrameFileName(j, options.format);
       CopyFrame(from, to, options, &summary);
       edit_thumbs.push_back(thumbs[f].at(j));
       edit_labels.push_back(tile_label(f, j, k));
@@ -447,138 +532,6 @@ RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader
       WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(all, labels));
       summary.outputs.push_back(options.contact_sheet->string());
     }
-  }
-  return summary;
-}
-
-}  // namespace
-
-RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, const RenderOptions& options,
-                         const RenderLog& log) {
-  RenderSummary summary;
-  using Clock = std::chrono::steady_clock;
-  Clock::time_point step_start = Clock::now();
-  auto step = [&](const std::string& name) {
-    const Clock::time_point now = Clock::now();
-    if (log.step_done) log.step_done(name, std::chrono::duration<double>(now - step_start).count());
-    step_start = now;
-  };
-  // Everything that can be refused, before anything is written.
-  const SceneFile scene_file = ReadSceneFile(scene_json);
-  SceneLoader loader(scene_file);
-  TeamPlan team = ReadTeamPlanFile(plan_json);
-  summary.notes = TeamPlanNotes(team);
-  if (!team.single) {
-    RenderSummary team_summary = RenderTeam(std::move(team), scene_file, loader, plan_json, scene_json, options, log);
-    team_summary.notes = std::move(summary.notes);
-    return team_summary;
-  }
-  // A plan planned about another origin than the mesh's is moved into the mesh's frame (exact).
-  const Trajectory plan = scene_file.origin ? ReframeToOrigin(std::move(team.flights.front().plan), *scene_file.origin)
-                                            : std::move(team.flights.front().plan);
-  summary.inputs.push_back(plan_json.string());
-  const std::vector<size_t> frames = SelectFrames(plan.samples.size(), options.frames);
-  if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");
-  // Plain variables, not a structured binding: the frame writer's lambda captures them (clang 14, which
-  // the fuzz build uses, cannot capture structured bindings).
-  const std::pair<int, int> size = OutputSize(plan.camera, options.width_px);
-  const int width = size.first, height = size.second;
-  for (size_t k : frames) {  // the lens of every frame, as the camera will take it
-    const auto& s = plan.samples[k];
-    ThinLensCamera(plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
-  }
-  summary.inputs.push_back(scene_json.string());
-  const fs::path& glb = scene_file.RequireMesh();
-  summary.inputs.push_back(glb.string());
-  if (options.video && FindOnPath("ffmpeg").empty()) {
-    throw RuntimeError("--video needs ffmpeg on PATH (Debian package ffmpeg); nothing was rendered");
-  }
-  const bool labels = options.overlay || options.contact_sheet;
-  if (labels) RequireLabelFont();
-  const SunDirection sun = SunForOptions(options, plan, scene_file);
-  CheckWritableFolder(options.output_dir);
-  step("read plan.json and scene.json, check the options");
-  loader.Wait(log);
-  step("wait for the GLB and its textures");
-  const PreviewScene scene(std::move(loader.mesh()), std::move(loader.textures()), plan, options.shading, sun,
-                           options.backdrop);
-  if (log.step_done) {
-    log.step_done("BVH", scene.load_times().bvh_s);
-    log.step_done("ground past the edge", scene.load_times().ground_s);
-  }
-  step_start = Clock::now();
-  // Every frame allocates the same few image-sized buffers: keep freed ones in the heap instead of
-  // returning them to the kernel, so the next frame does not page-fault them in again (measured: a
-  // fifth of a draft frame's time went to page faults and zeroing).
-  mallopt(M_MMAP_THRESHOLD, 256 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
-
-  const FrameSettings settings = SettingsFor(options, width, height);
-
-  std::unique_ptr<VideoWriter> video;
-  if (options.video) {
-    video = std::make_unique<VideoWriter>(*options.video, width, height, plan.frame_rate_hz / options.frames.every);
-  }
-  std::vector<Srgb8Image> thumbs;
-  std::vector<std::vector<std::string>> thumb_labels;
-  // Frame k is written (encoded, its AOVs, the video, its thumbnail) on another thread while frame k + 1
-  // renders: the encoders run on one core, and the render's rows fill the other. One frame is written at
-  // a time, in order, so the files, the video and the log are as with one thread.
-  using Clock = std::chrono::steady_clock;
-  tbb::task_group writing;
-  std::exception_ptr write_error;
-  struct WaitOnExit {
-    tbb::task_group& group;
-    ~WaitOnExit() { group.wait(); }
-  } wait_on_exit{writing};
-  auto finish_writing = [&] {
-    writing.wait();
-    if (write_error) std::rethrow_exception(write_error);
-  };
-  for (size_t done = 0; done < frames.size(); ++done) {
-    const size_t k = frames[done];
-    const auto start = Clock::now();
-    auto frame = std::make_shared<const FrameImage>(RenderFrame(scene, plan, k, settings));
-    const double render_s = std::chrono::duration<double>(Clock::now() - start).count();
-    finish_writing();  // the previous frame's
-    writing.run([&, frame, k, done, render_s] {
-      try {
-        const auto write_start = Clock::now();
-        const fs::path path = options.output_dir / FrameFileName(k, options.format);
-        Srgb8Image encoded;
-        if (options.format != ImageFormat::kExr || video) {
-          encoded = EncodeSrgb8(frame->rgb_linear, width, height);
-          if (options.overlay) BurnOverlay(&encoded, plan, k);
-        }
-        if (options.format == ImageFormat::kExr) {
-          std::vector<float> values(frame->rgb_linear.size() * 3);
-          for (size_t i = 0; i < frame->rgb_linear.size(); ++i) {
-            for (int c = 0; c < 3; ++c) values[3 * i + c] = frame->rgb_linear[i][c];
-          }
-          WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
-        } else {
-          WriteSrgb8Atomic(path, encoded);
-        }
-        summary.outputs.push_back(path.string());
-        WriteAovs(*frame, path, options, width, height, &summary);
-        if (video) video->Add(encoded);
-        if (options.contact_sheet) {
-          thumbs.push_back(Thumbnail(*frame));
-          thumb_labels.push_back(LabelLines(plan, k));
-        }
-        const double write_s = std::chrono::duration<double>(Clock::now() - write_start).count();
-        RenderedFrame rendered{k, render_s + write_s, double(frame->total_samples) / (double(width) * height)};
-        summary.frames.push_back(rendered);
-        if (log.frame_done) log.frame_done(rendered, done + 1, frames.size());
-      } catch (...) {
-        write_error = std::current_exception();
-      }
-    });
-  }
-  finish_writing();
-  if (options.contact_sheet && !thumbs.empty()) {
-    WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(thumbs, thumb_labels));
-    summary.outputs.push_back(options.contact_sheet->string());
   }
   if (video) {
     video->Finish();
