@@ -61,7 +61,7 @@ class PlanCommand : public Command {
     AtomicOutputs outputs;
     outputs.Add(output_, TeamPlanToText(plan));
     if (!csv_path_.empty()) outputs.Add(csv_path_, TeamPlanSamplesToCsv(plan));
-    if (!plot_path_.empty()) outputs.Add(plot_path_, shots::TeamPlanToSvg(plan));
+    if (!plot_path_.empty()) outputs.Add(plot_path_, shots::PlanToSvg(plan));
     outputs.Commit();
 
     std::vector<std::string> targets = {output_};
