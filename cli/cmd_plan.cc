@@ -49,13 +49,7 @@ class PlanCommand : public Command {
       }
     }
     const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin, ground);
-    TeamPlan plan;
-    if (list.drones.empty()) {
-      plan.single = true;
-      plan.flights.push_back({list.drone.name, std::nullopt, shots::PlanShots(list)});
-    } else {
-      plan = shots::PlanTeam(list);
-    }
+    const TeamPlan plan = shots::PlanTeam(list);
     if (strict_) RefuseBrokenLimits(plan);
 
     AtomicOutputs outputs;
