@@ -338,6 +338,102 @@ void RenderFlightFrames(const PreviewScene& scene, const Trajectory& plan,
   finish_writing();
 }
 
+// The (flight, sample) of the edit's frame k: the live drone's (before the first cut, the first cut's
+// drone); a flight that has ended holds its last sample.
+std::pair<size_t, size_t> EditSource(const TeamPlan& team, size_t k) {
+  const double t = double(k) / team.frame_rate_hz;
+  int live = LiveFlightAt(team, t);
+  if (live < 0) live = team.FindFlight(team.edit.front().drone);
+  const size_t n = team.flights[size_t(live)].plan.samples.size();
+  return std::pair<size_t, size_t>(size_t(live), std::min(k, n - 1));
+}
+
+// The edit's (flight, sample) pairs whose sample no drone folder holds: rendered into the edit folder
+// only to be copied.
+std::vector<std::pair<size_t, size_t>> HeldEditFrames(const TeamPlan& team, const std::vector<size_t>& frames) {
+  std::vector<std::pair<size_t, size_t>> extra;
+  if (team.edit.empty()) return extra;
+  for (size_t k : frames) {
+    const auto [f, j] = EditSource(team, k);
+    if (!std::binary_search(frames.begin(), frames.end(), j)) extra.push_back({f, j});
+  }
+  std::sort(extra.begin(), extra.end());
+  extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+  return extra;
+}
+
+// A contact-sheet tile's label for flight f's sample j as frame k: the frame's label, and for several
+// drones the time on the shared clock and the drone's name.
+std::vector<std::string> TileLabel(const TeamPlan& team, size_t f, size_t j, size_t k) {
+  const Trajectory& plan = team.flights[f].plan;
+  std::vector<std::string> lines = LabelLines(plan, j);
+  if (team.single) return lines;
+  lines[0] = "#" + std::to_string(k) + "  t " + FormatFixed(double(k) / team.frame_rate_hz, 3) + " s  " +
+             team.flights[f].name + "  " + plan.samples[j].shot;
+  return lines;
+}
+
+// What the flights' renders left: thumbs[f][j], flight f's sample j (when sheets are asked for); the
+// edit's held frames; each flight's folder.
+struct RenderedFlights {
+  std::vector<std::map<size_t, Srgb8Image>> thumbs;
+  std::map<std::pair<size_t, size_t>, fs::path> held;
+  std::vector<fs::path> folders;
+};
+
+// OUTPUT/edit/frame_%06d.<ext>, each copied from its drone's folder or its held frame (the held frames
+// then removed), and the edit's contact sheet.
+void WriteEdit(const TeamPlan& team, const std::vector<size_t>& frames, const RenderedFlights& rendered,
+               const RenderOptions& options, RenderSummary* summary) {
+  std::vector<Srgb8Image> edit_thumbs;
+  std::vector<std::vector<std::string>> edit_labels;
+  for (size_t k : frames) {
+    const auto [f, j] = EditSource(team, k);
+    const fs::path to = options.output_dir / "edit" / FrameFileName(k, options.format);
+    const auto h = rendered.held.find({f, j});
+    const fs::path from = h != rendered.held.end() ? h->second : rendered.folders[f] / FrameFileName(j, options.format);
+    CopyFrame(from, to, options, summary);
+    edit_thumbs.push_back(rendered.thumbs[f].at(j));
+    edit_labels.push_back(TileLabel(team, f, j, k));
+  }
+  for (const auto& [key, path] : rendered.held) {  // held frames were written only to be copied
+    std::error_code ignored;
+    fs::remove(path, ignored);
+    for (const AovInfo& aov : AovTable()) {
+      fs::remove(path.parent_path() / (path.stem().string() + "." + aov.name + ".exr"), ignored);
+    }
+  }
+  summary->outputs.erase(std::remove_if(summary->outputs.begin(), summary->outputs.end(),
+                                        [](const std::string& o) { return o.find("/.held_") != std::string::npos; }),
+                         summary->outputs.end());
+  if (edit_thumbs.empty()) return;
+  fs::path sheet = options.output_dir / "edit" / "contact_sheet.png";
+  if (options.contact_sheet) {
+    const fs::path& given = *options.contact_sheet;
+    sheet = given.parent_path() / (given.stem().string() + ".edit" + given.extension().string());
+  }
+  WriteSrgb8Atomic(sheet, ContactSheet(edit_thumbs, edit_labels));
+  summary->outputs.push_back(sheet.string());
+}
+
+// --contact-sheet PATH: every flight's tiles, frame by frame.
+void WriteContactSheet(const TeamPlan& team, const std::vector<size_t>& frames, const RenderedFlights& rendered,
+                       const RenderOptions& options, RenderSummary* summary) {
+  std::vector<Srgb8Image> all;
+  std::vector<std::vector<std::string>> labels;
+  for (size_t k : frames) {
+    for (size_t f = 0; f < team.flights.size(); ++f) {
+      const auto t = rendered.thumbs[f].find(k);
+      if (t == rendered.thumbs[f].end()) continue;
+      all.push_back(t->second);
+      labels.push_back(TileLabel(team, f, k, k));
+    }
+  }
+  if (all.empty()) return;
+  WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(all, labels));
+  summary->outputs.push_back(options.contact_sheet->string());
+}
+
 }  // namespace
 
 // One drone's frames go into OUTPUT; a plan of several drones' (docs/render.md, "Several drones") into
@@ -403,9 +499,11 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   if (options.overlay || sheets) RequireLabelFont();
   const SunDirection sun = SunForOptions(options, team.flights.front().plan, scene_file);
   CheckWritableFolder(options.output_dir);
-  auto folder_of = [&](size_t f) { return single ? options.output_dir : options.output_dir / team.flights[f].name; };
-  if (!single) {
-    for (size_t f = 0; f < team.flights.size(); ++f) CheckWritableFolder(folder_of(f));
+  RenderedFlights rendered;
+  rendered.thumbs.resize(team.flights.size());
+  for (const auto& flight : team.flights) {
+    rendered.folders.push_back(single ? options.output_dir : options.output_dir / flight.name);
+    if (!single) CheckWritableFolder(rendered.folders.back());
   }
   if (has_edit) CheckWritableFolder(options.output_dir / "edit");
   step("read plan.json and scene.json, check the options");
@@ -422,32 +520,12 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
     video = std::make_unique<VideoWriter>(*options.video, width, height, team.frame_rate_hz / options.frames.every);
   }
 
-  // The (flight, sample) of the edit's frame k.
-  auto edit_source = [&](size_t k) {
-    const double t = double(k) / team.frame_rate_hz;
-    int live = LiveFlightAt(team, t);
-    if (live < 0) live = team.FindFlight(team.edit.front().drone);
-    const size_t n = team.flights[size_t(live)].plan.samples.size();
-    return std::pair<size_t, size_t>(size_t(live), std::min(k, n - 1));
-  };
-  size_t total = 0;
+  const std::vector<std::pair<size_t, size_t>> extra = HeldEditFrames(team, frames);
+  size_t total = extra.size();
   for (const auto& flight : team.flights) {
     for (size_t k : frames) total += k < flight.plan.samples.size() ? 1 : 0;
   }
-  std::vector<std::pair<size_t, size_t>> extra;  // edit frames whose sample no drone folder holds
-  if (has_edit) {
-    for (size_t k : frames) {
-      const auto [f, j] = edit_source(k);
-      if (!std::binary_search(frames.begin(), frames.end(), j)) extra.push_back({f, j});
-    }
-    std::sort(extra.begin(), extra.end());
-    extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
-    total += extra.size();
-  }
 
-  // thumbs[f][j]: the thumbnail of flight f's sample j (when sheets are asked for).
-  std::vector<std::map<size_t, Srgb8Image>> thumbs(team.flights.size());
-  std::map<std::pair<size_t, size_t>, fs::path> held;  // extra frames, rendered into the edit folder
   size_t done = 0;
   for (size_t f = 0; f < team.flights.size(); ++f) {
     const Trajectory& plan = team.flights[f].plan;
@@ -462,77 +540,23 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
     std::vector<std::pair<size_t, fs::path>> targets;
     for (size_t k : frames) {
       if (k >= plan.samples.size()) break;
-      targets.push_back({k, folder_of(f) / FrameFileName(k, options.format)});
+      targets.push_back({k, rendered.folders[f] / FrameFileName(k, options.format)});
     }
     for (const auto& [ef, j] : extra) {
       if (ef != f) continue;
       const fs::path path = options.output_dir / "edit" / (".held_" + FrameFileName(j, options.format));
       targets.push_back({j, path});
-      held[{ef, j}] = path;
+      rendered.held[{ef, j}] = path;
     }
-    FrameWriting writing{options, settings, video.get(), sheets ? &thumbs[f] : nullptr,
+    FrameWriting writing{options, settings, video.get(), sheets ? &rendered.thumbs[f] : nullptr,
                          [&](const RenderedFrame& rendered) {
                            if (log.frame_done) log.frame_done(rendered, ++done, total);
                          }};
     RenderFlightFrames(scene, plan, targets, writing, &summary);
   }
 
-  auto tile_label = [&](size_t f, size_t j, size_t k) {
-    const Trajectory& plan = team.flights[f].plan;
-    std::vector<std::string> lines = LabelLines(plan, j);
-    if (single) return lines;
-    lines[0] = "#" + std::to_string(k) + "  t " + FormatFixed(double(k) / team.frame_rate_hz, 3) + " s  " +
-               team.flights[f].name + "  " + plan.samples[j].shot;
-    return lines;
-  };
-  std::vector<Srgb8Image> edit_thumbs;
-  std::vector<std::vector<std::string>> edit_labels;
-  if (has_edit) {
-    for (size_t k : frames) {
-      const auto [f, j] = edit_source(k);
-      const fs::path to = options.output_dir / "edit" / FrameFileName(k, options.format);
-      const auto h = held.find({f, j});
-      const fs::path from = h != held.end() ? h->second : folder_of(f) / FrameFileName(j, options.format);
-      CopyFrame(from, to, options, &summary);
-      edit_thumbs.push_back(thumbs[f].at(j));
-      edit_labels.push_back(tile_label(f, j, k));
-    }
-    for (const auto& [key, path] : held) {  // held frames were written only to be copied
-      std::error_code ignored;
-      fs::remove(path, ignored);
-      for (const AovInfo& aov : AovTable()) {
-        fs::remove(path.parent_path() / (path.stem().string() + "." + aov.name + ".exr"), ignored);
-      }
-    }
-    summary.outputs.erase(std::remove_if(summary.outputs.begin(), summary.outputs.end(),
-                                         [](const std::string& o) { return o.find("/.held_") != std::string::npos; }),
-                          summary.outputs.end());
-  }
-  if (has_edit && !edit_thumbs.empty()) {
-    fs::path sheet = options.output_dir / "edit" / "contact_sheet.png";
-    if (options.contact_sheet) {
-      const fs::path& given = *options.contact_sheet;
-      sheet = given.parent_path() / (given.stem().string() + ".edit" + given.extension().string());
-    }
-    WriteSrgb8Atomic(sheet, ContactSheet(edit_thumbs, edit_labels));
-    summary.outputs.push_back(sheet.string());
-  }
-  if (options.contact_sheet) {
-    std::vector<Srgb8Image> all;
-    std::vector<std::vector<std::string>> labels;
-    for (size_t k : frames) {
-      for (size_t f = 0; f < team.flights.size(); ++f) {
-        const auto t = thumbs[f].find(k);
-        if (t == thumbs[f].end()) continue;
-        all.push_back(t->second);
-        labels.push_back(tile_label(f, k, k));
-      }
-    }
-    if (!all.empty()) {
-      WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(all, labels));
-      summary.outputs.push_back(options.contact_sheet->string());
-    }
-  }
+  if (has_edit) WriteEdit(team, frames, rendered, options, &summary);
+  if (options.contact_sheet) WriteContactSheet(team, frames, rendered, options, &summary);
   if (video) {
     video->Finish();
     summary.outputs.push_back(options.video->string());
