@@ -1,6 +1,5 @@
 // cinepath export: plan.json -> drone missions and camera tracks (docs/export.md).
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -15,7 +14,6 @@
 #include "core/drone_profiles.h"
 #include "core/error.h"
 #include "core/file_io.h"
-#include "core/geoid.h"
 #include "core/glb_container.h"
 #include "core/ground.h"
 #include "core/json.h"
@@ -25,8 +23,8 @@
 #include "core/scene_file.h"
 #include "export/camera_track.h"
 #include "export/exporter.h"
+#include "export/flight_export.h"
 #include "export/formats.h"
-#include "export/takeoff.h"
 
 namespace cinepath::cli {
 namespace {
@@ -109,36 +107,7 @@ class ExportCommand : public Command {
     PrintWarnings("export", TeamPlanNotes(team));
     const CameraTracks cameras = WriteCameraTracks(team, camera_formats);
     if (options.formats.empty()) return RunCamerasOnly(cameras);
-    if (!team.single) return RunTeam(team, options, cameras);
-    const Trajectory plan = std::move(team.flights.front().plan);
-    std::vector<std::string> inputs = {plan_path_};
-    if (!scene_path_.empty()) {
-      const SceneFile scene = ReadSceneFile(scene_path_);
-      options.build.scene_origin = scene.RequireOrigin();
-      inputs.push_back(scene_path_);
-      if (scene.mesh) {
-        inputs.push_back(scene.RequireMesh().string());
-        UseTheGroundForHome(plan, scene, &options);
-      }
-    }
-    const exporter::ExportResult result = exporter::ExportMission(plan, options);
-
-    Json report = exporter::ReportJson(result, options);
-    if (!cameras.files.empty()) report["camera_tracks"] = cameras.report;
-    EnsureDirectory(output_dir_);
-    AtomicOutputs outputs;
-    std::vector<std::string> targets;
-    for (const auto& file : result.files) {
-      outputs.Add(std::filesystem::path(output_dir_) / file.file_name, file.contents);
-      targets.push_back((std::filesystem::path(output_dir_) / file.file_name).string());
-    }
-    AddCameraFiles(cameras, outputs, targets, inputs);
-    outputs.Add(std::filesystem::path(output_dir_) / "export_report.json", DumpJson(report));
-    outputs.Commit();
-    std::cout << (json_ ? DumpJson(report) : exporter::ReportText(result, options) + cameras.text);
-    targets.push_back((std::filesystem::path(output_dir_) / "export_report.json").string());
-    common_.WriteDepfileIfAsked(targets, inputs);
-    return 0;
+    return RunMissions(team, options, cameras);
   }
 
   // The camera-track formats' files (into OUTPUT itself, for one drone or several), their report, and
@@ -243,83 +212,61 @@ class ExportCommand : public Command {
     return 0;
   }
 
-  // A plan for several drones: one mission per drone into OUTPUT/<drone>/ (the file names of a one-drone
-  // export), each with its own home and checked against its own profile (--drone overrides for all).
-  int RunTeam(const TeamPlan& team, const exporter::ExportOptions& shared, const CameraTracks& cameras) const {
-    if (!home_text_.empty()) {
-      throw InputError("--home: " + plan_path_ + " holds " + std::to_string(team.flights.size()) +
-                       " drones, and one --home cannot be every drone's take-off point; give each drone its "
-                       "`home_enu_m` or `home` in shots.json (docs/export.md, \"Several drones\")");
-    }
+  // One mission per flight (export/flight_export.h): a "cinepath.plan/1" plan's files and report go into
+  // OUTPUT, a plan of several drones' into OUTPUT/<drone>/ (the file names of a one-drone export) with a
+  // report of the drones in OUTPUT.
+  int RunMissions(const TeamPlan& team, const exporter::ExportOptions& shared, const CameraTracks& cameras) const {
+    exporter::FlightExportOptions options;
+    options.shared = shared;
+    options.plan_name = plan_path_;
+    options.takeoff_tolerance_m = takeoff_tolerance_m_;
+    options.strict = strict_;
+    options.warn = [](const std::string& message) { std::cerr << "cinepath export: warning: " << message << "\n"; };
     std::vector<std::string> inputs = {plan_path_};
-    std::optional<SceneFile> scene;
     std::unique_ptr<Ground> ground;
     if (!scene_path_.empty()) {
-      scene = ReadSceneFile(scene_path_);
+      const SceneFile scene = ReadSceneFile(scene_path_);
+      options.scene_origin = scene.RequireOrigin();
       inputs.push_back(scene_path_);
-      if (scene->mesh) {
-        inputs.push_back(scene->RequireMesh().string());
-        ground = LoadGround(scene->RequireMesh());
+      if (scene.mesh) {
+        inputs.push_back(scene.RequireMesh().string());
+        ground = LoadGround(scene.RequireMesh());
+        options.ground = ground.get();
       }
     }
-    for (const auto& flight : team.flights) CheckDroneFolderName(flight.name, plan_path_);
-    struct DroneExport {
-      std::string name;
-      exporter::ExportOptions options;
-      exporter::ExportResult result;
-    };
-    std::vector<DroneExport> exports;
-    for (const auto& flight : team.flights) {
-      exporter::ExportOptions options = shared;
-      options.build.plan_name = plan_path_ + " (drone " + flight.name + ")";
-      if (scene) options.build.scene_origin = scene->RequireOrigin();
-      const std::optional<Geodetic> origin = flight.plan.origin ? flight.plan.origin : options.build.scene_origin;
-      if (flight.home_enu_m) {
-        if (!origin) {
-          throw InputError(plan_path_ + ": flights[" + flight.name +
-                           "].home_enu_m: the plan has no WGS84 origin to place it; pass --scene");
-        }
-        const Geodetic home = EnuFrame(*origin).GeodeticFromEnu(*flight.home_enu_m);
-        options.build.home =
-            exporter::HomeSpec{home.lat_deg, home.lon_deg,
-                               Egm96Geoid::Default().AmslFromEllipsoidalM(home.lat_deg, home.lon_deg, home.height_m)};
-      } else if (ground) {
-        options.build.home = exporter::TakeoffOnGround(flight.plan, scene->RequireOrigin(), *ground);
-      }
-      try {
-        exporter::ExportResult result = exporter::ExportMission(flight.plan, options);
-        exports.push_back({flight.name, std::move(options), std::move(result)});
-      } catch (const InfeasibleError& e) {
-        throw InfeasibleError("drone " + flight.name + ": " + e.what());
-      } catch (const InputError& e) {
-        throw InputError("drone " + flight.name + ": " + e.what());
-      }
-    }
+    const std::vector<exporter::FlightExport> exports = exporter::ExportFlights(team, options);
 
     EnsureDirectory(output_dir_);
     AtomicOutputs outputs;
     std::vector<std::string> targets;
+    Json report = Json::object();
     Json drones = Json::array();
     std::string text;
     for (const auto& e : exports) {
-      const std::filesystem::path dir = std::filesystem::path(output_dir_) / e.name;
-      EnsureDirectory(dir.string());
-      Json report = exporter::ReportJson(e.result, e.options);
+      const std::filesystem::path dir =
+          team.single ? std::filesystem::path(output_dir_) : std::filesystem::path(output_dir_) / e.name;
+      const Json flight_report = exporter::ReportJson(e.result, e.options);
+      if (!team.single) EnsureDirectory(dir.string());
       for (const auto& file : e.result.files) {
         outputs.Add(dir / file.file_name, file.contents);
         targets.push_back((dir / file.file_name).string());
       }
-      outputs.Add(dir / "export_report.json", DumpJson(report));
+      if (team.single) {
+        report = flight_report;
+        text += exporter::ReportText(e.result, e.options);
+        continue;
+      }
+      outputs.Add(dir / "export_report.json", DumpJson(flight_report));
       targets.push_back((dir / "export_report.json").string());
       Json entry = Json{{"name", e.name}, {"folder", e.name}};
-      entry.update(report);
+      entry.update(flight_report);
       drones.push_back(entry);
       text += "drone " + e.name + " -> " + dir.string() + "/ (profile " + e.result.drone_name + ", home " +
               FormatFixed(e.result.mission.home.lat_deg, 7) + ", " + FormatFixed(e.result.mission.home.lon_deg, 7) +
               ", " + FormatFixed(e.result.mission.home.amsl_m, 2) + " m AMSL)\n";
       for (const auto& line : SplitLines(exporter::ReportText(e.result, e.options))) text += "  " + line + "\n";
     }
-    Json report = Json{{"drones", drones}};
+    if (!team.single) report = Json{{"drones", drones}};
     if (!cameras.files.empty()) report["camera_tracks"] = cameras.report;
     AddCameraFiles(cameras, outputs, targets, inputs);
     text += cameras.text;
@@ -341,23 +288,6 @@ class ExportCommand : public Command {
       start = end + 1;
     }
     return lines;
-  }
-
-  // Home on the mesh's ground under the first sample, or --home checked against that ground.
-  void UseTheGroundForHome(const Trajectory& plan, const SceneFile& scene, exporter::ExportOptions* options) const {
-    const std::unique_ptr<Ground> ground = LoadGround(scene.RequireMesh());
-    if (!options->build.home) {
-      options->build.home = exporter::TakeoffOnGround(plan, scene.RequireOrigin(), *ground);
-      return;
-    }
-    const auto check = exporter::CheckHomeAgainstGround(*options->build.home, scene.RequireOrigin(), *ground);
-    if (!check || std::abs(check->difference_m) <= takeoff_tolerance_m_) return;
-    const std::string message = "--home: altitude " + FormatFixed(options->build.home->amsl_m, 2) + " m AMSL lies " +
-                                FormatFixed(check->difference_m, 2) + " m from the mesh's ground (" +
-                                FormatFixed(check->ground_amsl_m, 2) + " m AMSL) there, beyond --takeoff-tolerance-m " +
-                                FormatSignificant(takeoff_tolerance_m_, 3) + " m: every relative altitude shifts by it";
-    if (strict_) throw InfeasibleError(message + " (--strict; nothing written)");
-    std::cerr << "cinepath export: warning: " << message << "\n";
   }
 
   FieldFlags field_flags() const override {

@@ -54,19 +54,13 @@ class PlanCommand : public Command {
       }
     }
     const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin, ground);
-    TeamPlan plan;
-    if (list.drones.empty()) {
-      plan.single = true;
-      plan.flights.push_back({list.drone.name, std::nullopt, shots::PlanShots(list)});
-    } else {
-      plan = shots::PlanTeam(list);
-    }
+    const TeamPlan plan = shots::PlanTeam(list);
     if (strict_) RefuseBrokenLimits(plan);
 
     AtomicOutputs outputs;
     outputs.Add(output_, TeamPlanToText(plan));
     if (!csv_path_.empty()) outputs.Add(csv_path_, TeamPlanSamplesToCsv(plan));
-    if (!plot_path_.empty()) outputs.Add(plot_path_, shots::TeamPlanToSvg(plan));
+    if (!plot_path_.empty()) outputs.Add(plot_path_, shots::PlanToSvg(plan));
     outputs.Commit();
 
     std::vector<std::string> targets = {output_};

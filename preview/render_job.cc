@@ -259,24 +259,6 @@ void WriteAovs(const FrameImage& frame, const fs::path& path, const RenderOption
   }
 }
 
-// One frame written as `path` (and its AOVs beside it); its thumbnail when asked.
-void WriteFrame(const FrameImage& frame, const Trajectory& plan, size_t k, const fs::path& path,
-                const RenderOptions& options, int width, int height, RenderSummary* summary) {
-  if (options.format == ImageFormat::kExr) {
-    std::vector<float> values(frame.rgb_linear.size() * 3);
-    for (size_t i = 0; i < frame.rgb_linear.size(); ++i) {
-      for (int c = 0; c < 3; ++c) values[3 * i + c] = frame.rgb_linear[i][c];
-    }
-    WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
-  } else {
-    Srgb8Image encoded = EncodeSrgb8(frame.rgb_linear, width, height);
-    if (options.overlay) BurnOverlay(&encoded, plan, k);
-    WriteSrgb8Atomic(path, encoded);
-  }
-  summary->outputs.push_back(path.string());
-  WriteAovs(frame, path, options, width, height, summary);
-}
-
 // The same frame (and AOVs) under another name, byte for byte.
 void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& options, RenderSummary* summary) {
   WriteFileAtomic(to, ReadFileToString(from));
@@ -289,170 +271,178 @@ void CopyFrame(const fs::path& from, const fs::path& to, const RenderOptions& op
   }
 }
 
-// A plan for several drones (docs/render.md, "Several drones"): OUTPUT/<drone>/frame_%06d.<ext> for each
-// flight's selected samples (the selection is of sample indexes on the shared clock), and with an edit
-// OUTPUT/edit/frame_%06d.<ext>: frame k is the live drone's frame k (before the first cut, the first
-// cut's drone; a flight that has ended holds its last sample), copied from its folder when it was
-// rendered there. The edit's contact sheet, each tile labelled with its time and drone, goes to
-// OUTPUT/edit/contact_sheet.png, or with --contact-sheet PATH beside PATH as STEM.edit.EXT (PATH then
-// holds every drone's tiles).
-RenderSummary RenderTeam(TeamPlan team, const SceneFile& scene_file, SceneLoader& loader, const fs::path& plan_json,
-                         const fs::path& scene_json, const RenderOptions& options, const RenderLog& log) {
-  RenderSummary summary;
-  summary.inputs.push_back(plan_json.string());
-  for (const auto& flight : team.flights) CheckDroneFolderName(flight.name, plan_json.string(), {"edit"});
-  if (scene_file.origin) team = ReframeToOrigin(std::move(team), *scene_file.origin);
-  if (options.video) {
-    throw InputError("--video: " + plan_json.string() +
-                     " holds several drones; their frames and the edit's are image sequences (docs/render.md)");
-  }
-  const std::vector<size_t> frames = SelectFrames(team.SampleCount(), options.frames);
-  if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");
-  // One output size for every drone (the edit cuts between them): the first flight's camera's.
-  const std::pair<int, int> size = OutputSize(team.flights.front().plan.camera, options.width_px);
-  const int width = size.first, height = size.second;
-  for (const auto& flight : team.flights) {
-    const auto [w, h] = OutputSize(flight.plan.camera, options.width_px);
-    if (w != width || h != height) {
-      throw InputError(plan_json.string() + ": drone " + flight.name + "'s camera renders " + std::to_string(w) + "x" +
-                       std::to_string(h) + " px, drone " + team.flights.front().name + "'s " + std::to_string(width) +
-                       "x" + std::to_string(height) + ": the edit needs one frame size (give the cameras one aspect)");
-    }
-    for (size_t k : frames) {
-      if (k >= flight.plan.samples.size()) break;
-      const auto& s = flight.plan.samples[k];
-      ThinLensCamera(flight.plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
-    }
-  }
-  summary.inputs.push_back(scene_json.string());
-  const fs::path& glb = scene_file.RequireMesh();
-  summary.inputs.push_back(glb.string());
-  const bool has_edit = !team.edit.empty();
-  const bool sheets = has_edit || options.contact_sheet;
-  if (options.overlay || sheets) RequireLabelFont();
-  const SunDirection sun = SunForOptions(options, team.flights.front().plan, scene_file);
-  CheckWritableFolder(options.output_dir);
-  for (const auto& flight : team.flights) CheckWritableFolder(options.output_dir / flight.name);
-  if (has_edit) CheckWritableFolder(options.output_dir / "edit");
-  loader.Wait(log);
-  const scene::SceneMesh& mesh = loader.mesh();
-  mallopt(M_MMAP_THRESHOLD, 256 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
-  const FrameSettings settings = SettingsFor(options, width, height);
+// One flight's frames: `targets` (sample index, file) rendered in order, each written (encoded, its
+// AOVs, the video's frame, its thumbnail when `thumbs` asks) on another thread while the next renders:
+// the encoders run on one core, and the render's rows fill the other. One frame is written at a time, in
+// order, so the files, the video and the log are as with one thread.
+struct FrameWriting {
+  const RenderOptions& options;
+  const FrameSettings& settings;
+  VideoWriter* video = nullptr;
+  std::map<size_t, Srgb8Image>* thumbs = nullptr;
+  std::function<void(const RenderedFrame&)> frame_done;
+};
 
-  // The (flight, sample) of the edit's frame k.
-  auto edit_source = [&](size_t k) {
-    const double t = double(k) / team.frame_rate_hz;
-    int live = LiveFlightAt(team, t);
-    if (live < 0) live = team.FindFlight(team.edit.front().drone);
-    const size_t n = team.flights[size_t(live)].plan.samples.size();
-    return std::pair<size_t, size_t>(size_t(live), std::min(k, n - 1));
+void RenderFlightFrames(const PreviewScene& scene, const Trajectory& plan,
+                        const std::vector<std::pair<size_t, fs::path>>& targets, const FrameWriting& writing_options,
+                        RenderSummary* summary) {
+  using Clock = std::chrono::steady_clock;
+  const RenderOptions& options = writing_options.options;
+  const int width = writing_options.settings.width_px, height = writing_options.settings.height_px;
+  VideoWriter* video = writing_options.video;
+  tbb::task_group writing;
+  std::exception_ptr write_error;
+  struct WaitOnExit {
+    tbb::task_group& group;
+    ~WaitOnExit() { group.wait(); }
+  } wait_on_exit{writing};
+  auto finish_writing = [&] {
+    writing.wait();
+    if (write_error) std::rethrow_exception(write_error);
   };
-  size_t total = 0;
-  for (const auto& flight : team.flights) {
-    for (size_t k : frames) total += k < flight.plan.samples.size() ? 1 : 0;
+  for (const auto& [k, path] : targets) {
+    const auto start = Clock::now();
+    auto frame = std::make_shared<const FrameImage>(RenderFrame(scene, plan, k, writing_options.settings));
+    const double render_s = std::chrono::duration<double>(Clock::now() - start).count();
+    finish_writing();  // the previous frame's
+    writing.run([&, frame, k = k, path = path, render_s] {
+      try {
+        const auto write_start = Clock::now();
+        Srgb8Image encoded;
+        if (options.format != ImageFormat::kExr || video) {
+          encoded = EncodeSrgb8(frame->rgb_linear, width, height);
+          if (options.overlay) BurnOverlay(&encoded, plan, k);
+        }
+        if (options.format == ImageFormat::kExr) {
+          std::vector<float> values(frame->rgb_linear.size() * 3);
+          for (size_t i = 0; i < frame->rgb_linear.size(); ++i) {
+            for (int c = 0; c < 3; ++c) values[3 * i + c] = frame->rgb_linear[i][c];
+          }
+          WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
+        } else {
+          WriteSrgb8Atomic(path, encoded);
+        }
+        summary->outputs.push_back(path.string());
+        WriteAovs(*frame, path, options, width, height, summary);
+        if (video) video->Add(encoded);
+        if (writing_options.thumbs) (*writing_options.thumbs)[k] = Thumbnail(*frame);
+        const double write_s = std::chrono::duration<double>(Clock::now() - write_start).count();
+        RenderedFrame rendered{k, render_s + write_s, double(frame->total_samples) / (double(width) * height)};
+        summary->frames.push_back(rendered);
+        if (writing_options.frame_done) writing_options.frame_done(rendered);
+      } catch (...) {
+        write_error = std::current_exception();
+      }
+    });
   }
-  std::vector<std::pair<size_t, size_t>> extra;  // edit frames whose sample no drone folder holds
-  if (has_edit) {
-    for (size_t k : frames) {
-      const auto [f, j] = edit_source(k);
-      if (!std::binary_search(frames.begin(), frames.end(), j)) extra.push_back({f, j});
-    }
-    std::sort(extra.begin(), extra.end());
-    extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
-    total += extra.size();
-  }
+  finish_writing();
+}
 
-  // thumbs[f][j]: the thumbnail of flight f's sample j (when sheets are asked for).
-  std::vector<std::map<size_t, Srgb8Image>> thumbs(team.flights.size());
-  std::map<std::pair<size_t, size_t>, fs::path> held;  // extra frames, rendered into the edit folder
-  size_t done = 0;
-  for (size_t f = 0; f < team.flights.size(); ++f) {
-    const Trajectory& plan = team.flights[f].plan;
-    const PreviewScene scene(mesh, loader.textures(), plan, options.shading, sun, options.backdrop);
-    auto render = [&](size_t k, const fs::path& path) {
-      const auto start = std::chrono::steady_clock::now();
-      const FrameImage frame = RenderFrame(scene, plan, k, settings);
-      WriteFrame(frame, plan, k, path, options, width, height, &summary);
-      if (sheets) thumbs[f][k] = Thumbnail(frame);
-      RenderedFrame rendered{k, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                             double(frame.total_samples) / (double(width) * height)};
-      summary.frames.push_back(rendered);
-      if (log.frame_done) log.frame_done(rendered, ++done, total);
-    };
-    for (size_t k : frames) {
-      if (k >= plan.samples.size()) break;
-      render(k, options.output_dir / team.flights[f].name / FrameFileName(k, options.format));
-    }
-    for (const auto& [ef, j] : extra) {
-      if (ef != f) continue;
-      const fs::path path = options.output_dir / "edit" / (".held_" + FrameFileName(j, options.format));
-      render(j, path);
-      held[{ef, j}] = path;
-    }
-  }
+// The (flight, sample) of the edit's frame k: the live drone's (before the first cut, the first cut's
+// drone); a flight that has ended holds its last sample.
+std::pair<size_t, size_t> EditSource(const TeamPlan& team, size_t k) {
+  const double t = double(k) / team.frame_rate_hz;
+  int live = LiveFlightAt(team, t);
+  if (live < 0) live = team.FindFlight(team.edit.front().drone);
+  const size_t n = team.flights[size_t(live)].plan.samples.size();
+  return std::pair<size_t, size_t>(size_t(live), std::min(k, n - 1));
+}
 
-  auto tile_label = [&](size_t f, size_t j, size_t k) {
-    const Trajectory& plan = team.flights[f].plan;
-    std::vector<std::string> lines = LabelLines(plan, j);
-    lines[0] = "#" + std::to_string(k) + "  t " + FormatFixed(double(k) / team.frame_rate_hz, 3) + " s  " +
-               team.flights[f].name + "  " + plan.samples[j].shot;
-    return lines;
-  };
+// The edit's (flight, sample) pairs whose sample no drone folder holds: rendered into the edit folder
+// only to be copied.
+std::vector<std::pair<size_t, size_t>> HeldEditFrames(const TeamPlan& team, const std::vector<size_t>& frames) {
+  std::vector<std::pair<size_t, size_t>> extra;
+  if (team.edit.empty()) return extra;
+  for (size_t k : frames) {
+    const auto [f, j] = EditSource(team, k);
+    if (!std::binary_search(frames.begin(), frames.end(), j)) extra.push_back({f, j});
+  }
+  std::sort(extra.begin(), extra.end());
+  extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+  return extra;
+}
+
+// A contact-sheet tile's label for flight f's sample j as frame k: the frame's label, and for several
+// drones the time on the shared clock and the drone's name.
+std::vector<std::string> TileLabel(const TeamPlan& team, size_t f, size_t j, size_t k) {
+  const Trajectory& plan = team.flights[f].plan;
+  std::vector<std::string> lines = LabelLines(plan, j);
+  if (team.single) return lines;
+  lines[0] = "#" + std::to_string(k) + "  t " + FormatFixed(double(k) / team.frame_rate_hz, 3) + " s  " +
+             team.flights[f].name + "  " + plan.samples[j].shot;
+  return lines;
+}
+
+// What the flights' renders left: thumbs[f][j], flight f's sample j (when sheets are asked for); the
+// edit's held frames; each flight's folder.
+struct RenderedFlights {
+  std::vector<std::map<size_t, Srgb8Image>> thumbs;
+  std::map<std::pair<size_t, size_t>, fs::path> held;
+  std::vector<fs::path> folders;
+};
+
+// OUTPUT/edit/frame_%06d.<ext>, each copied from its drone's folder or its held frame (the held frames
+// then removed), and the edit's contact sheet.
+void WriteEdit(const TeamPlan& team, const std::vector<size_t>& frames, const RenderedFlights& rendered,
+               const RenderOptions& options, RenderSummary* summary) {
   std::vector<Srgb8Image> edit_thumbs;
   std::vector<std::vector<std::string>> edit_labels;
-  if (has_edit) {
-    for (size_t k : frames) {
-      const auto [f, j] = edit_source(k);
-      const fs::path to = options.output_dir / "edit" / FrameFileName(k, options.format);
-      const auto h = held.find({f, j});
-      const fs::path from =
-          h != held.end() ? h->second : options.output_dir / team.flights[f].name / FrameFileName(j, options.format);
-      CopyFrame(from, to, options, &summary);
-      edit_thumbs.push_back(thumbs[f].at(j));
-      edit_labels.push_back(tile_label(f, j, k));
-    }
-    for (const auto& [key, path] : held) {  // held frames were written only to be copied
-      std::error_code ignored;
-      fs::remove(path, ignored);
-      for (const AovInfo& aov : AovTable()) {
-        fs::remove(path.parent_path() / (path.stem().string() + "." + aov.name + ".exr"), ignored);
-      }
-    }
-    summary.outputs.erase(std::remove_if(summary.outputs.begin(), summary.outputs.end(),
-                                         [](const std::string& o) { return o.find("/.held_") != std::string::npos; }),
-                          summary.outputs.end());
+  for (size_t k : frames) {
+    const auto [f, j] = EditSource(team, k);
+    const fs::path to = options.output_dir / "edit" / FrameFileName(k, options.format);
+    const auto h = rendered.held.find({f, j});
+    const fs::path from = h != rendered.held.end() ? h->second : rendered.folders[f] / FrameFileName(j, options.format);
+    CopyFrame(from, to, options, summary);
+    edit_thumbs.push_back(rendered.thumbs[f].at(j));
+    edit_labels.push_back(TileLabel(team, f, j, k));
   }
-  if (has_edit && !edit_thumbs.empty()) {
-    fs::path sheet = options.output_dir / "edit" / "contact_sheet.png";
-    if (options.contact_sheet) {
-      const fs::path& given = *options.contact_sheet;
-      sheet = given.parent_path() / (given.stem().string() + ".edit" + given.extension().string());
+  for (const auto& [key, path] : rendered.held) {  // held frames were written only to be copied
+    std::error_code ignored;
+    fs::remove(path, ignored);
+    for (const AovInfo& aov : AovTable()) {
+      fs::remove(path.parent_path() / (path.stem().string() + "." + aov.name + ".exr"), ignored);
     }
-    WriteSrgb8Atomic(sheet, ContactSheet(edit_thumbs, edit_labels));
-    summary.outputs.push_back(sheet.string());
   }
+  summary->outputs.erase(std::remove_if(summary->outputs.begin(), summary->outputs.end(),
+                                        [](const std::string& o) { return o.find("/.held_") != std::string::npos; }),
+                         summary->outputs.end());
+  if (edit_thumbs.empty()) return;
+  fs::path sheet = options.output_dir / "edit" / "contact_sheet.png";
   if (options.contact_sheet) {
-    std::vector<Srgb8Image> all;
-    std::vector<std::vector<std::string>> labels;
-    for (size_t k : frames) {
-      for (size_t f = 0; f < team.flights.size(); ++f) {
-        const auto t = thumbs[f].find(k);
-        if (t == thumbs[f].end()) continue;
-        all.push_back(t->second);
-        labels.push_back(tile_label(f, k, k));
-      }
-    }
-    if (!all.empty()) {
-      WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(all, labels));
-      summary.outputs.push_back(options.contact_sheet->string());
+    const fs::path& given = *options.contact_sheet;
+    sheet = given.parent_path() / (given.stem().string() + ".edit" + given.extension().string());
+  }
+  WriteSrgb8Atomic(sheet, ContactSheet(edit_thumbs, edit_labels));
+  summary->outputs.push_back(sheet.string());
+}
+
+// --contact-sheet PATH: every flight's tiles, frame by frame.
+void WriteContactSheet(const TeamPlan& team, const std::vector<size_t>& frames, const RenderedFlights& rendered,
+                       const RenderOptions& options, RenderSummary* summary) {
+  std::vector<Srgb8Image> all;
+  std::vector<std::vector<std::string>> labels;
+  for (size_t k : frames) {
+    for (size_t f = 0; f < team.flights.size(); ++f) {
+      const auto t = rendered.thumbs[f].find(k);
+      if (t == rendered.thumbs[f].end()) continue;
+      all.push_back(t->second);
+      labels.push_back(TileLabel(team, f, k, k));
     }
   }
-  return summary;
+  if (all.empty()) return;
+  WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(all, labels));
+  summary->outputs.push_back(options.contact_sheet->string());
 }
 
 }  // namespace
 
+// One drone's frames go into OUTPUT; a plan of several drones' (docs/render.md, "Several drones") into
+// OUTPUT/<drone>/frame_%06d.<ext> for each flight's selected samples (the selection is of sample indexes
+// on the shared clock), and with an edit OUTPUT/edit/frame_%06d.<ext>: frame k is the live drone's frame k
+// (before the first cut, the first cut's drone; a flight that has ended holds its last sample), copied
+// from its folder when it was rendered there. The edit's contact sheet, each tile labelled with its time
+// and drone, goes to OUTPUT/edit/contact_sheet.png, or with --contact-sheet PATH beside PATH as
+// STEM.edit.EXT (PATH then holds every drone's tiles).
 RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, const RenderOptions& options,
                          const RenderLog& log) {
   RenderSummary summary;
@@ -468,24 +458,35 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   SceneLoader loader(scene_file);
   TeamPlan team = ReadTeamPlanFile(plan_json);
   summary.notes = TeamPlanNotes(team);
-  if (!team.single) {
-    RenderSummary team_summary = RenderTeam(std::move(team), scene_file, loader, plan_json, scene_json, options, log);
-    team_summary.notes = std::move(summary.notes);
-    return team_summary;
+  summary.inputs.push_back(plan_json.string());
+  const bool single = team.single;  // one drone: its frames in OUTPUT itself, no edit
+  if (!single) {
+    for (const auto& flight : team.flights) CheckDroneFolderName(flight.name, plan_json.string(), {"edit"});
   }
   // A plan planned about another origin than the mesh's is moved into the mesh's frame (exact).
-  const Trajectory plan = scene_file.origin ? ReframeToOrigin(std::move(team.flights.front().plan), *scene_file.origin)
-                                            : std::move(team.flights.front().plan);
-  summary.inputs.push_back(plan_json.string());
-  const std::vector<size_t> frames = SelectFrames(plan.samples.size(), options.frames);
+  if (scene_file.origin) team = ReframeToOrigin(std::move(team), *scene_file.origin);
+  if (options.video && !single) {
+    throw InputError("--video: " + plan_json.string() +
+                     " holds several drones; their frames and the edit's are image sequences (docs/render.md)");
+  }
+  const std::vector<size_t> frames = SelectFrames(team.SampleCount(), options.frames);
   if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");
-  // Plain variables, not a structured binding: the frame writer's lambda captures them (clang 14, which
-  // the fuzz build uses, cannot capture structured bindings).
-  const std::pair<int, int> size = OutputSize(plan.camera, options.width_px);
+  // One output size for every drone (the edit cuts between them): the first flight's camera's. Plain
+  // variables, not a structured binding (clang 14, which the fuzz build uses, cannot capture those).
+  const std::pair<int, int> size = OutputSize(team.flights.front().plan.camera, options.width_px);
   const int width = size.first, height = size.second;
-  for (size_t k : frames) {  // the lens of every frame, as the camera will take it
-    const auto& s = plan.samples[k];
-    ThinLensCamera(plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
+  for (const auto& flight : team.flights) {
+    const auto [w, h] = OutputSize(flight.plan.camera, options.width_px);
+    if (w != width || h != height) {
+      throw InputError(plan_json.string() + ": drone " + flight.name + "'s camera renders " + std::to_string(w) + "x" +
+                       std::to_string(h) + " px, drone " + team.flights.front().name + "'s " + std::to_string(width) +
+                       "x" + std::to_string(height) + ": the edit needs one frame size (give the cameras one aspect)");
+    }
+    for (size_t k : frames) {  // the lens of every frame, as the camera will take it
+      if (k >= flight.plan.samples.size()) break;
+      const auto& s = flight.plan.samples[k];
+      ThinLensCamera(flight.plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
+    }
   }
   summary.inputs.push_back(scene_json.string());
   const fs::path& glb = scene_file.RequireMesh();
@@ -493,93 +494,69 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   if (options.video && FindOnPath("ffmpeg").empty()) {
     throw RuntimeError("--video needs ffmpeg on PATH (Debian package ffmpeg); nothing was rendered");
   }
-  const bool labels = options.overlay || options.contact_sheet;
-  if (labels) RequireLabelFont();
-  const SunDirection sun = SunForOptions(options, plan, scene_file);
+  const bool has_edit = !team.edit.empty();
+  const bool sheets = has_edit || options.contact_sheet;
+  if (options.overlay || sheets) RequireLabelFont();
+  const SunDirection sun = SunForOptions(options, team.flights.front().plan, scene_file);
   CheckWritableFolder(options.output_dir);
+  RenderedFlights rendered;
+  rendered.thumbs.resize(team.flights.size());
+  for (const auto& flight : team.flights) {
+    rendered.folders.push_back(single ? options.output_dir : options.output_dir / flight.name);
+    if (!single) CheckWritableFolder(rendered.folders.back());
+  }
+  if (has_edit) CheckWritableFolder(options.output_dir / "edit");
   step("read plan.json and scene.json, check the options");
   loader.Wait(log);
   step("wait for the GLB and its textures");
-  const PreviewScene scene(std::move(loader.mesh()), std::move(loader.textures()), plan, options.shading, sun,
-                           options.backdrop);
-  if (log.step_done) {
-    log.step_done("BVH", scene.load_times().bvh_s);
-    log.step_done("ground past the edge", scene.load_times().ground_s);
-  }
-  step_start = Clock::now();
   // Every frame allocates the same few image-sized buffers: keep freed ones in the heap instead of
   // returning them to the kernel, so the next frame does not page-fault them in again (measured: a
   // fifth of a draft frame's time went to page faults and zeroing).
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
-
   const FrameSettings settings = SettingsFor(options, width, height);
-
   std::unique_ptr<VideoWriter> video;
   if (options.video) {
-    video = std::make_unique<VideoWriter>(*options.video, width, height, plan.frame_rate_hz / options.frames.every);
+    video = std::make_unique<VideoWriter>(*options.video, width, height, team.frame_rate_hz / options.frames.every);
   }
-  std::vector<Srgb8Image> thumbs;
-  std::vector<std::vector<std::string>> thumb_labels;
-  // Frame k is written (encoded, its AOVs, the video, its thumbnail) on another thread while frame k + 1
-  // renders: the encoders run on one core, and the render's rows fill the other. One frame is written at
-  // a time, in order, so the files, the video and the log are as with one thread.
-  using Clock = std::chrono::steady_clock;
-  tbb::task_group writing;
-  std::exception_ptr write_error;
-  struct WaitOnExit {
-    tbb::task_group& group;
-    ~WaitOnExit() { group.wait(); }
-  } wait_on_exit{writing};
-  auto finish_writing = [&] {
-    writing.wait();
-    if (write_error) std::rethrow_exception(write_error);
-  };
-  for (size_t done = 0; done < frames.size(); ++done) {
-    const size_t k = frames[done];
-    const auto start = Clock::now();
-    auto frame = std::make_shared<const FrameImage>(RenderFrame(scene, plan, k, settings));
-    const double render_s = std::chrono::duration<double>(Clock::now() - start).count();
-    finish_writing();  // the previous frame's
-    writing.run([&, frame, k, done, render_s] {
-      try {
-        const auto write_start = Clock::now();
-        const fs::path path = options.output_dir / FrameFileName(k, options.format);
-        Srgb8Image encoded;
-        if (options.format != ImageFormat::kExr || video) {
-          encoded = EncodeSrgb8(frame->rgb_linear, width, height);
-          if (options.overlay) BurnOverlay(&encoded, plan, k);
-        }
-        if (options.format == ImageFormat::kExr) {
-          std::vector<float> values(frame->rgb_linear.size() * 3);
-          for (size_t i = 0; i < frame->rgb_linear.size(); ++i) {
-            for (int c = 0; c < 3; ++c) values[3 * i + c] = frame->rgb_linear[i][c];
-          }
-          WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
-        } else {
-          WriteSrgb8Atomic(path, encoded);
-        }
-        summary.outputs.push_back(path.string());
-        WriteAovs(*frame, path, options, width, height, &summary);
-        if (video) video->Add(encoded);
-        if (options.contact_sheet) {
-          thumbs.push_back(Thumbnail(*frame));
-          thumb_labels.push_back(LabelLines(plan, k));
-        }
-        const double write_s = std::chrono::duration<double>(Clock::now() - write_start).count();
-        RenderedFrame rendered{k, render_s + write_s, double(frame->total_samples) / (double(width) * height)};
-        summary.frames.push_back(rendered);
-        if (log.frame_done) log.frame_done(rendered, done + 1, frames.size());
-      } catch (...) {
-        write_error = std::current_exception();
-      }
-    });
+
+  const std::vector<std::pair<size_t, size_t>> extra = HeldEditFrames(team, frames);
+  size_t total = extra.size();
+  for (const auto& flight : team.flights) {
+    for (size_t k : frames) total += k < flight.plan.samples.size() ? 1 : 0;
   }
-  finish_writing();
-  if (options.contact_sheet && !thumbs.empty()) {
-    WriteSrgb8Atomic(*options.contact_sheet, ContactSheet(thumbs, thumb_labels));
-    summary.outputs.push_back(options.contact_sheet->string());
+
+  size_t done = 0;
+  for (size_t f = 0; f < team.flights.size(); ++f) {
+    const Trajectory& plan = team.flights[f].plan;
+    const bool last = f + 1 == team.flights.size();  // the last flight takes the mesh, the others a copy
+    const PreviewScene scene(last ? std::move(loader.mesh()) : loader.mesh(),
+                             last ? std::move(loader.textures()) : loader.textures(), plan, options.shading, sun,
+                             options.backdrop);
+    if (log.step_done) {
+      log.step_done("BVH", scene.load_times().bvh_s);
+      log.step_done("ground past the edge", scene.load_times().ground_s);
+    }
+    std::vector<std::pair<size_t, fs::path>> targets;
+    for (size_t k : frames) {
+      if (k >= plan.samples.size()) break;
+      targets.push_back({k, rendered.folders[f] / FrameFileName(k, options.format)});
+    }
+    for (const auto& [ef, j] : extra) {
+      if (ef != f) continue;
+      const fs::path path = options.output_dir / "edit" / (".held_" + FrameFileName(j, options.format));
+      targets.push_back({j, path});
+      rendered.held[{ef, j}] = path;
+    }
+    FrameWriting writing{options, settings, video.get(), sheets ? &rendered.thumbs[f] : nullptr,
+                         [&](const RenderedFrame& rendered) {
+                           if (log.frame_done) log.frame_done(rendered, ++done, total);
+                         }};
+    RenderFlightFrames(scene, plan, targets, writing, &summary);
   }
+
+  if (has_edit) WriteEdit(team, frames, rendered, options, &summary);
+  if (options.contact_sheet) WriteContactSheet(team, frames, rendered, options, &summary);
   if (video) {
     video->Finish();
     summary.outputs.push_back(options.video->string());

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "core/number_format.h"
@@ -100,64 +102,86 @@ std::string FrustumWedges(const TrajectorySample& s, const ImageExtentMm& image,
          F(side.PX(d.x())) + "," + F(side.PY(d.z())) + "\"/>\n";
 }
 
-}  // namespace
-
-std::string PlanToSvg(const Trajectory& plan) {
-  const auto& S = plan.samples;
-  const double width = 1200, height = 980;
+// The document, its background and, for a plan with no samples, its only line.
+std::string SvgStart(double width, double height) {
   std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + F(width) + "\" height=\"" + F(height) +
          "\" viewBox=\"0 0 " + F(width) + " " + F(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  if (S.empty()) {
-    svg += "<text x=\"20\" y=\"40\">empty plan</text>\n</svg>\n";
-    return svg;
-  }
-  const double t_end = S.back().time_s;
+  return svg;
+}
 
-  // Extents over cameras and subjects.
+// What the views span (every flight, home and subject), the longest flight's end, and the subjects, each
+// once (they are the scene's, shared by every flight: the first flight that has each).
+struct Extents {
   double min_e = std::numeric_limits<double>::infinity(), max_e = -min_e, min_n = min_e, max_n = -min_e, min_u = min_e,
-         max_u = -min_e;
-  auto grow = [&](const Eigen::Vector3d& p) {
+         max_u = -min_e, t_end = 0;
+  std::vector<const SubjectTrack*> subjects;
+  void Grow(const Eigen::Vector3d& p) {
     min_e = std::min(min_e, p.x()), max_e = std::max(max_e, p.x());
     min_n = std::min(min_n, p.y()), max_n = std::max(max_n, p.y());
     min_u = std::min(min_u, p.z()), max_u = std::max(max_u, p.z());
-  };
-  for (const auto& s : S) grow(s.position_enu_m);
-  for (const auto& subj : plan.subjects) {
-    for (const auto& p : subj.positions_enu_m) {
-      grow(p);
-      grow(p + Eigen::Vector3d(0, 0, subj.height_m));
+  }
+};
+
+Extents ExtentsOf(const TeamPlan& plan) {
+  Extents x;
+  for (const auto& flight : plan.flights) {
+    for (const auto& s : flight.plan.samples) x.Grow(s.position_enu_m);
+    if (flight.home_enu_m) x.Grow(*flight.home_enu_m);
+    if (!flight.plan.samples.empty()) x.t_end = std::max(x.t_end, flight.plan.samples.back().time_s);
+  }
+  for (const auto& flight : plan.flights) {
+    for (const auto& subj : flight.plan.subjects) {
+      bool seen = false;
+      for (const SubjectTrack* other : x.subjects) seen = seen || other->name == subj.name;
+      if (seen) continue;
+      x.subjects.push_back(&subj);
+      for (const auto& p : subj.positions_enu_m) {
+        x.Grow(p);
+        x.Grow(p + Eigen::Vector3d(0, 0, subj.height_m));
+      }
     }
   }
-  const double extent = std::max({max_e - min_e, max_n - min_n, max_u - min_u, 1.0});
-  const double frustum_len = 0.08 * extent;
+  return x;
+}
 
-  const Frame top = MakeFrame(40, 50, 540, 480, min_e, max_e, min_n, max_n, true);
-  const Frame side = MakeFrame(630, 50, 540, 480, min_e, max_e, min_u, max_u, true);
-  Panel(svg, top, "Top-down (north up)", "east m", "north m");
-  Panel(svg, side, "Side (looking north)", "east m", "up m");
+// A subject where it stands at its sample i: a dot from above, a bar of its height from the side.
+std::string SubjectMarker(const SubjectTrack& subj, size_t i, const Frame& top, const Frame& side) {
+  const Eigen::Vector3d& p = subj.positions_enu_m[i];
+  return "<circle cx=\"" + F(top.PX(p.x())) + "\" cy=\"" + F(top.PY(p.y())) + "\" r=\"3\" fill=\"#555\"/>\n" +
+         "<line x1=\"" + F(side.PX(p.x())) + "\" y1=\"" + F(side.PY(p.z())) + "\" x2=\"" + F(side.PX(p.x())) +
+         "\" y2=\"" + F(side.PY(p.z() + subj.height_m)) + "\" stroke=\"#555\" stroke-width=\"3\"/>\n";
+}
 
-  // Shot index of each sample.
-  std::vector<size_t> shot_of(S.size(), 0);
-  for (size_t i = 0; i < S.size(); ++i) {
+// A subject's path in both views and its name at its start.
+void DrawSubjectPath(std::string& svg, const SubjectTrack& subj, const Frame& top, const Frame& side) {
+  const auto& P = subj.positions_enu_m;
+  svg += Polyline(
+      top, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].y(); },
+      "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
+  svg += Polyline(
+      side, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].z(); },
+      "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
+  svg += "<text x=\"" + F(top.PX(P.front().x()) + 5) + "\" y=\"" + F(top.PY(P.front().y()) - 5) + "\" fill=\"#555\">" +
+         Escape(subj.name) + "</text>\n";
+}
+
+// Each sample's shot index (into plan.shots).
+std::vector<size_t> ShotOfSamples(const Trajectory& plan) {
+  std::vector<size_t> shot_of(plan.samples.size(), 0);
+  for (size_t i = 0; i < plan.samples.size(); ++i) {
     for (size_t k = 0; k < plan.shots.size(); ++k) {
-      if (plan.shots[k].name == S[i].shot) shot_of[i] = k;
+      if (plan.shots[k].name == plan.samples[i].shot) shot_of[i] = k;
     }
   }
-  // Subject paths.
-  for (const auto& subj : plan.subjects) {
-    const auto& P = subj.positions_enu_m;
-    svg += Polyline(
-        top, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].y(); },
-        "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
-    svg += Polyline(
-        side, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].z(); },
-        "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
-    svg += "<text x=\"" + F(top.PX(P.front().x()) + 5) + "\" y=\"" + F(top.PY(P.front().y()) - 5) +
-           "\" fill=\"#555\">" + Escape(subj.name) + "</text>\n";
-  }
-  // Flights, one polyline per shot.
+  return shot_of;
+}
+
+// One drone's flight, one polyline per shot in the shot's colour (a version 1 plan's picture).
+void DrawShotsOfFlight(std::string& svg, const Trajectory& plan, const std::vector<size_t>& shot_of, const Frame& top,
+                       const Frame& side) {
+  const auto& S = plan.samples;
   size_t begin = 0;
   for (size_t i = 1; i <= S.size(); ++i) {
     if (i == S.size() || shot_of[i] != shot_of[begin]) {
@@ -172,29 +196,93 @@ std::string PlanToSvg(const Trajectory& plan) {
       begin = i;
     }
   }
-  // Frustums every ~2 s (8..60 of them).
-  const size_t count = std::clamp<size_t>(static_cast<size_t>(t_end / 2.0), 8, 60);
-  const size_t stride = std::max<size_t>(1, S.size() / count);
-  for (size_t i = 0; i < S.size(); i += stride) {
-    const auto& s = S[i];
-    const std::string colour = kPalette[shot_of[i] % 10];
-    svg += FrustumWedges(s, plan.camera.image_extent_mm(), frustum_len, top, side, colour, "0.15");
-    for (const auto& subj : plan.subjects) {
-      const Eigen::Vector3d& p = subj.positions_enu_m[i];
-      svg += "<circle cx=\"" + F(top.PX(p.x())) + "\" cy=\"" + F(top.PY(p.y())) + "\" r=\"3\" fill=\"#555\"/>\n";
-      svg += "<line x1=\"" + F(side.PX(p.x())) + "\" y1=\"" + F(side.PY(p.z())) + "\" x2=\"" + F(side.PX(p.x())) +
-             "\" y2=\"" + F(side.PY(p.z() + subj.height_m)) + "\" stroke=\"#555\" stroke-width=\"3\"/>\n";
+}
+
+// One drone of several in its own colour: one path per view, lifted at the drone's cuts (a "cut"
+// transition: it does not fly there); its name at its first sample, its home as a square.
+void DrawDroneOfTeam(std::string& svg, const DroneFlight& flight, const std::string& colour, const Frame& top,
+                     const Frame& side) {
+  const auto& S = flight.plan.samples;
+  const std::string style =
+      "class=\"flight\" data-drone=\"" + Escape(flight.name) + "\" stroke=\"" + colour + "\" stroke-width=\"2.5\"";
+  std::vector<size_t> runs = {0};
+  for (size_t i = 1; i < S.size(); ++i) {
+    if (S[i].shot == S[i - 1].shot) continue;
+    for (const auto& shot : flight.plan.shots) {
+      if (shot.name == S[i].shot && shot.transition == "cut") runs.push_back(i);
     }
   }
+  runs.push_back(S.size());
+  for (const Frame* view : {&top, &side}) {
+    std::string d;
+    for (size_t r = 0; r + 1 < runs.size(); ++r) {
+      const size_t begin = runs[r], end = runs[r + 1];
+      const size_t step = std::max<size_t>(1, (end - begin) / 1000);
+      for (size_t i = begin; i < end; i += step) {
+        const Eigen::Vector3d& p = S[i].position_enu_m;
+        d += (i == begin ? "M" : " L") + F(view->PX(p.x())) + "," + F(view->PY(view == &top ? p.y() : p.z()));
+      }
+      const Eigen::Vector3d& p = S[end - 1].position_enu_m;
+      d += " L" + F(view->PX(p.x())) + "," + F(view->PY(view == &top ? p.y() : p.z())) + " ";
+    }
+    svg += "<path fill=\"none\" " + style + " d=\"" + d + "\"/>\n";
+  }
+  svg += "<text x=\"" + F(top.PX(S.front().position_enu_m.x()) + 6) + "\" y=\"" +
+         F(top.PY(S.front().position_enu_m.y()) + 14) + "\" fill=\"" + colour + "\" font-weight=\"bold\">" +
+         Escape(flight.name) + "</text>\n";
+  if (flight.home_enu_m) {
+    const Eigen::Vector3d& h = *flight.home_enu_m;
+    svg += "<rect x=\"" + F(top.PX(h.x()) - 5) + "\" y=\"" + F(top.PY(h.y()) - 5) +
+           "\" width=\"10\" height=\"10\" fill=\"white\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n";
+    svg += "<rect x=\"" + F(side.PX(h.x()) - 5) + "\" y=\"" + F(side.PY(h.z()) - 5) +
+           "\" width=\"10\" height=\"10\" fill=\"white\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n";
+  }
+}
 
-  // Lens curves against time.
+// One flight in the top and side views, with its frustums every `stride` samples. A version 1 plan's
+// flight is coloured by shot, with its subjects where they stand at each frustum; a team's by drone.
+void DrawFlight(std::string& svg, const TeamPlan& plan, size_t k, const Frame& top, const Frame& side,
+                double frustum_len, size_t stride) {
+  const DroneFlight& flight = plan.flights[k];
+  const auto& S = flight.plan.samples;
+  if (S.empty()) return;
+  const std::vector<size_t> shot_of = plan.single ? ShotOfSamples(flight.plan) : std::vector<size_t>();
+  if (plan.single) {
+    DrawShotsOfFlight(svg, flight.plan, shot_of, top, side);
+  } else {
+    DrawDroneOfTeam(svg, flight, kPalette[k % 10], top, side);
+  }
+  const ImageExtentMm image = flight.plan.camera.image_extent_mm();
+  for (size_t i = 0; i < S.size(); i += stride) {
+    const std::string colour = kPalette[(plan.single ? shot_of[i] : k) % 10];
+    svg += FrustumWedges(S[i], image, frustum_len, top, side, colour, plan.single ? "0.15" : "0.12");
+    if (!plan.single) continue;
+    for (const auto& subj : flight.plan.subjects) svg += SubjectMarker(subj, i, top, side);
+  }
+}
+
+// The lens against time: focal length (log) and focus (dioptres).
+void DrawLensCurves(std::string& svg, const Trajectory& plan, const Frame& focal, const Frame& focus,
+                    const std::string& focal_style, const std::string& focus_style) {
+  const auto& S = plan.samples;
+  svg += Polyline(
+      focal, 0, S.size(), [&](size_t i) { return S[i].time_s; },
+      [&](size_t i) { return std::log(S[i].focal_length_mm); }, focal_style);
+  svg += Polyline(
+      focus, 0, S.size(), [&](size_t i) { return S[i].time_s; },
+      [&](size_t i) { return std::isfinite(S[i].focus_distance_m) ? 1.0 / S[i].focus_distance_m : 0.0; }, focus_style);
+}
+
+// A version 1 plan's time panels: focal length, focus and f-number with shot boundaries and broken-limit
+// time ranges shaded red; the legend names the shots.
+void DrawShotTimePanels(std::string& svg, const Trajectory& plan, double t_max, double height) {
+  const auto& S = plan.samples;
   double f_min = std::numeric_limits<double>::infinity(), f_max = 0, dio_max = 0, n_min = f_min, n_max = 0;
   for (const auto& s : S) {
     f_min = std::min(f_min, s.focal_length_mm), f_max = std::max(f_max, s.focal_length_mm);
     if (std::isfinite(s.focus_distance_m)) dio_max = std::max(dio_max, 1.0 / s.focus_distance_m);
     n_min = std::min(n_min, s.f_number), n_max = std::max(n_max, s.f_number);
   }
-  const double t_max = std::max(t_end, 1e-3);
   const Frame focal = MakeFrame(40, 590, 1130, 100, 0, t_max, std::log(f_min), std::log(f_max), false);
   const Frame focus = MakeFrame(40, 730, 1130, 90, 0, t_max, 0, std::max(dio_max, 1e-3), false);
   const Frame fnum = MakeFrame(40, 860, 1130, 80, 0, t_max, n_min, n_max, false);
@@ -212,13 +300,8 @@ std::string PlanToSvg(const Trajectory& plan) {
              "\" fill=\"red\" fill-opacity=\"0.12\"/>\n";
     }
   }
-  svg += Polyline(
-      focal, 0, S.size(), [&](size_t i) { return S[i].time_s; },
-      [&](size_t i) { return std::log(S[i].focal_length_mm); }, "stroke=\"#1f77b4\" stroke-width=\"2\"");
-  svg += Polyline(
-      focus, 0, S.size(), [&](size_t i) { return S[i].time_s; },
-      [&](size_t i) { return std::isfinite(S[i].focus_distance_m) ? 1.0 / S[i].focus_distance_m : 0.0; },
-      "stroke=\"#2ca02c\" stroke-width=\"2\"");
+  DrawLensCurves(svg, plan, focal, focus, "stroke=\"#1f77b4\" stroke-width=\"2\"",
+                 "stroke=\"#2ca02c\" stroke-width=\"2\"");
   svg += Polyline(
       fnum, 0, S.size(), [&](size_t i) { return S[i].time_s; }, [&](size_t i) { return S[i].f_number; },
       "stroke=\"#9467bd\" stroke-width=\"2\"");
@@ -231,132 +314,16 @@ std::string PlanToSvg(const Trajectory& plan) {
     svg += "<text x=\"" + F(lx + 14) + "\" y=\"" + F(height - 9) + "\">" + Escape(label) + "</text>\n";
     lx += 24 + 7.0 * static_cast<double>(label.size());
   }
-  svg += "</svg>\n";
-  return svg;
 }
 
-std::string TeamPlanToSvg(const TeamPlan& plan) {
-  if (plan.single) return PlanToSvg(plan.flights.at(0).plan);
-  const double width = 1200, height = 1000;
-  std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + F(width) + "\" height=\"" + F(height) +
-         "\" viewBox=\"0 0 " + F(width) + " " + F(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
-  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  const size_t n = plan.SampleCount();
-  if (n == 0) {
-    svg += "<text x=\"20\" y=\"40\">empty plan</text>\n</svg>\n";
-    return svg;
-  }
-  auto colour_of = [&](size_t flight) { return std::string(kPalette[flight % 10]); };
+// A team's time panels: the edit (which camera is live) with the team's conflicts, then every drone's
+// focal length and focus; the legend names the drones.
+void DrawTeamTimePanels(std::string& svg, const TeamPlan& plan, double t_max, double height) {
+  auto colour_of = [](size_t flight) { return std::string(kPalette[flight % 10]); };
   auto flight_colour = [&](const std::string& name) {
     const int k = plan.FindFlight(name);
     return k < 0 ? std::string("#555") : colour_of(static_cast<size_t>(k));
   };
-
-  // Extents over every flight, home and subject.
-  double min_e = std::numeric_limits<double>::infinity(), max_e = -min_e, min_n = min_e, max_n = -min_e, min_u = min_e,
-         max_u = -min_e, t_end = 0;
-  auto grow = [&](const Eigen::Vector3d& p) {
-    min_e = std::min(min_e, p.x()), max_e = std::max(max_e, p.x());
-    min_n = std::min(min_n, p.y()), max_n = std::max(max_n, p.y());
-    min_u = std::min(min_u, p.z()), max_u = std::max(max_u, p.z());
-  };
-  for (const auto& flight : plan.flights) {
-    for (const auto& s : flight.plan.samples) grow(s.position_enu_m);
-    if (flight.home_enu_m) grow(*flight.home_enu_m);
-    if (!flight.plan.samples.empty()) t_end = std::max(t_end, flight.plan.samples.back().time_s);
-  }
-  // Subjects are the scene's, shared by every flight: drawn once (the first flight that has each).
-  std::vector<const SubjectTrack*> subjects;
-  for (const auto& flight : plan.flights) {
-    for (const auto& subj : flight.plan.subjects) {
-      bool seen = false;
-      for (const SubjectTrack* other : subjects) seen = seen || other->name == subj.name;
-      if (seen) continue;
-      subjects.push_back(&subj);
-      for (const auto& p : subj.positions_enu_m) {
-        grow(p);
-        grow(p + Eigen::Vector3d(0, 0, subj.height_m));
-      }
-    }
-  }
-  const double extent = std::max({max_e - min_e, max_n - min_n, max_u - min_u, 1.0});
-  const double frustum_len = 0.08 * extent;
-  const Frame top = MakeFrame(40, 50, 540, 480, min_e, max_e, min_n, max_n, true);
-  const Frame side = MakeFrame(630, 50, 540, 480, min_e, max_e, min_u, max_u, true);
-  Panel(svg, top, "Top-down (north up), " + std::to_string(plan.flights.size()) + " drones", "east m", "north m");
-  Panel(svg, side, "Side (looking north)", "east m", "up m");
-
-  for (const SubjectTrack* subj : subjects) {
-    const auto& P = subj->positions_enu_m;
-    if (P.empty()) continue;
-    svg += Polyline(
-        top, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].y(); },
-        "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
-    svg += Polyline(
-        side, 0, P.size(), [&](size_t i) { return P[i].x(); }, [&](size_t i) { return P[i].z(); },
-        "stroke=\"#999\" stroke-width=\"2\" stroke-dasharray=\"4 3\"");
-    svg += "<text x=\"" + F(top.PX(P.front().x()) + 5) + "\" y=\"" + F(top.PY(P.front().y()) - 5) +
-           "\" fill=\"#555\">" + Escape(subj->name) + "</text>\n";
-    svg += "<circle cx=\"" + F(top.PX(P.front().x())) + "\" cy=\"" + F(top.PY(P.front().y())) +
-           "\" r=\"3\" fill=\"#555\"/>\n";
-    svg += "<line x1=\"" + F(side.PX(P.front().x())) + "\" y1=\"" + F(side.PY(P.front().z())) + "\" x2=\"" +
-           F(side.PX(P.front().x())) + "\" y2=\"" + F(side.PY(P.front().z() + subj->height_m)) +
-           "\" stroke=\"#555\" stroke-width=\"3\"/>\n";
-  }
-  // Each drone's flight in its own colour, one path per drone and view; its home as a square, its name at
-  // its first sample; frustums every ~2 s (8..60 of them along the longest flight).
-  const size_t count = std::clamp<size_t>(static_cast<size_t>(t_end / 2.0), 8, 60);
-  const size_t stride = std::max<size_t>(1, n / count);
-  for (size_t k = 0; k < plan.flights.size(); ++k) {
-    const auto& flight = plan.flights[k];
-    const auto& S = flight.plan.samples;
-    if (S.empty()) continue;
-    const std::string colour = colour_of(k);
-    const std::string style =
-        "class=\"flight\" data-drone=\"" + Escape(flight.name) + "\" stroke=\"" + colour + "\" stroke-width=\"2.5\"";
-    // One path per drone and view, lifted at the drone's cuts (a "cut" transition: it does not fly there).
-    std::vector<size_t> runs = {0};
-    for (size_t i = 1; i < S.size(); ++i) {
-      if (S[i].shot == S[i - 1].shot) continue;
-      for (const auto& shot : flight.plan.shots) {
-        if (shot.name == S[i].shot && shot.transition == "cut") runs.push_back(i);
-      }
-    }
-    runs.push_back(S.size());
-    for (const Frame* view : {&top, &side}) {
-      std::string d;
-      for (size_t r = 0; r + 1 < runs.size(); ++r) {
-        const size_t begin = runs[r], end = runs[r + 1];
-        const size_t step = std::max<size_t>(1, (end - begin) / 1000);
-        for (size_t i = begin; i < end; i += step) {
-          const Eigen::Vector3d& p = S[i].position_enu_m;
-          d += (i == begin ? "M" : " L") + F(view->PX(p.x())) + "," + F(view->PY(view == &top ? p.y() : p.z()));
-        }
-        const Eigen::Vector3d& p = S[end - 1].position_enu_m;
-        d += " L" + F(view->PX(p.x())) + "," + F(view->PY(view == &top ? p.y() : p.z())) + " ";
-      }
-      svg += "<path fill=\"none\" " + style + " d=\"" + d + "\"/>\n";
-    }
-    svg += "<text x=\"" + F(top.PX(S.front().position_enu_m.x()) + 6) + "\" y=\"" +
-           F(top.PY(S.front().position_enu_m.y()) + 14) + "\" fill=\"" + colour + "\" font-weight=\"bold\">" +
-           Escape(flight.name) + "</text>\n";
-    if (flight.home_enu_m) {
-      const Eigen::Vector3d& h = *flight.home_enu_m;
-      svg += "<rect x=\"" + F(top.PX(h.x()) - 5) + "\" y=\"" + F(top.PY(h.y()) - 5) +
-             "\" width=\"10\" height=\"10\" fill=\"white\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n";
-      svg += "<rect x=\"" + F(side.PX(h.x()) - 5) + "\" y=\"" + F(side.PY(h.z()) - 5) +
-             "\" width=\"10\" height=\"10\" fill=\"white\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n";
-    }
-    const ImageExtentMm image = flight.plan.camera.image_extent_mm();
-    for (size_t i = 0; i < S.size(); i += stride) {
-      svg += FrustumWedges(S[i], image, frustum_len, top, side, colour, "0.12");
-    }
-  }
-
-  // Time panels: the edit (which camera is live) with the team's conflicts, then every drone's focal
-  // length and focus.
-  const double t_max = std::max(t_end, 1e-3);
   double f_min = std::numeric_limits<double>::infinity(), f_max = 0, dio_max = 0;
   for (const auto& flight : plan.flights) {
     for (const auto& s : flight.plan.samples) {
@@ -410,14 +377,8 @@ std::string TeamPlanToSvg(const TeamPlan& plan) {
            (v.limit == "separation" ? std::string("#b00") : std::string("#c60")) + "\">" + Escape(label) + "</text>\n";
   }
   for (size_t k = 0; k < plan.flights.size(); ++k) {
-    const auto& S = plan.flights[k].plan.samples;
     const std::string style = "stroke=\"" + colour_of(k) + "\" stroke-width=\"2\"";
-    svg += Polyline(
-        focal, 0, S.size(), [&](size_t i) { return S[i].time_s; },
-        [&](size_t i) { return std::log(S[i].focal_length_mm); }, style);
-    svg += Polyline(
-        focus, 0, S.size(), [&](size_t i) { return S[i].time_s; },
-        [&](size_t i) { return std::isfinite(S[i].focus_distance_m) ? 1.0 / S[i].focus_distance_m : 0.0; }, style);
+    DrawLensCurves(svg, plan.flights[k].plan, focal, focus, style, style);
   }
   // Legend: the drones by name.
   double lx = 40;
@@ -430,8 +391,53 @@ std::string TeamPlanToSvg(const TeamPlan& plan) {
     svg += "<text x=\"" + F(lx + 16) + "\" y=\"" + F(height - 12) + "\">" + Escape(label) + "</text>\n";
     lx += 30 + 7.0 * static_cast<double>(label.size());
   }
+}
+
+}  // namespace
+
+std::string PlanToSvg(const TeamPlan& plan) {
+  const double width = 1200, height = plan.single ? 980 : 1000;
+  std::string svg = SvgStart(width, height);
+  if (plan.SampleCount() == 0) {
+    svg += "<text x=\"20\" y=\"40\">empty plan</text>\n</svg>\n";
+    return svg;
+  }
+  const Extents x = ExtentsOf(plan);
+  const double extent = std::max({x.max_e - x.min_e, x.max_n - x.min_n, x.max_u - x.min_u, 1.0});
+  const double frustum_len = 0.08 * extent;
+  const Frame top = MakeFrame(40, 50, 540, 480, x.min_e, x.max_e, x.min_n, x.max_n, true);
+  const Frame side = MakeFrame(630, 50, 540, 480, x.min_e, x.max_e, x.min_u, x.max_u, true);
+  Panel(svg, top,
+        plan.single ? std::string("Top-down (north up)")
+                    : "Top-down (north up), " + std::to_string(plan.flights.size()) + " drones",
+        "east m", "north m");
+  Panel(svg, side, "Side (looking north)", "east m", "up m");
+  for (const SubjectTrack* subj : x.subjects) {
+    if (subj->positions_enu_m.empty()) continue;
+    DrawSubjectPath(svg, *subj, top, side);
+    if (!plan.single) svg += SubjectMarker(*subj, 0, top, side);
+  }
+  // Frustums every ~2 s (8..60 of them along the longest flight).
+  const size_t count = std::clamp<size_t>(static_cast<size_t>(x.t_end / 2.0), 8, 60);
+  const size_t stride = std::max<size_t>(1, plan.SampleCount() / count);
+  for (size_t k = 0; k < plan.flights.size(); ++k) DrawFlight(svg, plan, k, top, side, frustum_len, stride);
+  const double t_max = std::max(x.t_end, 1e-3);
+  if (plan.single) {
+    DrawShotTimePanels(svg, plan.flights.front().plan, t_max, height);
+  } else {
+    DrawTeamTimePanels(svg, plan, t_max, height);
+  }
   svg += "</svg>\n";
   return svg;
+}
+
+std::string PlanToSvg(const Trajectory& plan) {
+  TeamPlan one;
+  one.single = true;
+  one.origin = plan.origin;
+  one.frame_rate_hz = plan.frame_rate_hz;
+  one.flights.push_back({plan.drone.name, std::nullopt, plan});
+  return PlanToSvg(one);
 }
 
 }  // namespace cinepath::shots

@@ -15,9 +15,10 @@
 
 namespace cinepath::shots {
 
+// One writer for every plan: the flights in one loop. Several drones: every flight in its own colour,
+// the edit and the team's conflicts on the time axis. A version 1 plan (one drone): colours by shot.
+std::string PlanToSvg(const TeamPlan& plan);
+// The plan of one drone, drawn as a version 1 plan.
 std::string PlanToSvg(const Trajectory& plan);
-// Several drones: every flight in its own colour, the team's conflicts shaded on the time axis. A version
-// 1 plan gives PlanToSvg's picture.
-std::string TeamPlanToSvg(const TeamPlan& plan);
 
 }  // namespace cinepath::shots

@@ -58,7 +58,16 @@ const TrajectorySample& SampleNear(const Trajectory& plan, double t) {
 }  // namespace
 
 TeamPlan PlanTeam(const ShotList& list, const PlanOptions& options) {
-  CINEPATH_CHECK(!list.drones.empty());
+  if (list.drones.empty()) {  // one drone: a team of one, as a version 1 plan reads (core/plan_file.h)
+    TeamPlan team;
+    team.single = true;
+    Trajectory plan = PlanShots(list, options);
+    team.origin = plan.origin;
+    team.frame_rate_hz = plan.frame_rate_hz;
+    team.team.min_separation_m = plan.drone.min_separation_m;
+    team.flights.push_back({list.drone.name, std::nullopt, std::move(plan)});
+    return team;
+  }
   std::vector<ShotList> views;
   double longest = 0;
   for (size_t d = 0; d < list.drones.size(); ++d) {

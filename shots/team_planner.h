@@ -9,7 +9,8 @@
 
 namespace cinepath::shots {
 
-// `list` must hold drones (ShotList::drones). InputError (naming shots.json's JSON path) for an edit that
+// A list without drones (ShotList::drones) is one drone: a team of one flight named after its profile,
+// `single` (written as a "cinepath.plan/1" plan). InputError (naming shots.json's JSON path) for an edit that
 // cuts after the plan ends, or a matched focus whose outgoing shot has no subject.
 TeamPlan PlanTeam(const ShotList& list, const PlanOptions& options = {});
 

@@ -373,16 +373,12 @@ if (badSamples.length) {
     overlay(m);
   }
 }
-function farPlane(k) {
-  const focus = S.focus_distance_m[k];
-  return focus === null ? FRUSTUM_INFINITY_M : Math.min(focus, FRUSTUM_MAX_M);
-}
-// Frustum lines (camera at the origin of its frame, looking along -z) to the far plane at the focus.
-function frustumPoints(k, out) {
-  const far = farPlane(k);
-  const tanV = Math.tan(THREE.MathUtils.degToRad(S.vertical_fov_deg[k] / 2));
-  const tanH = tanV * (data.camera.width_px / data.camera.height_px);
-  const o = pos(k), q = quat(k);
+// Frustum lines of a camera at `o` turned by `q` (looking along its -z) to the far plane at the focus:
+// every flight's camera (several drones too, viewer/previs_team.js) is drawn by this one function.
+function cameraFrustumPoints(o, q, verticalFovDeg, aspect, focus, out) {
+  const far = focus === null ? FRUSTUM_INFINITY_M : Math.min(focus, FRUSTUM_MAX_M);
+  const tanV = Math.tan(THREE.MathUtils.degToRad(verticalFovDeg / 2));
+  const tanH = tanV * aspect;
   const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(([sx, sy]) =>
     new THREE.Vector3(sx * tanH * far, sy * tanV * far, -far).applyQuaternion(q).add(o));
   for (let i = 0; i < 4; ++i) {
@@ -393,6 +389,11 @@ function frustumPoints(k, out) {
   const up = new THREE.Vector3(0, tanV * far * 1.25, -far).applyQuaternion(q).add(o);
   out.push(...corners[2].toArray(), ...up.toArray(), ...up.toArray(), ...corners[3].toArray());
   return out;
+}
+// The plan's camera at sample k.
+function frustumPoints(k, out) {
+  return cameraFrustumPoints(pos(k), quat(k), S.vertical_fov_deg[k], data.camera.width_px / data.camera.height_px,
+                             S.focus_distance_m[k], out);
 }
 {
   const stride = Math.max(1, Math.round(2 * FPS));

@@ -19,20 +19,7 @@ document.head.appendChild(teamStyle);
 current.visible = false;  // the primary flight is drawn below in its colour, like the others
 
 function teamFrustumPoints(f, j, out) {
-  const focus = f.focus_distance_m[j];
-  const far = focus === null ? FRUSTUM_INFINITY_M : Math.min(focus, FRUSTUM_MAX_M);
-  const tanV = Math.tan(THREE.MathUtils.degToRad(f.vertical_fov_deg[j] / 2));
-  const tanH = tanV * f.aspect;
-  const o = f.pos(j), q = f.quat(j);
-  const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(([sx, sy]) =>
-    new THREE.Vector3(sx * tanH * far, sy * tanV * far, -far).applyQuaternion(q).add(o));
-  for (let i = 0; i < 4; ++i) {
-    out.push(...o.toArray(), ...corners[i].toArray());
-    out.push(...corners[i].toArray(), ...corners[(i + 1) % 4].toArray());
-  }
-  const up = new THREE.Vector3(0, tanV * far * 1.25, -far).applyQuaternion(q).add(o);
-  out.push(...corners[2].toArray(), ...up.toArray(), ...up.toArray(), ...corners[3].toArray());
-  return out;
+  return cameraFrustumPoints(f.pos(j), f.quat(j), f.vertical_fov_deg[j], f.aspect, f.focus_distance_m[j], out);
 }
 
 let teamPaths = 0;

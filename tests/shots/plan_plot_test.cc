@@ -69,7 +69,7 @@ TEST(PlanPlot, TeamDrawsOnePathPerDroneInItsColourAndShadesEveryConflict) {
   breach.limit_value = 5;
   breach.unit = "m";
   plan.team.conflicts.push_back(breach);
-  const std::string svg = TeamPlanToSvg(plan);
+  const std::string svg = PlanToSvg(plan);
   EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
   EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
 
@@ -97,7 +97,7 @@ TEST(PlanPlot, TeamDrawsOnePathPerDroneInItsColourAndShadesEveryConflict) {
   EXPECT_EQ(Count(svg, "class=\"edit\""), 2u);
   EXPECT_NE(svg.find(">north (px4-multirotor, 1 shot)<"), std::string::npos);
   EXPECT_NE(svg.find(">south (px4-multirotor, 1 shot)<"), std::string::npos);
-  EXPECT_EQ(svg, TeamPlanToSvg(plan));  // deterministic
+  EXPECT_EQ(svg, PlanToSvg(plan));  // deterministic
 }
 
 TEST(PlanPlot, AVersionOnePlanDrawsAsBefore) {
@@ -111,8 +111,8 @@ TEST(PlanPlot, AVersionOnePlanDrawsAsBefore) {
   TeamPlan team;
   team.single = true;
   team.flights.push_back({"px4-multirotor", std::nullopt, PlanShots(list)});
-  EXPECT_EQ(TeamPlanToSvg(team), PlanToSvg(PlanShots(list)));
-  EXPECT_EQ(TeamPlanToSvg(team).find("class=\"flight\""), std::string::npos);
+  EXPECT_EQ(PlanToSvg(team), PlanToSvg(PlanShots(list)));
+  EXPECT_EQ(PlanToSvg(team).find("class=\"flight\""), std::string::npos);
 }
 
 }  // namespace
