@@ -1,8 +1,6 @@
 #include "photogrammetry/build_scene.h"
 
 #include <algorithm>
-#include <chrono>
-
 #include <cmath>
 #include <sstream>
 
@@ -16,6 +14,7 @@
 #include "photogrammetry/ply_reader.h"
 #include "photogrammetry/refs_file.h"
 #include "photogrammetry/scene_cameras.h"
+#include "photogrammetry/step_report.h"
 #include "photogrammetry/view_dependent_budget.h"
 
 namespace cinepath::photogrammetry {
@@ -251,7 +250,7 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
   // The texture from the photos, and scene.glb written again with it.
   Json texture_report = nullptr;
   if (options.texture && !images.dir.empty()) {
-    const auto start = std::chrono::steady_clock::now();
+    const StepTimer timer;
     MeshTextureOptions texture_options = options.texture_options;
     texture_options.texture_px = options.texture_px.value_or(DefaultTexturePx(surface.quality));
     texture_options.report_times = options.timestamps;
@@ -265,8 +264,7 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
     built.glb = WriteGlb(textured.mesh, &texture, glb);
     texture_report = textured.report;
     if (options.timestamps) {
-      texture_report["time_s"]["total_s"] =
-          RoundToDecimals(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3);
+      texture_report["time_s"]["total_s"] = timer.RoundedSeconds();
     }
     for (Json& step : built.report["steps"]) {
       if (step.value("step", "") == "glb") {

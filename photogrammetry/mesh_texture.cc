@@ -1,13 +1,13 @@
 #include "photogrammetry/mesh_texture.h"
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <map>
 
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "photogrammetry/step_report.h"
 #include "photogrammetry/texture_bake.h"
 #include "scene/ray_caster.h"
 
@@ -15,15 +15,6 @@ namespace cinepath::photogrammetry {
 namespace {
 
 namespace fs = std::filesystem;
-
-class StepTimer {
- public:
-  StepTimer() : start_(std::chrono::steady_clock::now()) {}
-  double Seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-
- private:
-  std::chrono::steady_clock::time_point start_;
-};
 
 // Mean linear colour of face f in a photo: its centroid and three points near its corners.
 Eigen::Vector3f FaceColor(const TriangleMesh& mesh, uint32_t f, const TextureView& view, const RgbImage& photo,
@@ -87,10 +78,10 @@ TexturedMesh TextureMesh(const TriangleMesh& mesh, const std::vector<TextureView
     return ok;
   };
   const ViewSelection selection = SelectViews(mesh, views, caster, options.selection, &face_color);
-  times["view_selection_s"] = RoundToDecimals(timer.Seconds(), 3);
+  times["view_selection_s"] = timer.RoundedSeconds();
 
   // 2. Exposure gains from the faces two or more photos see.
-  timer = StepTimer();
+  timer.Restart();
   ExposureGains gains;
   gains.gain.assign(views.size(), Eigen::Vector3f::Ones());
   if (options.level_exposure) {
@@ -108,27 +99,27 @@ TexturedMesh TextureMesh(const TriangleMesh& mesh, const std::vector<TextureView
         samples.end());
     gains = FitExposureGains(int(views.size()), samples, options.exposure);
   }
-  times["exposure_s"] = RoundToDecimals(timer.Seconds(), 3);
+  times["exposure_s"] = timer.RoundedSeconds();
 
   // 3. Charts and their place in the atlas.
-  timer = StepTimer();
+  timer.Restart();
   TextureAtlasOptions atlas_options;
   atlas_options.size_px = options.texture_px;
   atlas_options.padding_px = options.padding_px;
   const TextureAtlas atlas = BuildTextureAtlas(mesh, views, selection.label, atlas_options);
-  times["atlas_s"] = RoundToDecimals(timer.Seconds(), 3);
+  times["atlas_s"] = timer.RoundedSeconds();
 
   // 4. The texels.
-  timer = StepTimer();
+  timer.Restart();
   std::vector<const RgbImage*> photo_ptrs;
   for (const RgbImage& p : photos) photo_ptrs.push_back(&p);
   BakeStats bake_stats;
   TexturedMesh out;
   out.atlas = BakeTextureAtlas(mesh, views, photo_ptrs, gains.gain, atlas, &bake_stats);
-  times["bake_s"] = RoundToDecimals(timer.Seconds(), 3);
+  times["bake_s"] = timer.RoundedSeconds();
 
   // 5. Vertices split per chart, with their texture coordinates.
-  timer = StepTimer();
+  timer.Restart();
   std::map<std::pair<int, uint32_t>, uint32_t> vertex_of;  // (chart, input vertex) -> output vertex
   const std::array<uint8_t, 3> white = {255, 255, 255}, grey = {128, 128, 128};
   out.mesh.faces.resize(mesh.num_faces());
@@ -156,7 +147,7 @@ TexturedMesh TextureMesh(const TriangleMesh& mesh, const std::vector<TextureView
     out.image_bytes = EncodePng(out.atlas);
     out.mime_type = "image/png";
   }
-  times["encode_s"] = RoundToDecimals(timer.Seconds(), 3);
+  times["encode_s"] = timer.RoundedSeconds();
 
   int64_t textured_faces = 0;
   std::vector<int64_t> faces_per_view(views.size(), 0);
@@ -249,11 +240,11 @@ TexturedMesh TextureMeshFromPhotos(const TriangleMesh& mesh, const ColmapModel& 
     }
     if (inputs) inputs->push_back(paths[v].string());
   }
-  const double load_s = timer.Seconds();
+  const double load_s = timer.RoundedSeconds();
   TexturedMesh out = TextureMesh(mesh, views, photos, options);
   out.report["photos_missing"] = missing;
   out.report["photos_excluded"] = excluded;
-  if (options.report_times) out.report["time_s"]["read_photos_s"] = RoundToDecimals(load_s, 3);
+  if (options.report_times) out.report["time_s"]["read_photos_s"] = load_s;
   return out;
 }
 

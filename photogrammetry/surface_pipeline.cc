@@ -1,7 +1,6 @@
 #include "photogrammetry/surface_pipeline.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -17,6 +16,7 @@
 #include "photogrammetry/mesh_decimate.h"
 #include "photogrammetry/mesh_distance.h"
 #include "photogrammetry/mesh_remesh.h"
+#include "photogrammetry/step_report.h"
 #include "photogrammetry/surface_height_field.h"
 #include "photogrammetry/surface_orient.h"
 #include "photogrammetry/surface_points.h"
@@ -49,19 +49,6 @@ QualityDefaults DefaultsFor(Quality quality) {
   return {1000000, DecimationMethod::kQemTiled, 200000, 1000000, 1.0};
 }
 
-class StepTimer {
- public:
-  StepTimer() : start_(std::chrono::steady_clock::now()) {}
-  double Seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-
- private:
-  std::chrono::steady_clock::time_point start_;
-};
-
-void AddTime(Json& step, const StepTimer& timer, const SurfacePipelineOptions& options) {
-  if (options.report_times) step["time_s"] = RoundToDecimals(timer.Seconds(), 3);
-}
-
 Json BoundsJson(const TriangleMesh& mesh) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
@@ -88,7 +75,7 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     Json step;
     step["step"] = "clean";
     step.update(clean_report.ToJson());
-    AddTime(step, timer, options);
+    AddStepTime(step, timer, options.report_times);
     steps.push_back(std::move(step));
   }
   if (mesh.num_faces() == 0) {
@@ -202,7 +189,7 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     step["hausdorff_m"] = hausdorff_m;
     record_sampling(step);
     step.update(measured);
-    AddTime(step, timer, options);
+    AddStepTime(step, timer, options.report_times);
     steps.push_back(std::move(step));
     mesh = std::move(simplified);
   }
@@ -226,7 +213,7 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     step["hausdorff_m"] = hausdorff_m;
     record_sampling(step);
     step.update(measured);
-    AddTime(step, timer, options);
+    AddStepTime(step, timer, options.report_times);
     steps.push_back(std::move(step));
     mesh = std::move(remeshed);
   }
@@ -243,7 +230,7 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     } else {
       step["source"] = "none";
     }
-    AddTime(step, timer, options);
+    AddStepTime(step, timer, options.report_times);
     steps.push_back(std::move(step));
   }
 
@@ -258,7 +245,7 @@ SurfacePipelineResult FinishSurface(TriangleMesh mesh, const PointCloud* color_s
     step["step"] = "glb";
     step["draco"] = options.draco;
     step["bytes"] = static_cast<int64_t>(result.glb.size());
-    AddTime(step, timer, options);
+    AddStepTime(step, timer, options.report_times);
     steps.push_back(std::move(step));
   }
 
@@ -398,7 +385,7 @@ Json OrientStep(TriangleMesh* mesh, const PointCloud& points, const SurfacePipel
   Json step;
   step["step"] = "orient";
   step.update(OrientTowardCameras(mesh, points).ToJson());
-  AddTime(step, timer, options);
+  AddStepTime(step, timer, options.report_times);
   return step;
 }
 
@@ -418,7 +405,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
     Json step;
     step["step"] = "filter_points";
     step.update(filter_report.ToJson());
-    AddTime(step, timer, options);
+    AddStepTime(step, timer, options.report_times);
     steps.push_back(std::move(step));
   }
   if (filtered.size() < 3) {
@@ -461,7 +448,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
       }
     }
     step["method_requested"] = SurfaceMethodName(options.method);
-    AddTime(step, timer, options);
+    AddStepTime(step, timer, options.report_times);
     steps.push_back(std::move(step));
   }
   if (mesh.num_faces() == 0) {
@@ -495,7 +482,7 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
     Json step;
     step["step"] = "trim";
     step.update(trim_report.ToJson());
-    AddTime(step, timer, options);
+    AddStepTime(step, timer, options.report_times);
     steps.push_back(std::move(step));
   }
   if (mesh.num_faces() == 0) {
