@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "core/error.h"
@@ -77,9 +78,8 @@ Json GltfExtras(const ModelGeoreference& geo) {
 
 // The surface from the sparse points, a dense cloud or a given mesh, all in ENU.
 SurfacePipelineResult BuildSurface(const SceneBuildOptions& options, const ColmapModel& model,
-                                   const ModelGeoreference& geo, SurfacePipelineOptions surface,
+                                   const ModelGeoreference& geo, const SurfacePipelineOptions& surface,
                                    std::vector<std::string>* inputs, Json* input_note) {
-  surface.gltf_extras = GltfExtras(geo);
   surface.Check();
 
   PointCloud cloud = PointCloudFromModel(geo.model_enu);
@@ -139,6 +139,165 @@ void CheckPlanOrigin(const Trajectory& plan, const std::string& path, const Geod
   }
 }
 
+// What `mesh` loads before georeferencing: the model, its photos' EXIF, the references and GCPs.
+struct LoadedModel {
+  std::string colmap_dir;
+  ColmapFormat format = ColmapFormat::kText;
+  ColmapModel model;
+  ImagesFolder images;
+  std::vector<ExifInfo> exif;
+  std::optional<GcpFile> gcps;
+  std::vector<ImageReference> refs;
+  std::string refs_source;
+};
+
+// The model: given, or reconstructed from the photos; then the model folder inside what was given.
+std::string ModelDir(const SceneBuildOptions& options, const SceneBuildLog& log) {
+  std::string colmap_dir = options.colmap_dir;
+  if (colmap_dir.empty()) {
+    const fs::path workspace =
+        options.colmap_workspace.empty() ? fs::path(options.output_dir) / "colmap" : fs::path(options.colmap_workspace);
+    colmap_dir =
+        RunColmapReconstruction(options.images_dir, workspace, ColmapRunOptions(), [&](const std::string& step) {
+          Tell(log.colmap_step, step + " (log in " + workspace.string() + ")");
+        }).string();
+  }
+  if (const fs::path found = FindColmapModelDir(colmap_dir); found != fs::path(colmap_dir)) {
+    Tell(log.note, "using the COLMAP model in " + found.string());
+    colmap_dir = found.string();
+  }
+  return colmap_dir;
+}
+
+// The EXIF of every registered image found in the photos folder.
+std::vector<ExifInfo> ReadModelExif(const ColmapModel& model, const std::string& images_dir,
+                                    std::vector<std::string>* inputs) {
+  if (images_dir.empty()) return {};
+  std::vector<std::string> names;
+  for (const auto& [id, image] : model.images) names.push_back(image.name);
+  std::vector<ExifInfo> exif = ReadExifFolder(images_dir, names);
+  for (const auto& e : exif) inputs->push_back((fs::path(images_dir) / e.file_name).string());
+  return exif;
+}
+
+// References: the file, else EXIF GPS; InputError when there are neither references nor GCPs.
+void TakeReferences(const SceneBuildOptions& options, LoadedModel* loaded, std::vector<std::string>* inputs) {
+  if (!options.refs_path.empty()) {
+    loaded->refs = ReadReferencesFile(options.refs_path);
+    loaded->refs_source = options.refs_path;
+    inputs->push_back(options.refs_path);
+  } else if (!loaded->exif.empty()) {
+    loaded->refs = ReferencesFromExif(loaded->images.dir, loaded->exif);
+    loaded->refs_source = "EXIF GPS of " + loaded->images.dir;
+  }
+  if (loaded->refs.empty() && !loaded->gcps) {
+    throw InputError(
+        "no references to georeference with: give a references file, photos with GPS EXIF, or ground "
+        "control points" +
+        std::string(loaded->images.dir.empty() ? "" : " (" + loaded->images.dir + " has no GPS EXIF)"));
+  }
+}
+
+// The load step: the model, its files, the GCPs, the photos' EXIF and the references.
+LoadedModel LoadModel(const SceneBuildOptions& options, const SceneBuildLog& log, std::vector<std::string>* inputs) {
+  LoadedModel loaded;
+  loaded.colmap_dir = ModelDir(options, log);
+  loaded.model = ReadColmapModel(loaded.colmap_dir);
+  loaded.format = DetectColmapFormat(loaded.colmap_dir);
+  for (const char* stem : {"cameras", "images", "points3D"}) {
+    inputs->push_back(
+        (fs::path(loaded.colmap_dir) / (std::string(stem) + (loaded.format == ColmapFormat::kBinary ? ".bin" : ".txt")))
+            .string());
+  }
+  if (!options.gcp_path.empty()) {
+    loaded.gcps = ReadGcpFile(options.gcp_path);
+    inputs->push_back(options.gcp_path);
+  }
+  loaded.images = FindImages(options, loaded.colmap_dir);
+  loaded.exif = ReadModelExif(loaded.model, loaded.images.dir, inputs);
+  TakeReferences(options, &loaded, inputs);
+  return loaded;
+}
+
+// The surface pipeline's options for this scene: the GLB's extras, the times, the plan's cameras; the
+// GLB is written here, after the texture.
+SurfacePipelineOptions SurfaceOptionsFor(const SceneBuildOptions& options, const ModelGeoreference& geo,
+                                         std::vector<std::string>* inputs) {
+  SurfacePipelineOptions surface = options.surface;
+  surface.report_times = options.timestamps;
+  surface.gltf_extras = GltfExtras(geo);
+  surface.write_glb = false;
+  if (options.for_plan) {
+    CheckPlanOrigin(*options.for_plan, options.for_plan_path, geo.origin);
+    ForPlanOptions for_plan;
+    for_plan.cameras = CamerasFromPlan(*options.for_plan, options.for_plan_path);
+    for_plan.plan_source = options.for_plan_path;
+    for_plan.max_error_px = options.max_error_px;
+    surface.for_plan = std::move(for_plan);
+    inputs->push_back(options.for_plan_path);
+  }
+  return surface;
+}
+
+// The surface steps' fallbacks, told as warnings.
+void WarnAboutFallbacks(const Json& surface_report, const SceneBuildLog& log) {
+  for (const Json& step : surface_report["steps"]) {
+    if (step.contains("fallback_from")) {
+      Tell(log.warning, "the surface step fell back from " + step["fallback_from"].get<std::string>() + " to " +
+                            step["step"].get<std::string>() + ": " + step["fallback_reason"].get<std::string>());
+    }
+    if (step.contains("coarser_after_failure")) {
+      Tell(log.warning, "the Poisson surface was made at twice the spacing (coarser) after CGAL failed at the first: " +
+                            step["coarser_after_failure"].get<std::string>());
+    }
+  }
+}
+
+// The texture step: the mesh textured from the photos when there are photos and it is not turned off
+// (then `textured` holds it); returns scene.json's "texture".
+Json TextureStep(const SceneBuildOptions& options, const TriangleMesh& mesh, const ModelGeoreference& geo,
+                 const ImagesFolder& images, std::optional<TexturedMesh>* textured) {
+  if (!options.texture) return {{"skipped", "--no-texture"}};
+  if (images.dir.empty()) return {{"skipped", "no photos"}};
+  const StepTimer timer;
+  MeshTextureOptions texture_options = options.texture_options;
+  texture_options.texture_px = options.texture_px.value_or(DefaultTexturePx(options.surface.quality));
+  texture_options.report_times = options.timestamps;
+  const CurrentStep running("texture: from the photos");
+  *textured = TextureMeshFromPhotos(mesh, geo.model_enu, images.dir, texture_options, nullptr);
+  Json report = (*textured)->report;
+  if (options.timestamps) report["time_s"]["total_s"] = timer.RoundedSeconds();
+  return report;
+}
+
+// scene.json (docs/scene-format.md): what a reader needs first, then the reports.
+Json SceneJson(const SceneBuildOptions& options, const LoadedModel& loaded, const ModelGeoreference& geo,
+               const ModelGeoreferenceOptions& georeference, const Json& input_note, const Json& surface_report,
+               const Json& texture_report) {
+  Json scene = Json::object();
+  scene["format"] = "cinepath.scene";
+  scene["version"] = 1;
+  scene["mesh"] = "scene.glb";
+  scene["frame"] = "ENU metres about origin; scene.glb stores (e, n, u) as glTF (e, u, -n)";
+  Json geo_json = GeoreferenceJson(geo, georeference, options.timestamps);
+  for (auto it = geo_json.begin(); it != geo_json.end(); ++it) scene[it.key()] = it.value();
+  scene["georeferencing"]["references_source"] = loaded.refs_source.empty() ? Json(nullptr) : Json(loaded.refs_source);
+  if (loaded.gcps) scene["georeferencing"]["gcp_source"] = options.gcp_path;
+  scene["georeferencing"]["images"] =
+      loaded.images.dir.empty() ? Json(nullptr) : Json(loaded.images.dir + " (" + loaded.images.note + ")");
+  scene["input"] = {{"colmap", loaded.colmap_dir},
+                    {"colmap_format", loaded.format == ColmapFormat::kBinary ? "binary" : "text"},
+                    {"cameras", loaded.model.cameras.size()},
+                    {"images", loaded.model.images.size()},
+                    {"points3d", loaded.model.points3d.size()}};
+  for (auto it = input_note.begin(); it != input_note.end(); ++it) scene["input"][it.key()] = it.value();
+  if (options.for_plan) scene["input"]["for_plan"] = options.for_plan_path;
+  scene["surface"] = surface_report;
+  scene["texture"] = texture_report;
+  scene["cameras"] = SceneCamerasJson(geo.model_enu);
+  return scene;
+}
+
 }  // namespace
 
 void SceneBuildOptions::Check() const {
@@ -163,145 +322,28 @@ SceneBuildResult BuildScene(const SceneBuildOptions& options, const SceneBuildLo
   options.Check();
   SceneBuildResult result;
   std::vector<std::string>& inputs = result.inputs;
-
-  // The model: given, or reconstructed from the photos.
-  std::string colmap_dir = options.colmap_dir;
-  if (colmap_dir.empty()) {
-    const fs::path workspace =
-        options.colmap_workspace.empty() ? fs::path(options.output_dir) / "colmap" : fs::path(options.colmap_workspace);
-    colmap_dir =
-        RunColmapReconstruction(options.images_dir, workspace, ColmapRunOptions(), [&](const std::string& step) {
-          Tell(log.colmap_step, step + " (log in " + workspace.string() + ")");
-        }).string();
-  }
-  if (const fs::path found = FindColmapModelDir(colmap_dir); found != fs::path(colmap_dir)) {
-    Tell(log.note, "using the COLMAP model in " + found.string());
-    colmap_dir = found.string();
-  }
-  const ColmapModel model = ReadColmapModel(colmap_dir);
-  const ColmapFormat format = DetectColmapFormat(colmap_dir);
-  for (const char* stem : {"cameras", "images", "points3D"}) {
-    inputs.push_back(
-        (fs::path(colmap_dir) / (std::string(stem) + (format == ColmapFormat::kBinary ? ".bin" : ".txt"))).string());
-  }
+  const LoadedModel loaded = LoadModel(options, log, &inputs);
 
   ModelGeoreferenceOptions georeference = options.georeference;
-  std::optional<GcpFile> gcps;
-  if (!options.gcp_path.empty()) {
-    gcps = ReadGcpFile(options.gcp_path);
-    inputs.push_back(options.gcp_path);
-  }
-
-  const ImagesFolder images = FindImages(options, colmap_dir);
-  std::vector<ExifInfo> exif;
-  if (!images.dir.empty()) {
-    std::vector<std::string> names;
-    for (const auto& [id, image] : model.images) names.push_back(image.name);
-    exif = ReadExifFolder(images.dir, names);
-    for (const auto& e : exif) inputs.push_back((fs::path(images.dir) / e.file_name).string());
-  }
-
-  // References: the file, else EXIF GPS.
-  std::vector<ImageReference> refs;
-  std::string refs_source;
-  if (!options.refs_path.empty()) {
-    refs = ReadReferencesFile(options.refs_path);
-    refs_source = options.refs_path;
-    inputs.push_back(options.refs_path);
-  } else if (!exif.empty()) {
-    refs = ReferencesFromExif(images.dir, exif);
-    refs_source = "EXIF GPS of " + images.dir;
-  }
-  if (refs.empty() && !gcps) {
-    throw InputError(
-        "no references to georeference with: give a references file, photos with GPS EXIF, or ground "
-        "control points" +
-        std::string(images.dir.empty() ? "" : " (" + images.dir + " has no GPS EXIF)"));
-  }
-
-  SetFocalPriors(model, exif, options, &georeference);
-  const ModelGeoreference geo = GeoreferenceModel(model, refs, gcps ? &*gcps : nullptr, georeference);
+  SetFocalPriors(loaded.model, loaded.exif, options, &georeference);
+  const ModelGeoreference geo =
+      GeoreferenceModel(loaded.model, loaded.refs, loaded.gcps ? &*loaded.gcps : nullptr, georeference);
   for (const std::string& w : geo.warnings) Tell(log.warning, w);
 
-  SurfacePipelineOptions surface = options.surface;
-  surface.report_times = options.timestamps;
-  if (options.for_plan) {
-    CheckPlanOrigin(*options.for_plan, options.for_plan_path, geo.origin);
-    ForPlanOptions for_plan;
-    for_plan.cameras = CamerasFromPlan(*options.for_plan, options.for_plan_path);
-    for_plan.plan_source = options.for_plan_path;
-    for_plan.max_error_px = options.max_error_px;
-    surface.for_plan = std::move(for_plan);
-    inputs.push_back(options.for_plan_path);
-  }
+  const SurfacePipelineOptions surface = SurfaceOptionsFor(options, geo, &inputs);
   Json input_note = Json::object();
-  SurfacePipelineResult built = BuildSurface(options, model, geo, surface, &inputs, &input_note);
-  for (const Json& step : built.report["steps"]) {
-    if (step.contains("fallback_from")) {
-      Tell(log.warning, "the surface step fell back from " + step["fallback_from"].get<std::string>() + " to " +
-                            step["step"].get<std::string>() + ": " + step["fallback_reason"].get<std::string>());
-    }
-    if (step.contains("coarser_after_failure")) {
-      Tell(log.warning, "the Poisson surface was made at twice the spacing (coarser) after CGAL failed at the first: " +
-                            step["coarser_after_failure"].get<std::string>());
-    }
-  }
+  SurfacePipelineResult built = BuildSurface(options, loaded.model, geo, surface, &inputs, &input_note);
+  WarnAboutFallbacks(built.report, log);
 
-  // The texture from the photos, and scene.glb written again with it.
-  Json texture_report = nullptr;
-  if (options.texture && !images.dir.empty()) {
-    const StepTimer timer;
-    MeshTextureOptions texture_options = options.texture_options;
-    texture_options.texture_px = options.texture_px.value_or(DefaultTexturePx(surface.quality));
-    texture_options.report_times = options.timestamps;
-    const CurrentStep running("texture: from the photos");
-    const TexturedMesh textured =
-        TextureMeshFromPhotos(built.mesh, geo.model_enu, images.dir, texture_options, nullptr);
-    GlbWriteOptions glb;
-    glb.draco = surface.draco;
-    glb.extras = GltfExtras(geo);
-    const GlbTexture texture{textured.texcoords, textured.image_bytes, textured.mime_type};
-    built.glb = WriteGlb(textured.mesh, &texture, glb);
-    texture_report = textured.report;
-    if (options.timestamps) {
-      texture_report["time_s"]["total_s"] = timer.RoundedSeconds();
-    }
-    for (Json& step : built.report["steps"]) {
-      if (step.value("step", "") == "glb") {
-        step["bytes"] = static_cast<int64_t>(built.glb.size());
-        step["texture"] = true;
-      }
-    }
-  } else if (!options.texture) {
-    texture_report = {{"skipped", "--no-texture"}};
+  std::optional<TexturedMesh> textured;
+  const Json texture_report = TextureStep(options, built.mesh, geo, loaded.images, &textured);
+  if (textured) {
+    const GlbTexture texture{textured->texcoords, textured->image_bytes, textured->mime_type};
+    result.glb = WriteGlbStep(textured->mesh, &texture, surface, &built.report);
   } else {
-    texture_report = {{"skipped", "no photos"}};
+    result.glb = WriteGlbStep(built.mesh, nullptr, surface, &built.report);
   }
-
-  // scene.json (docs/scene-format.md): what a reader needs first, then the reports.
-  Json scene = Json::object();
-  scene["format"] = "cinepath.scene";
-  scene["version"] = 1;
-  scene["mesh"] = "scene.glb";
-  scene["frame"] = "ENU metres about origin; scene.glb stores (e, n, u) as glTF (e, u, -n)";
-  Json geo_json = GeoreferenceJson(geo, georeference, options.timestamps);
-  for (auto it = geo_json.begin(); it != geo_json.end(); ++it) scene[it.key()] = it.value();
-  scene["georeferencing"]["references_source"] = refs_source.empty() ? Json(nullptr) : Json(refs_source);
-  if (gcps) scene["georeferencing"]["gcp_source"] = options.gcp_path;
-  scene["georeferencing"]["images"] = images.dir.empty() ? Json(nullptr) : Json(images.dir + " (" + images.note + ")");
-  scene["input"] = {{"colmap", colmap_dir},
-                    {"colmap_format", format == ColmapFormat::kBinary ? "binary" : "text"},
-                    {"cameras", model.cameras.size()},
-                    {"images", model.images.size()},
-                    {"points3d", model.points3d.size()}};
-  for (auto it = input_note.begin(); it != input_note.end(); ++it) scene["input"][it.key()] = it.value();
-  if (options.for_plan) scene["input"]["for_plan"] = options.for_plan_path;
-  scene["surface"] = built.report;
-  scene["texture"] = texture_report;
-  scene["cameras"] = SceneCamerasJson(geo.model_enu);
-
-  result.glb = std::move(built.glb);
-  result.scene = std::move(scene);
+  result.scene = SceneJson(options, loaded, geo, georeference, input_note, built.report, texture_report);
   return result;
 }
 

@@ -70,6 +70,10 @@ struct SurfacePipelineOptions {
   // {"origin": {"lat_deg", "lon_deg", "height_m"}, "frame": "ENU"...}). Must be an object or null.
   Json gltf_extras;
 
+  // Encode scene.glb as the last step (result.glb and the report's "glb" step). false: the caller
+  // finishes the mesh first (BuildScene textures it) and encodes it once with WriteGlbStep.
+  bool write_glb = true;
+
   // Record wall-clock seconds per step in the report ("time_s"). Off for golden tests: times are
   // the only non-deterministic field.
   bool report_times = true;
@@ -94,10 +98,10 @@ struct SurfacePipelineResult {
   //    "hausdorff_in_to_out_m", "hausdorff_out_to_in_m", "hausdorff_points_measured", "time_s"},
   //    with for_plan: "goal": "for_plan" and "for_plan": ForPlanReport::ToJson(),
   //   {"step": "remesh", ...} (with --remesh-edge-m), {"step": "colors", ...},
-  //   {"step": "glb", "bytes", "draco"}],
+  //   {"step": "glb", "draco", "bytes", "time_s", "texture" (when textured)}],
   //  "output": {"vertices", "faces", "hausdorff_m", "bbox_min_m", "bbox_max_m"}}
   Json report;
-  std::string glb;  // scene.glb bytes
+  std::string glb;  // scene.glb bytes (none with write_glb false)
 };
 
 // Reconstructs a surface from `points` (ENU metres), then cleans, simplifies, colours and encodes
@@ -110,5 +114,12 @@ SurfacePipelineResult BuildSurfaceFromPoints(const PointCloud& points, const Sur
 // the nearest points.
 SurfacePipelineResult BuildSurfaceFromMesh(TriangleMesh mesh, const PointCloud* color_source,
                                            const SurfacePipelineOptions& options);
+
+struct GlbTexture;  // gltf/gltf_writer.h
+
+// The last step, "write": scene.glb's bytes of `mesh` (textured when `texture` is given; Draco and the
+// glTF extras from `options`), its entry {"step": "glb", ...} appended to (*report)["steps"].
+std::string WriteGlbStep(const TriangleMesh& mesh, const GlbTexture* texture, const SurfacePipelineOptions& options,
+                         Json* report);
 
 }  // namespace cinepath::photogrammetry
