@@ -496,8 +496,9 @@ ModelGeoreference GeoreferenceModel(const ColmapModel& model, const std::vector<
   return result;
 }
 
-Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions& options, bool include_timing) {
-  Json out = Json::object();
+namespace {
+
+Json OriginJson(const ModelGeoreference& r) {
   Json origin = Json::object();
   origin["lat_deg"] = Round(r.origin.lat_deg, 9);
   origin["lon_deg"] = Round(r.origin.lon_deg, 9);
@@ -505,8 +506,10 @@ Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions
   origin["height_reference"] = "WGS84 ellipsoid";
   origin["geoid_undulation_m"] = Round(r.geoid_undulation_m, 3);
   origin["geoid_model"] = "EGM96";
-  out["origin"] = origin;
+  return origin;
+}
 
+Json EnuFromColmapJson(const ModelGeoreference& r) {
   Json t = Json::object();
   const Similarity3& s = r.enu_from_colmap;
   t["scale"] = s.scale;
@@ -516,18 +519,10 @@ Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions
                   ? "similarity-only fit of the COLMAP camera centres; points and cameras were then bundle-"
                     "adjusted in ENU (see georeferencing.bundle_adjustment)"
                   : "similarity applied to the COLMAP model";
-  out["enu_from_colmap"] = t;
+  return t;
+}
 
-  Json g = Json::object();
-  g["altitude_datum"] = AltitudeDatumName(options.altitude_datum);
-  g["altitude_datum_note"] =
-      options.altitude_datum == AltitudeDatum::kEllipsoidal
-          ? "reference altitudes taken as WGS84 ellipsoidal heights (as COLMAP does; DJI drones write these "
-            "in EXIF GPSAltitude); choose the AMSL datum if they are above mean sea level"
-          : "reference altitudes taken as above mean sea level and converted with EGM96 (h = H + N)";
-  g["inlier_threshold_m"] = options.fit.inlier_threshold_m;
-  g["max_rmse_m"] = options.fit.max_rmse_m;
-  g["seed"] = options.fit.seed;
+Json ReferencesJson(const ModelGeoreference& r) {
   Json refs = Json::array();
   for (const ReferenceUse& u : r.references) {
     Json item = Json::object();
@@ -541,48 +536,141 @@ Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions
     if (u.matched_by_file_name) item["matched_by"] = "file name without folder";
     refs.push_back(item);
   }
-  g["references"] = refs;
+  return refs;
+}
+
+Json FocalJson(const FocalReport& f, const ModelGeoreferenceOptions& options) {
+  Json item = Json::object();
+  item["camera_id"] = f.camera_id;
+  item["before_px"] = Round(f.before_px, 3);
+  item["after_px"] = Round(f.after_px, 3);
+  item["prior_px"] = f.prior_px ? Json(Round(*f.prior_px, 3)) : Json(nullptr);
+  if (f.prior_px) item["prior_source"] = options.focal_prior_source;
+  item["prior_sigma_ratio"] =
+      f.measured_by_images ? options.ba.measured_focal_prior_sigma_ratio : options.ba.focal_prior_sigma_ratio;
+  item["images_sigma_ratio"] = f.images_sigma_ratio ? Json(Round(*f.images_sigma_ratio, 5)) : Json(nullptr);
+  item["images_preferred_px"] = f.images_preferred_px ? Json(Round(*f.images_preferred_px, 2)) : Json(nullptr);
+  item["images_resolve_focal"] = f.images_resolve_focal;
+  item["images_conflict_with_prior"] = f.images_conflict_with_prior;
+  item["held_at_prior"] = f.held_at_prior;
+  item["measured_by_images"] = f.measured_by_images;
+  return item;
+}
+
+Json BundleAdjustmentJson(const ModelGeoreference& r, const ModelGeoreferenceOptions& options, bool include_timing) {
+  const BundleAdjustReport& ba = *r.bundle_adjustment;
+  Json b = Json::object();
+  b["images"] = ba.num_images;
+  b["points"] = ba.num_points;
+  b["observations"] = ba.num_observations;
+  b["gps_priors"] = ba.num_gps_priors;
+  if (r.gcp_crs) b["gcp_priors"] = ba.num_control_points;
+  b["gps_sigma_horizontal_m"] = options.ba.gps_sigma_horizontal_m;
+  b["gps_sigma_vertical_m"] = options.ba.gps_sigma_vertical_m;
+  b["iterations"] = ba.iterations;
+  b["converged"] = ba.converged;
+  b["rms_reprojection_before_px"] = Round(ba.rms_reprojection_before_px, 4);
+  b["rms_reprojection_after_px"] = Round(ba.rms_reprojection_after_px, 4);
+  Json focal = Json::array();
+  for (const FocalReport& f : ba.focal) focal.push_back(FocalJson(f, options));
+  b["focal_length"] = focal;
+  b["depth_relief_ratio"] = Round(ba.depth_relief_ratio, 4);
+  b["view_axis_spread_deg"] = Round(ba.view_axis_spread_deg, 3);
+  b["geometry_resolves_focal"] = ba.geometry_resolves_focal;
+  if (include_timing) b["time_s"] = Round(ba.time_s, 3);
+  return b;
+}
+
+Json GcpObservationsJson(const GcpUse& u) {
+  Json obs = Json::array();
+  for (size_t k = 0; k < u.gcp.observations.size(); ++k) {
+    const GcpObservation& o = u.gcp.observations[k];
+    const ObservationResult& res = u.observation_results[k];
+    Json oj = Json::object();
+    oj["image"] = o.image_name;
+    oj["pixel"] = Json::array({o.pixel_file.x(), o.pixel_file.y()});
+    oj["used"] = res.used;
+    oj["reprojection_px"] = res.reprojection_px >= 0 ? Json(Round(res.reprojection_px, 3)) : Json(nullptr);
+    if (!res.note.empty()) oj["note"] = res.note;
+    obs.push_back(oj);
+  }
+  return obs;
+}
+
+Json GcpPointJson(const GcpUse& u) {
+  Json item = Json::object();
+  item["name"] = u.gcp.name;
+  item["where"] = u.gcp.where;
+  item["geo_x"] = u.gcp.geo_x;
+  item["geo_y"] = u.gcp.geo_y;
+  item["geo_z"] = u.gcp.geo_z_m ? Json(*u.gcp.geo_z_m) : Json(nullptr);
+  item["lat_deg"] = Round(u.gcp.lat_deg, 9);
+  item["lon_deg"] = Round(u.gcp.lon_deg, 9);
+  item["height_ellipsoidal_m"] = u.gcp.geo_z_m ? Json(Round(u.height_ellipsoidal_m, 4)) : Json(nullptr);
+  item["enu_m"] = u.gcp.geo_z_m ? Vec(u.enu_m, 4) : Json(nullptr);
+  item["used"] = u.usable;
+  if (!u.usable) item["skipped"] = u.skipped_reason;
+  item["observations"] = GcpObservationsJson(u);
+  if (u.triangulation.num_used > 0) {
+    item["triangulation"] = {{"observations_used", u.triangulation.num_used},
+                             {"rms_reprojection_px", Round(u.triangulation.rms_reprojection_px, 3)},
+                             {"angle_deg", Round(u.triangulation.max_angle_deg, 2)}};
+  }
+  if (u.final_residual_enu_m) {
+    item["check_residual_enu_m"] = Vec(*u.final_residual_enu_m, 3);
+    item["check_residual_m"] = Round(u.final_residual_enu_m->norm(), 3);
+    item["check_rms_reprojection_px"] = Round(u.final_triangulation->rms_reprojection_px, 3);
+  }
+  return item;
+}
+
+Json GroundControlJson(const ModelGeoreference& r, const ModelGeoreferenceOptions& options) {
+  Json gcp = Json::object();
+  gcp["coordinate_system"] = r.gcp_crs->header;
+  gcp["coordinate_system_read_as"] = r.gcp_crs->description;
+  gcp["altitude_datum"] = AltitudeDatumName(options.gcp_altitude_datum);
+  gcp["pixel_convention"] = "im_x, im_y with the centre of the top-left pixel at (0, 0) (OpenSfM/ODM); COLMAP = +0.5";
+  gcp["sigma_horizontal_m"] = options.gcp_sigma_horizontal_m;
+  gcp["sigma_vertical_m"] = options.gcp_sigma_vertical_m;
+  gcp["max_reprojection_px"] = options.triangulation.max_reprojection_px;
+  gcp["min_triangulation_angle_deg"] = options.triangulation.min_angle_deg;
+  Json points = Json::array();
+  int usable = 0;
+  for (const GcpUse& u : r.gcps) {
+    usable += u.usable ? 1 : 0;
+    points.push_back(GcpPointJson(u));
+  }
+  gcp["points"] = points;
+  gcp["usable"] = usable;
+  gcp["check_rmse_m"] = Round(r.gcp_check_rmse_m, 4);
+  gcp["check_note"] =
+      "each usable GCP re-triangulated in the final model from its pixels alone, minus its surveyed position";
+  return gcp;
+}
+
+}  // namespace
+
+Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions& options, bool include_timing) {
+  Json out = Json::object();
+  out["origin"] = OriginJson(r);
+  out["enu_from_colmap"] = EnuFromColmapJson(r);
+
+  Json g = Json::object();
+  g["altitude_datum"] = AltitudeDatumName(options.altitude_datum);
+  g["altitude_datum_note"] =
+      options.altitude_datum == AltitudeDatum::kEllipsoidal
+          ? "reference altitudes taken as WGS84 ellipsoidal heights (as COLMAP does; DJI drones write these "
+            "in EXIF GPSAltitude); choose the AMSL datum if they are above mean sea level"
+          : "reference altitudes taken as above mean sea level and converted with EGM96 (h = H + N)";
+  g["inlier_threshold_m"] = options.fit.inlier_threshold_m;
+  g["max_rmse_m"] = options.fit.max_rmse_m;
+  g["seed"] = options.fit.seed;
+  g["references"] = ReferencesJson(r);
   if (!r.gcps.empty() || r.gcp_crs) g["fit_references"] = r.fit_references;
   g["similarity_fit"] = FitJson(r.first_fit, r, false);
   g["similarity_fit"]["ransac_trials"] = r.first_fit.ransac_trials;
   if (r.bundle_adjustment) {
-    const BundleAdjustReport& ba = *r.bundle_adjustment;
-    Json b = Json::object();
-    b["images"] = ba.num_images;
-    b["points"] = ba.num_points;
-    b["observations"] = ba.num_observations;
-    b["gps_priors"] = ba.num_gps_priors;
-    if (r.gcp_crs) b["gcp_priors"] = ba.num_control_points;
-    b["gps_sigma_horizontal_m"] = options.ba.gps_sigma_horizontal_m;
-    b["gps_sigma_vertical_m"] = options.ba.gps_sigma_vertical_m;
-    b["iterations"] = ba.iterations;
-    b["converged"] = ba.converged;
-    b["rms_reprojection_before_px"] = Round(ba.rms_reprojection_before_px, 4);
-    b["rms_reprojection_after_px"] = Round(ba.rms_reprojection_after_px, 4);
-    Json focal = Json::array();
-    for (const FocalReport& f : ba.focal) {
-      Json item = Json::object();
-      item["camera_id"] = f.camera_id;
-      item["before_px"] = Round(f.before_px, 3);
-      item["after_px"] = Round(f.after_px, 3);
-      item["prior_px"] = f.prior_px ? Json(Round(*f.prior_px, 3)) : Json(nullptr);
-      if (f.prior_px) item["prior_source"] = options.focal_prior_source;
-      item["prior_sigma_ratio"] =
-          f.measured_by_images ? options.ba.measured_focal_prior_sigma_ratio : options.ba.focal_prior_sigma_ratio;
-      item["images_sigma_ratio"] = f.images_sigma_ratio ? Json(Round(*f.images_sigma_ratio, 5)) : Json(nullptr);
-      item["images_preferred_px"] = f.images_preferred_px ? Json(Round(*f.images_preferred_px, 2)) : Json(nullptr);
-      item["images_resolve_focal"] = f.images_resolve_focal;
-      item["images_conflict_with_prior"] = f.images_conflict_with_prior;
-      item["held_at_prior"] = f.held_at_prior;
-      item["measured_by_images"] = f.measured_by_images;
-      focal.push_back(item);
-    }
-    b["focal_length"] = focal;
-    b["depth_relief_ratio"] = Round(ba.depth_relief_ratio, 4);
-    b["view_axis_spread_deg"] = Round(ba.view_axis_spread_deg, 3);
-    b["geometry_resolves_focal"] = ba.geometry_resolves_focal;
-    if (include_timing) b["time_s"] = Round(ba.time_s, 3);
-    g["bundle_adjustment"] = b;
+    g["bundle_adjustment"] = BundleAdjustmentJson(r, options, include_timing);
     g["final_fit"] = FitJson(r.final_fit, r, true);
   }
   if (r.gcp_crs) {
@@ -592,62 +680,7 @@ Json GeoreferenceJson(const ModelGeoreference& r, const ModelGeoreferenceOptions
       cams.push_back({{"image", r.references[i].reference.image_name}, {"residual_m", Round(residual, 3)}});
     }
     g["camera_reference_residuals"] = cams;
-    Json gcp = Json::object();
-    gcp["coordinate_system"] = r.gcp_crs->header;
-    gcp["coordinate_system_read_as"] = r.gcp_crs->description;
-    gcp["altitude_datum"] = AltitudeDatumName(options.gcp_altitude_datum);
-    gcp["pixel_convention"] = "im_x, im_y with the centre of the top-left pixel at (0, 0) (OpenSfM/ODM); COLMAP = +0.5";
-    gcp["sigma_horizontal_m"] = options.gcp_sigma_horizontal_m;
-    gcp["sigma_vertical_m"] = options.gcp_sigma_vertical_m;
-    gcp["max_reprojection_px"] = options.triangulation.max_reprojection_px;
-    gcp["min_triangulation_angle_deg"] = options.triangulation.min_angle_deg;
-    Json points = Json::array();
-    int usable = 0;
-    for (const GcpUse& u : r.gcps) {
-      Json item = Json::object();
-      item["name"] = u.gcp.name;
-      item["where"] = u.gcp.where;
-      item["geo_x"] = u.gcp.geo_x;
-      item["geo_y"] = u.gcp.geo_y;
-      item["geo_z"] = u.gcp.geo_z_m ? Json(*u.gcp.geo_z_m) : Json(nullptr);
-      item["lat_deg"] = Round(u.gcp.lat_deg, 9);
-      item["lon_deg"] = Round(u.gcp.lon_deg, 9);
-      item["height_ellipsoidal_m"] = u.gcp.geo_z_m ? Json(Round(u.height_ellipsoidal_m, 4)) : Json(nullptr);
-      item["enu_m"] = u.gcp.geo_z_m ? Vec(u.enu_m, 4) : Json(nullptr);
-      item["used"] = u.usable;
-      if (!u.usable) item["skipped"] = u.skipped_reason;
-      Json obs = Json::array();
-      for (size_t k = 0; k < u.gcp.observations.size(); ++k) {
-        const GcpObservation& o = u.gcp.observations[k];
-        const ObservationResult& res = u.observation_results[k];
-        Json oj = Json::object();
-        oj["image"] = o.image_name;
-        oj["pixel"] = Json::array({o.pixel_file.x(), o.pixel_file.y()});
-        oj["used"] = res.used;
-        oj["reprojection_px"] = res.reprojection_px >= 0 ? Json(Round(res.reprojection_px, 3)) : Json(nullptr);
-        if (!res.note.empty()) oj["note"] = res.note;
-        obs.push_back(oj);
-      }
-      item["observations"] = obs;
-      if (u.triangulation.num_used > 0) {
-        item["triangulation"] = {{"observations_used", u.triangulation.num_used},
-                                 {"rms_reprojection_px", Round(u.triangulation.rms_reprojection_px, 3)},
-                                 {"angle_deg", Round(u.triangulation.max_angle_deg, 2)}};
-      }
-      if (u.final_residual_enu_m) {
-        item["check_residual_enu_m"] = Vec(*u.final_residual_enu_m, 3);
-        item["check_residual_m"] = Round(u.final_residual_enu_m->norm(), 3);
-        item["check_rms_reprojection_px"] = Round(u.final_triangulation->rms_reprojection_px, 3);
-      }
-      usable += u.usable ? 1 : 0;
-      points.push_back(item);
-    }
-    gcp["points"] = points;
-    gcp["usable"] = usable;
-    gcp["check_rmse_m"] = Round(r.gcp_check_rmse_m, 4);
-    gcp["check_note"] =
-        "each usable GCP re-triangulated in the final model from its pixels alone, minus its surveyed position";
-    g["ground_control_points"] = gcp;
+    g["ground_control_points"] = GroundControlJson(r, options);
   }
   g["rmse_m"] = Round(r.final_fit.rmse_m, 4);
   g["inliers"] = r.final_fit.num_inliers;

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -227,10 +228,38 @@ uint8_t ColorByte(double v, Type t) {
   return static_cast<uint8_t>(std::clamp(std::lround(c), 0L, 255L));
 }
 
-}  // namespace
+// The header: the format, the elements with their properties, and where the body starts.
+struct PlyHeader {
+  Format format = Format::kAscii;
+  std::vector<Element> elements;
+  size_t body_offset = 0;
+  size_t lines = 0;  // header lines, the body's first line number less one
+};
 
-PlyData ParsePly(std::string_view data, const std::string& source) {
-  // Header.
+// One header line: "property <type> <name>" or "property list <count type> <type> <name>".
+Property ParsePropertyLine(const std::vector<std::string_view>& t,
+                           const std::function<void(const std::string&)>& fail) {
+  Property p;
+  if (t.size() == 5 && t[1] == "list") {
+    const auto ct = ParseType(t[2]);
+    const auto it = ParseType(t[3]);
+    if (!ct || !it || IsFloat(*ct)) fail("bad list property types");
+    p.is_list = true;
+    p.count_type = *ct;
+    p.type = *it;
+    p.name = std::string(t[4]);
+  } else if (t.size() == 3) {
+    const auto ty = ParseType(t[1]);
+    if (!ty) fail("unknown property type '" + std::string(t[1]) + "'");
+    p.type = *ty;
+    p.name = std::string(t[2]);
+  } else {
+    fail("property line must be 'property <type> <name>' or 'property list <type> <type> <name>'");
+  }
+  return p;
+}
+
+PlyHeader ParseHeader(std::string_view data, const std::string& source) {
   size_t pos = 0, line_number = 0;
   auto next_line = [&](std::string_view* line) {
     if (pos >= data.size()) return false;
@@ -241,7 +270,7 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
     ++line_number;
     return true;
   };
-  auto fail_line = [&](const std::string& what) -> void {
+  const std::function<void(const std::string&)> fail_line = [&](const std::string& what) {
     throw InputError(Located(source + ": line " + std::to_string(line_number), what));
   };
   std::string_view line;
@@ -249,7 +278,7 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
     throw InputError(Located(source + ": line 1", "not a PLY file (no 'ply' magic line)"));
   }
   std::optional<Format> format;
-  std::vector<Element> elements;
+  PlyHeader header;
   bool ended = false;
   while (next_line(&line)) {
     const auto t = WhitespaceTokens(line);
@@ -272,27 +301,10 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
       const auto [ptr, ec] = std::from_chars(t[2].data(), t[2].data() + t[2].size(), e.count);
       if (ec != std::errc() || ptr != t[2].data() + t[2].size())
         fail_line("bad element count '" + std::string(t[2]) + "'");
-      elements.push_back(e);
+      header.elements.push_back(e);
     } else if (t[0] == "property") {
-      if (elements.empty()) fail_line("property before any element");
-      Property p;
-      if (t.size() == 5 && t[1] == "list") {
-        const auto ct = ParseType(t[2]);
-        const auto it = ParseType(t[3]);
-        if (!ct || !it || IsFloat(*ct)) fail_line("bad list property types");
-        p.is_list = true;
-        p.count_type = *ct;
-        p.type = *it;
-        p.name = std::string(t[4]);
-      } else if (t.size() == 3) {
-        const auto ty = ParseType(t[1]);
-        if (!ty) fail_line("unknown property type '" + std::string(t[1]) + "'");
-        p.type = *ty;
-        p.name = std::string(t[2]);
-      } else {
-        fail_line("property line must be 'property <type> <name>' or 'property list <type> <type> <name>'");
-      }
-      elements.back().properties.push_back(p);
+      if (header.elements.empty()) fail_line("property before any element");
+      header.elements.back().properties.push_back(ParsePropertyLine(t, fail_line));
     } else if (t[0] == "end_header") {
       ended = true;
       break;
@@ -303,141 +315,175 @@ PlyData ParsePly(std::string_view data, const std::string& source) {
   if (!ended)
     throw InputError(Located(source + ": line " + std::to_string(line_number), "truncated header: no end_header"));
   if (!format) throw InputError(Located(source, "no format line in the header"));
-  const size_t body_offset = std::min(pos, data.size());
+  header.format = *format;
+  header.body_offset = std::min(pos, data.size());
+  header.lines = line_number;
+  return header;
+}
 
-  PlyData out;
-  ValueReader in(data.substr(body_offset), body_offset, line_number, *format, source);
-  uint64_t num_vertices = 0;
-  bool have_vertices = false;
-  for (const Element& e : elements) {
-    // Guard against absurd counts before allocating (an ASCII instance takes at least a byte).
-    if (*format == Format::kAscii && e.count > in.remaining_bytes()) {
-      in.Fail("truncated: element '" + e.name + "' declares " + std::to_string(e.count) + " lines, " +
-              std::to_string(in.remaining_bytes()) + " bytes left");
+// Guards against absurd counts before allocating (an ASCII instance takes at least a byte, a binary one
+// at least its properties' fixed sizes).
+void CheckElementFits(const Element& e, Format format, ValueReader& in) {
+  if (format == Format::kAscii && e.count > in.remaining_bytes()) {
+    in.Fail("truncated: element '" + e.name + "' declares " + std::to_string(e.count) + " lines, " +
+            std::to_string(in.remaining_bytes()) + " bytes left");
+  }
+  if (format != Format::kAscii) {
+    size_t min_size = 0;
+    for (const Property& p : e.properties) min_size += p.is_list ? TypeSize(p.count_type) : TypeSize(p.type);
+    if (min_size > 0 && e.count > in.remaining_bytes() / min_size) {
+      in.Fail("truncated: element '" + e.name + "' declares " + std::to_string(e.count) + " instances of at least " +
+              std::to_string(min_size) + " bytes, " + std::to_string(in.remaining_bytes()) + " left");
     }
-    if (*format != Format::kAscii) {
-      size_t min_size = 0;
-      for (const Property& p : e.properties) min_size += p.is_list ? TypeSize(p.count_type) : TypeSize(p.type);
-      if (min_size > 0 && e.count > in.remaining_bytes() / min_size) {
-        in.Fail("truncated: element '" + e.name + "' declares " + std::to_string(e.count) + " instances of at least " +
-                std::to_string(min_size) + " bytes, " + std::to_string(in.remaining_bytes()) + " left");
+  }
+}
+
+// Which property of the vertex element holds each field (-1: none).
+struct VertexFields {
+  int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1, r = -1, g = -1, b = -1;
+};
+
+VertexFields FindVertexFields(const Element& e) {
+  VertexFields f;
+  for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
+    const std::string& n = e.properties[k].name;
+    if (e.properties[k].is_list) continue;
+    if (n == "x")
+      f.x = k;
+    else if (n == "y")
+      f.y = k;
+    else if (n == "z")
+      f.z = k;
+    else if (n == "nx")
+      f.nx = k;
+    else if (n == "ny")
+      f.ny = k;
+    else if (n == "nz")
+      f.nz = k;
+    else if (n == "red" || n == "r" || n == "diffuse_red")
+      f.r = k;
+    else if (n == "green" || n == "g" || n == "diffuse_green")
+      f.g = k;
+    else if (n == "blue" || n == "b" || n == "diffuse_blue")
+      f.b = k;
+  }
+  return f;
+}
+
+// Reads one instance of `e`: the scalar properties into `values`, the lists read past.
+void ReadScalars(const Element& e, ValueReader& in, std::vector<double>* values) {
+  for (size_t k = 0; k < e.properties.size(); ++k) {
+    const Property& p = e.properties[k];
+    if (p.is_list) {
+      const uint64_t count = in.ReadListCount(p.count_type, p.type);
+      for (uint64_t c = 0; c < count; ++c) in.Read(p.type, p.name.c_str());
+    } else {
+      (*values)[k] = in.Read(p.type, p.name.c_str());
+    }
+  }
+}
+
+void ReadVertices(const Element& e, ValueReader& in, PointCloud* points) {
+  const VertexFields f = FindVertexFields(e);
+  if (f.x < 0 || f.y < 0 || f.z < 0) in.Fail("element 'vertex' has no x, y, z properties");
+  const bool normals = f.nx >= 0 && f.ny >= 0 && f.nz >= 0;
+  const bool colors = f.r >= 0 && f.g >= 0 && f.b >= 0;
+  points->positions_m.reserve(e.count);
+  std::vector<double> values(e.properties.size());
+  for (uint64_t i = 0; i < e.count; ++i) {
+    in.BeginInstance();
+    const std::string where = in.Where();
+    ReadScalars(e, in, &values);
+    in.EndInstance();
+    const Eigen::Vector3d x(values[f.x], values[f.y], values[f.z]);
+    if (!x.allFinite()) throw InputError(Located(where, "vertex " + std::to_string(i) + " is not finite"));
+    points->positions_m.push_back(x);
+    if (normals) {
+      Eigen::Vector3d nrm(values[f.nx], values[f.ny], values[f.nz]);
+      if (!nrm.allFinite())
+        throw InputError(Located(where, "normal of vertex " + std::to_string(i) + " is not finite"));
+      const double len = nrm.norm();
+      points->normals.push_back(len > 0 ? Eigen::Vector3d(nrm / len) : nrm);
+    }
+    if (colors) {
+      points->colors_rgb.push_back({ColorByte(values[f.r], e.properties[f.r].type),
+                                    ColorByte(values[f.g], e.properties[f.g].type),
+                                    ColorByte(values[f.b], e.properties[f.b].type)});
+    }
+  }
+}
+
+// The faces, each polygon as a fan of triangles about its first corner.
+void ReadFaces(const Element& e, uint64_t num_vertices, ValueReader& in, TriangleMesh* mesh) {
+  int il = -1;
+  for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
+    const auto& p = e.properties[k];
+    if (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) il = k;
+  }
+  if (il < 0) in.Fail("element 'face' has no 'vertex_indices' list");
+  std::vector<uint32_t> polygon;
+  for (uint64_t i = 0; i < e.count; ++i) {
+    in.BeginInstance();
+    const std::string where = in.Where();
+    for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
+      const Property& p = e.properties[k];
+      if (!p.is_list) {
+        in.Read(p.type, p.name.c_str());
+        continue;
+      }
+      const uint64_t count = in.ReadListCount(p.count_type, p.type);
+      if (k == il) polygon.clear();
+      for (uint64_t c = 0; c < count; ++c) {
+        const double v = in.Read(p.type, "vertex index");
+        if (k != il) continue;
+        if (v < 0 || v >= static_cast<double>(num_vertices)) {
+          throw InputError(Located(where, "face " + std::to_string(i) + " refers to vertex " +
+                                              std::to_string(static_cast<int64_t>(v)) + ", but there are " +
+                                              std::to_string(num_vertices)));
+        }
+        polygon.push_back(static_cast<uint32_t>(v));
       }
     }
+    in.EndInstance();
+    if (polygon.size() < 3) {
+      throw InputError(Located(where, "face " + std::to_string(i) + " has " + std::to_string(polygon.size()) +
+                                          " vertices (needs 3 or more)"));
+    }
+    for (size_t k = 1; k + 1 < polygon.size(); ++k) mesh->faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
+  }
+}
+
+// Unknown element: its instances read past. Binary instances of an element without properties take no
+// bytes: nothing to skip, however large the count.
+void SkipElement(const Element& e, Format format, ValueReader& in) {
+  if (format != Format::kAscii && e.properties.empty()) return;
+  std::vector<double> values(e.properties.size());
+  for (uint64_t i = 0; i < e.count; ++i) {
+    in.BeginInstance();
+    ReadScalars(e, in, &values);
+    in.EndInstance();
+  }
+}
+
+}  // namespace
+
+PlyData ParsePly(std::string_view data, const std::string& source) {
+  const PlyHeader header = ParseHeader(data, source);
+  PlyData out;
+  ValueReader in(data.substr(header.body_offset), header.body_offset, header.lines, header.format, source);
+  uint64_t num_vertices = 0;
+  bool have_vertices = false;
+  for (const Element& e : header.elements) {
+    CheckElementFits(e, header.format, in);
     if (e.name == "vertex") {
       have_vertices = true;
       num_vertices = e.count;
-      int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, ir = -1, ig = -1, ib = -1;
-      for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
-        const std::string& n = e.properties[k].name;
-        if (e.properties[k].is_list) continue;
-        if (n == "x")
-          ix = k;
-        else if (n == "y")
-          iy = k;
-        else if (n == "z")
-          iz = k;
-        else if (n == "nx")
-          inx = k;
-        else if (n == "ny")
-          iny = k;
-        else if (n == "nz")
-          inz = k;
-        else if (n == "red" || n == "r" || n == "diffuse_red")
-          ir = k;
-        else if (n == "green" || n == "g" || n == "diffuse_green")
-          ig = k;
-        else if (n == "blue" || n == "b" || n == "diffuse_blue")
-          ib = k;
-      }
-      if (ix < 0 || iy < 0 || iz < 0) in.Fail("element 'vertex' has no x, y, z properties");
-      const bool normals = inx >= 0 && iny >= 0 && inz >= 0;
-      const bool colors = ir >= 0 && ig >= 0 && ib >= 0;
-      out.points.positions_m.reserve(e.count);
-      std::vector<double> values(e.properties.size());
-      for (uint64_t i = 0; i < e.count; ++i) {
-        in.BeginInstance();
-        const std::string where = in.Where();
-        for (size_t k = 0; k < e.properties.size(); ++k) {
-          const Property& p = e.properties[k];
-          if (p.is_list) {
-            const uint64_t count = in.ReadListCount(p.count_type, p.type);
-            for (uint64_t c = 0; c < count; ++c) in.Read(p.type, p.name.c_str());
-          } else {
-            values[k] = in.Read(p.type, p.name.c_str());
-          }
-        }
-        in.EndInstance();
-        const Eigen::Vector3d x(values[ix], values[iy], values[iz]);
-        if (!x.allFinite()) throw InputError(Located(where, "vertex " + std::to_string(i) + " is not finite"));
-        out.points.positions_m.push_back(x);
-        if (normals) {
-          Eigen::Vector3d nrm(values[inx], values[iny], values[inz]);
-          if (!nrm.allFinite())
-            throw InputError(Located(where, "normal of vertex " + std::to_string(i) + " is not finite"));
-          const double len = nrm.norm();
-          out.points.normals.push_back(len > 0 ? Eigen::Vector3d(nrm / len) : nrm);
-        }
-        if (colors) {
-          out.points.colors_rgb.push_back({ColorByte(values[ir], e.properties[ir].type),
-                                           ColorByte(values[ig], e.properties[ig].type),
-                                           ColorByte(values[ib], e.properties[ib].type)});
-        }
-      }
+      ReadVertices(e, in, &out.points);
     } else if (e.name == "face") {
       if (!have_vertices) in.Fail("element 'face' before element 'vertex'");
-      int il = -1;
-      for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
-        const auto& p = e.properties[k];
-        if (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) il = k;
-      }
-      if (il < 0) in.Fail("element 'face' has no 'vertex_indices' list");
-      std::vector<uint32_t> polygon;
-      for (uint64_t i = 0; i < e.count; ++i) {
-        in.BeginInstance();
-        const std::string where = in.Where();
-        for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
-          const Property& p = e.properties[k];
-          if (p.is_list) {
-            const uint64_t count = in.ReadListCount(p.count_type, p.type);
-            if (k == il) polygon.clear();
-            for (uint64_t c = 0; c < count; ++c) {
-              const double v = in.Read(p.type, "vertex index");
-              if (k != il) continue;
-              if (v < 0 || v >= static_cast<double>(num_vertices)) {
-                throw InputError(Located(where, "face " + std::to_string(i) + " refers to vertex " +
-                                                    std::to_string(static_cast<int64_t>(v)) + ", but there are " +
-                                                    std::to_string(num_vertices)));
-              }
-              polygon.push_back(static_cast<uint32_t>(v));
-            }
-          } else {
-            in.Read(p.type, p.name.c_str());
-          }
-        }
-        in.EndInstance();
-        if (polygon.size() < 3) {
-          throw InputError(Located(where, "face " + std::to_string(i) + " has " + std::to_string(polygon.size()) +
-                                              " vertices (needs 3 or more)"));
-        }
-        for (size_t k = 1; k + 1 < polygon.size(); ++k)
-          out.mesh.faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
-      }
+      ReadFaces(e, num_vertices, in, &out.mesh);
     } else {
-      // Unknown element: skip its instances. Binary instances of an element without properties
-      // take no bytes: nothing to skip, however large the count.
-      if (*format != Format::kAscii && e.properties.empty()) continue;
-      for (uint64_t i = 0; i < e.count; ++i) {
-        in.BeginInstance();
-        for (const Property& p : e.properties) {
-          if (p.is_list) {
-            const uint64_t count = in.ReadListCount(p.count_type, p.type);
-            for (uint64_t c = 0; c < count; ++c) in.Read(p.type, p.name.c_str());
-          } else {
-            in.Read(p.type, p.name.c_str());
-          }
-        }
-        in.EndInstance();
-      }
+      SkipElement(e, header.format, in);
     }
   }
   in.ExpectEnd();

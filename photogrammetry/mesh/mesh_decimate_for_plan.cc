@@ -296,8 +296,9 @@ double ProjectedErrorProbe::WorstPx(const TriangleMesh& simplified, int* worst_p
   return worst;
 }
 
-TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& options, ForPlanReport* report) {
-  options.Check();
+namespace {
+
+void CheckMeshForPlan(const TriangleMesh& mesh) {
   for (const auto& f : mesh.faces) {
     for (uint32_t i : f) {
       if (i >= mesh.num_vertices()) throw InputError("decimate: vertex index out of range");
@@ -306,40 +307,28 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   if (mesh.has_colors() && mesh.colors_rgb.size() != mesh.num_vertices()) {
     throw InputError("decimate: colours: one per vertex expected");
   }
-  ForPlanReport r;
-  r.max_error_px = options.max_error_px;
-  r.simplifier = options.simplifier;
-  r.aim = options.aim;
-  r.faces_in = static_cast<int64_t>(mesh.num_faces());
-  const TileGrid grid = MakeGrid(mesh, options.tiles_per_side);
-  const int n = grid.n;
-  const size_t num_tiles = static_cast<size_t>(n) * n;
-  r.tiles_per_side = n;
-  r.grid_min_m = grid.lo;
-  r.tile_size_m = grid.size;
+}
 
-  // The budgets: the finest seen point of each tile.
-  const ProjectedErrorProbe probe(mesh, options.cameras, options.measure_samples, options.seed);
+// The budgets: each tile's allowed error is its finest seen point's (max_error_px at that point's
+// metres per pixel); tiles no frame sees get the coarsest budget a seen tile gets, in metres.
+// point_tile: the tile of each measured point (its face's, whose faces go through that tile's
+// simplification).
+std::vector<ForPlanTile> TileBudgets(const TriangleMesh& mesh, const TileGrid& grid, const ProjectedErrorProbe& probe,
+                                     const ForPlanOptions& options, std::vector<int>* point_tile, ForPlanReport* r) {
   const std::vector<Eigen::Vector3d>& points = probe.points();
   const std::vector<PointView>& views = probe.views();
-  r.points_measured = static_cast<int64_t>(points.size());
-  r.points_seen = probe.points_seen();
-  if (r.points_seen == 0) {
-    throw InputError(Located(options.plan_source.empty() ? "for_plan" : options.plan_source,
-                             "no frame of the plan sees the mesh (is the plan made on this scene?)"));
-  }
-  std::vector<ForPlanTile> tiles(num_tiles);
-  for (size_t t = 0; t < num_tiles; ++t) {
+  const int n = grid.n;
+  std::vector<ForPlanTile> tiles(static_cast<size_t>(n) * n);
+  for (size_t t = 0; t < tiles.size(); ++t) {
     tiles[t].ix = static_cast<int>(t % n);
     tiles[t].iy = static_cast<int>(t / n);
     tiles[t].allowed_error_m = kInf;
   }
-  // A point is the tile's of the face it lies on (its faces go through that tile's simplification).
-  std::vector<int> point_tile(points.size());
+  point_tile->resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     const int64_t face = probe.faces()[i];
     const int t = face >= 0 ? grid.Tile(Centroid(mesh, mesh.faces[static_cast<size_t>(face)])) : grid.Tile(points[i]);
-    point_tile[i] = t;
+    (*point_tile)[i] = t;
     const PointView& v = views[i];
     if (!v.seen()) continue;
     const double allowed = options.max_error_px * v.metres_per_px;
@@ -353,23 +342,192 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
     }
   }
   for (const auto& f : mesh.faces) ++tiles[grid.Tile(Centroid(mesh, f))].faces_in;
-  r.min_allowed_error_m = kInf;
-  r.max_allowed_error_m = 0;
+  r->min_allowed_error_m = kInf;
+  r->max_allowed_error_m = 0;
   for (const ForPlanTile& t : tiles) {
     if (!t.seen) continue;
-    r.min_allowed_error_m = std::min(r.min_allowed_error_m, t.allowed_error_m);
-    r.max_allowed_error_m = std::max(r.max_allowed_error_m, t.allowed_error_m);
+    r->min_allowed_error_m = std::min(r->min_allowed_error_m, t.allowed_error_m);
+    r->max_allowed_error_m = std::max(r->max_allowed_error_m, t.allowed_error_m);
   }
-  // Regions no frame sees: the coarsest budget a seen region gets, in metres (measured as such).
-  r.unseen_allowed_error_m = r.max_allowed_error_m;
+  r->unseen_allowed_error_m = r->max_allowed_error_m;
   for (ForPlanTile& t : tiles) {
-    if (!t.seen) t.allowed_error_m = r.unseen_allowed_error_m;
+    if (!t.seen) t.allowed_error_m = r->unseen_allowed_error_m;
   }
+  return tiles;
+}
+
+// The search's state per tile (DecimateForPlan's comment).
+struct TileSearch {
+  std::vector<double> factor, within, over;
+  std::vector<char> frozen, face_frozen;
+  std::vector<int> stage;  // settling steps taken: halved, zeroed, faces frozen (rounds)
+
+  TileSearch(size_t num_tiles, size_t num_faces, double start_factor)
+      : factor(num_tiles, start_factor),
+        within(num_tiles, 0.0),
+        over(num_tiles, kInf),
+        frozen(num_tiles, 0),
+        face_frozen(num_faces, 0),
+        stage(num_tiles, 0) {}
+  bool any_frozen() const {
+    return std::find(frozen.begin(), frozen.end(), 1) != frozen.end() ||
+           std::find(face_frozen.begin(), face_frozen.end(), 1) != face_frozen.end();
+  }
+};
+
+// One round's measurement of `out`: each tile's share of its budget (the worst of its points), the
+// tiles' goals and worst projected errors, and the report's worst figures. Returns the points' distances.
+std::vector<double> MeasureRound(const TriangleMesh& out, const ProjectedErrorProbe& probe,
+                                 const std::vector<int>& point_tile, const std::vector<double>& point_allowed_m,
+                                 const std::vector<double>& goal, const TileSearch& search,
+                                 const ForPlanOptions& options, std::vector<ForPlanTile>* tiles,
+                                 std::vector<double>* share, ForPlanReport* r) {
+  const std::vector<PointView>& views = probe.views();
+  const std::vector<double> distance = probe.DistancesM(out);
+  std::fill(share->begin(), share->end(), 0.0);
+  for (size_t i = 0; i < probe.points().size(); ++i) {
+    (*share)[point_tile[i]] = std::max((*share)[point_tile[i]], distance[i] / point_allowed_m[i]);
+  }
+  r->worst_projected_px = 0;
+  r->worst_unseen_error_m = 0;
+  int worst_point = -1;
+  for (size_t t = 0; t < tiles->size(); ++t) {
+    (*tiles)[t].goal_error_m = search.frozen[t] ? 0.0 : goal[t];
+    (*tiles)[t].worst_projected_px = 0;
+  }
+  for (size_t i = 0; i < probe.points().size(); ++i) {
+    if (!views[i].seen()) {
+      r->worst_unseen_error_m = std::max(r->worst_unseen_error_m, distance[i]);
+      continue;
+    }
+    const double px = distance[i] / views[i].metres_per_px;
+    (*tiles)[point_tile[i]].worst_projected_px = std::max((*tiles)[point_tile[i]].worst_projected_px, px);
+    if (px > r->worst_projected_px) {
+      r->worst_projected_px = px;
+      worst_point = static_cast<int>(i);
+    }
+  }
+  r->worst_camera_sample = worst_point >= 0 ? options.cameras[views[worst_point].camera].sample_index : -1;
+  return distance;
+}
+
+// A settling round: a tile still over has its factor halved, then zeroed; then, for up to
+// face_freeze_rounds rounds, the faces under its points over the bound are frozen with the faces around
+// their corners; then the whole tile is frozen (a goal of 0 is no bound with meshoptimizer 0.18).
+// Returns whether anything changed (when nothing did, no tile is over or none has a step left).
+bool SettleRound(const TriangleMesh& mesh, const ProjectedErrorProbe& probe, const VertexFaces& around,
+                 const std::vector<int>& point_tile, const std::vector<double>& point_allowed_m,
+                 const std::vector<double>& distance, const std::vector<double>& share, const ForPlanOptions& options,
+                 TileSearch* search) {
+  bool changed = false;
+  std::vector<char> freeze_faces_in(share.size(), 0);
+  for (size_t t = 0; t < share.size(); ++t) {
+    if (share[t] <= 1.0 || search->frozen[t]) continue;
+    int& stage = search->stage[t];
+    if (stage < 2 && search->factor[t] > 0) {
+      search->factor[t] = stage == 0 ? search->factor[t] * 0.5 : 0.0;
+      ++stage;
+      changed = true;
+    } else if (options.freeze && std::max(stage, 2) - 2 < options.face_freeze_rounds) {
+      stage = std::max(stage, 2) + 1;
+      freeze_faces_in[t] = 1;
+      changed = true;  // (a round that froze no new face is repeated once per step; it then goes whole)
+    } else if (options.freeze) {
+      search->frozen[t] = 1;
+      changed = true;
+    }
+  }
+  for (size_t i = 0; i < probe.points().size(); ++i) {
+    const int64_t face = probe.faces()[i];
+    if (face < 0 || !freeze_faces_in[point_tile[i]] || distance[i] <= point_allowed_m[i]) continue;
+    for (uint32_t corner : mesh.faces[static_cast<size_t>(face)]) {
+      around.ForEach(corner, [&](uint32_t k) {
+        if (!search->face_frozen[k]) {
+          search->face_frozen[k] = 1;
+          changed = true;
+        }
+      });
+    }
+  }
+  return changed;
+}
+
+// A search round: factors grow ×4 while a tile stays within, shrink ×1/4 while over, then bisect
+// (geometrically) between the largest factor seen within and the smallest seen over; with settle_now,
+// each tile takes its largest factor seen within.
+void SearchRound(const std::vector<double>& share, bool settle_now, TileSearch* s) {
+  for (size_t t = 0; t < share.size(); ++t) {
+    if (share[t] <= 1.0) {
+      s->within[t] = std::max(s->within[t], s->factor[t]);
+    } else {
+      s->over[t] = std::min(s->over[t], s->factor[t]);
+    }
+    if (settle_now) {
+      s->factor[t] = s->within[t];
+    } else if (std::isinf(s->over[t])) {
+      s->factor[t] = std::min(s->factor[t] * 4, 1024.0);
+    } else if (s->within[t] == 0) {
+      s->factor[t] = s->factor[t] / 4;
+    } else {
+      s->factor[t] = std::sqrt(s->within[t] * s->over[t]);
+    }
+  }
+}
+
+// The report's closing figures: faces out per tile, frozen tiles and faces, tile counts.
+void FinishForPlanReport(const TriangleMesh& mesh, const TriangleMesh& out, const TileGrid& grid,
+                         const TileSearch& search, const ForPlanOptions& options, std::vector<ForPlanTile>* tiles,
+                         ForPlanReport* r) {
+  r->bound_met = r->worst_projected_px <= options.max_error_px && r->worst_unseen_error_m <= r->unseen_allowed_error_m;
+  for (const auto& f : out.faces) ++(*tiles)[grid.Tile(Centroid(out, f))].faces_out;
+  r->faces_out = static_cast<int64_t>(out.num_faces());
+  for (size_t t = 0; t < tiles->size(); ++t) (*tiles)[t].frozen = search.frozen[t] != 0;
+  for (size_t k = 0; k < mesh.num_faces(); ++k) {
+    if (!search.face_frozen[k]) continue;
+    const int t = grid.Tile(Centroid(mesh, mesh.faces[k]));
+    if (search.frozen[t]) continue;
+    ++(*tiles)[t].faces_frozen;
+    ++r->faces_frozen;
+  }
+  for (const ForPlanTile& t : *tiles) {
+    if (t.faces_in == 0 && t.faces_out == 0) continue;
+    (t.seen ? r->tiles_seen : r->tiles_unseen) += 1;
+    r->tiles_frozen += t.frozen ? 1 : 0;
+    r->tiles.push_back(t);
+  }
+}
+
+}  // namespace
+
+TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& options, ForPlanReport* report) {
+  options.Check();
+  CheckMeshForPlan(mesh);
+  ForPlanReport r;
+  r.max_error_px = options.max_error_px;
+  r.simplifier = options.simplifier;
+  r.aim = options.aim;
+  r.faces_in = static_cast<int64_t>(mesh.num_faces());
+  const TileGrid grid = MakeGrid(mesh, options.tiles_per_side);
+  const size_t num_tiles = static_cast<size_t>(grid.n) * grid.n;
+  r.tiles_per_side = grid.n;
+  r.grid_min_m = grid.lo;
+  r.tile_size_m = grid.size;
+
+  const ProjectedErrorProbe probe(mesh, options.cameras, options.measure_samples, options.seed);
+  const std::vector<PointView>& views = probe.views();
+  r.points_measured = static_cast<int64_t>(probe.points().size());
+  r.points_seen = probe.points_seen();
+  if (r.points_seen == 0) {
+    throw InputError(Located(options.plan_source.empty() ? "for_plan" : options.plan_source,
+                             "no frame of the plan sees the mesh (is the plan made on this scene?)"));
+  }
+  std::vector<int> point_tile;
+  std::vector<ForPlanTile> tiles = TileBudgets(mesh, grid, probe, options, &point_tile, &r);
   // Each point's share of its budget: distance / (aim × allowed), within when <= 1. The search aims
   // under the bound (aim < 1): the measured points are samples, and the error between them can be
   // a little larger.
-  std::vector<double> point_allowed_m(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
+  std::vector<double> point_allowed_m(views.size());
+  for (size_t i = 0; i < views.size(); ++i) {
     point_allowed_m[i] =
         options.aim * (views[i].seen() ? options.max_error_px * views[i].metres_per_px : r.unseen_allowed_error_m);
   }
@@ -379,20 +537,15 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   for (size_t v = 0; v < vertex_allowed_m.size(); ++v) vertex_allowed_m[v] = point_allowed_m[v] / options.aim;
 
   // The search, per tile, for the largest goal (allowed error × factor) whose points stay within
-  // their budget: factors grow ×4 while a tile stays within, shrink ×1/4 while over, then bisect
-  // (geometrically) between the largest factor seen within and the smallest seen over. Then each tile
-  // takes its largest factor seen within (0 where none was), and the rounds go on: a tile still over
-  // has its factor halved, then zeroed, then is frozen (its faces are the original ones, so its points
-  // are on the output), until every tile is within or frozen. Steps only go forward, so this ends.
+  // their budget (SearchRound). Then each tile takes its largest factor seen within (0 where none was),
+  // and the rounds go on (SettleRound) until every tile is within or frozen. Steps only go forward, so
+  // this ends.
   const bool quadric = options.simplifier == ForPlanSimplifier::kQemTiled;
   const Positions positions = quadric ? Positions{} : MakePositions(mesh);
   // The search starts where each simplifier's goal is about the measured error: meshoptimizer's goals
   // are met with room (the box scene settles at factors 3–15), the quadric's RMS distance to its planes
   // falls short of the largest distance (factors 0.2–0.7).
-  const double start_factor = quadric ? 0.25 : 1.0;
-  std::vector<double> factor(num_tiles, start_factor), within(num_tiles, 0.0), over(num_tiles, kInf);
-  std::vector<char> frozen(num_tiles, 0), face_frozen(mesh.num_faces(), 0);
-  std::vector<int> stage(num_tiles, 0);  // settling steps taken: halved, zeroed, faces frozen (rounds)
+  TileSearch search(num_tiles, mesh.num_faces(), quadric ? 0.25 : 1.0);
   // Faces around each vertex, to freeze the faces next to a point over the bound with its own.
   const VertexFaces around(mesh.num_vertices(), mesh.faces);
   TriangleMesh out;
@@ -400,113 +553,24 @@ TriangleMesh DecimateForPlan(const TriangleMesh& mesh, const ForPlanOptions& opt
   bool settling = false;
   for (int round = 0;; ++round) {
     std::vector<double> goal(num_tiles);
-    for (size_t t = 0; t < num_tiles; ++t) goal[t] = tiles[t].allowed_error_m * factor[t];
+    for (size_t t = 0; t < num_tiles; ++t) goal[t] = tiles[t].allowed_error_m * search.factor[t];
     out = quadric
-              ? SimplifyQem(mesh, grid, vertex_tile, vertex_allowed_m, factor, frozen, face_frozen)
-              : internal::FromKeptIndices(mesh, SimplifyTwoPasses(mesh, positions, grid, goal, frozen, face_frozen));
+              ? SimplifyQem(mesh, grid, vertex_tile, vertex_allowed_m, search.factor, search.frozen, search.face_frozen)
+              : internal::FromKeptIndices(
+                    mesh, SimplifyTwoPasses(mesh, positions, grid, goal, search.frozen, search.face_frozen));
     r.rounds = round + 1;
-    if (std::find(frozen.begin(), frozen.end(), 1) != frozen.end() ||
-        std::find(face_frozen.begin(), face_frozen.end(), 1) != face_frozen.end()) {
-      ++r.freeze_rounds;
-    }
-    const std::vector<double> distance = probe.DistancesM(out);
-    std::fill(share.begin(), share.end(), 0.0);
-    for (size_t i = 0; i < points.size(); ++i) {
-      share[point_tile[i]] = std::max(share[point_tile[i]], distance[i] / point_allowed_m[i]);
-    }
-    r.worst_projected_px = 0;
-    r.worst_unseen_error_m = 0;
-    int worst_point = -1;
-    for (size_t t = 0; t < num_tiles; ++t) {
-      tiles[t].goal_error_m = frozen[t] ? 0.0 : goal[t];
-      tiles[t].worst_projected_px = 0;
-    }
-    for (size_t i = 0; i < points.size(); ++i) {
-      if (!views[i].seen()) {
-        r.worst_unseen_error_m = std::max(r.worst_unseen_error_m, distance[i]);
-        continue;
-      }
-      const double px = distance[i] / views[i].metres_per_px;
-      tiles[point_tile[i]].worst_projected_px = std::max(tiles[point_tile[i]].worst_projected_px, px);
-      if (px > r.worst_projected_px) {
-        r.worst_projected_px = px;
-        worst_point = static_cast<int>(i);
-      }
-    }
-    r.worst_camera_sample = worst_point >= 0 ? options.cameras[views[worst_point].camera].sample_index : -1;
+    if (search.any_frozen()) ++r.freeze_rounds;
+    const std::vector<double> distance =
+        MeasureRound(out, probe, point_tile, point_allowed_m, goal, search, options, &tiles, &share, &r);
     if (settling) {
-      // A tile still over has its factor halved, then zeroed; then, for up to face_freeze_rounds
-      // rounds, the faces under its points over the bound are frozen with the faces around their
-      // corners; then the whole tile is frozen (a goal of 0 is no bound with meshoptimizer 0.18). Stop
-      // when no tile is over (or none has a step left).
-      bool changed = false;
-      std::vector<char> freeze_faces_in(num_tiles, 0);
-      for (size_t t = 0; t < num_tiles; ++t) {
-        if (share[t] <= 1.0 || frozen[t]) continue;
-        if (stage[t] < 2 && factor[t] > 0) {
-          factor[t] = stage[t] == 0 ? factor[t] * 0.5 : 0.0;
-          ++stage[t];
-          changed = true;
-        } else if (options.freeze && std::max(stage[t], 2) - 2 < options.face_freeze_rounds) {
-          stage[t] = std::max(stage[t], 2) + 1;
-          freeze_faces_in[t] = 1;
-          changed = true;  // (a round that froze no new face is repeated once per step; it then goes whole)
-        } else if (options.freeze) {
-          frozen[t] = 1;
-          changed = true;
-        }
-      }
-      for (size_t i = 0; i < points.size(); ++i) {
-        const int64_t face = probe.faces()[i];
-        if (face < 0 || !freeze_faces_in[point_tile[i]] || distance[i] <= point_allowed_m[i]) continue;
-        for (uint32_t corner : mesh.faces[static_cast<size_t>(face)]) {
-          around.ForEach(corner, [&](uint32_t k) {
-            if (!face_frozen[k]) {
-              face_frozen[k] = 1;
-              changed = true;
-            }
-          });
-        }
-      }
-      if (!changed) break;
+      if (!SettleRound(mesh, probe, around, point_tile, point_allowed_m, distance, share, options, &search)) break;
       continue;
     }
     const bool settle_now = round + 1 >= options.max_rounds - 3;
-    for (size_t t = 0; t < num_tiles; ++t) {
-      if (share[t] <= 1.0) {
-        within[t] = std::max(within[t], factor[t]);
-      } else {
-        over[t] = std::min(over[t], factor[t]);
-      }
-      if (settle_now) {
-        factor[t] = within[t];
-      } else if (std::isinf(over[t])) {
-        factor[t] = std::min(factor[t] * 4, 1024.0);
-      } else if (within[t] == 0) {
-        factor[t] = factor[t] / 4;
-      } else {
-        factor[t] = std::sqrt(within[t] * over[t]);
-      }
-    }
+    SearchRound(share, settle_now, &search);
     if (settle_now) settling = true;
   }
-  r.bound_met = r.worst_projected_px <= options.max_error_px && r.worst_unseen_error_m <= r.unseen_allowed_error_m;
-  for (const auto& f : out.faces) ++tiles[grid.Tile(Centroid(out, f))].faces_out;
-  r.faces_out = static_cast<int64_t>(out.num_faces());
-  for (size_t t = 0; t < num_tiles; ++t) tiles[t].frozen = frozen[t] != 0;
-  for (size_t k = 0; k < mesh.num_faces(); ++k) {
-    if (!face_frozen[k]) continue;
-    const int t = grid.Tile(Centroid(mesh, mesh.faces[k]));
-    if (frozen[t]) continue;
-    ++tiles[t].faces_frozen;
-    ++r.faces_frozen;
-  }
-  for (const ForPlanTile& t : tiles) {
-    if (t.faces_in == 0 && t.faces_out == 0) continue;
-    (t.seen ? r.tiles_seen : r.tiles_unseen) += 1;
-    r.tiles_frozen += t.frozen ? 1 : 0;
-    r.tiles.push_back(t);
-  }
+  FinishForPlanReport(mesh, out, grid, search, options, &tiles, &r);
   if (report) *report = std::move(r);
   return out;
 }

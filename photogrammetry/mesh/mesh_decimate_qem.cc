@@ -904,6 +904,160 @@ void SplitCutBand(const std::vector<Piece>& pieces, size_t n, int rings, std::ve
   });
 }
 
+using Scratches = tbb::enumerable_thread_specific<std::vector<uint32_t>>;
+
+// The first pass: each tile simplified on its own (in parallel), its cut vertices locked.
+std::vector<Piece> SimplifyTiles(const std::vector<Eigen::Vector3d>& positions,
+                                 const std::vector<std::vector<std::array<uint32_t, 3>>>& tiles,
+                                 const std::vector<double>& goals2, const QemOptions& options, double keep_ratio,
+                                 Scratches& scratches) {
+  std::vector<Piece> pieces(tiles.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<uint32_t>& scratch = scratches.local();
+    for (size_t t = range.begin(); t != range.end(); ++t) {
+      if (tiles[t].empty()) continue;
+      // No halo: the tiles cut the input mesh, whose faces around a cut vertex close no short loop
+      // that a collapse could turn into a doubled edge (the band cells, cut from a thinned mesh, do).
+      PieceJob job = PreparePiece(positions, nullptr, tiles[t], {}, goals2, options, scratch);
+      int64_t tile_target = 0;  // with error goals: as far as they allow
+      if (goals2.empty()) {
+        // The faces that touch a locked (cut) vertex stay for the band pass, which simplifies them
+        // with the others near the cut; the rest are kept in proportion.
+        const int64_t touching = job.simplifier->FacesTouchingLocked() - job.halo_faces;
+        const int64_t rest = static_cast<int64_t>(tiles[t].size()) - touching;
+        tile_target = touching + static_cast<int64_t>(std::llround(keep_ratio * static_cast<double>(rest)));
+      }
+      pieces[t] = FinishPiece(job, tile_target);
+    }
+  });
+  return pieces;
+}
+
+// A cell walled in by its locked cuts could not take its share: one more pass, over the faces around the
+// cells' cuts, takes the rest. Each cell started from the same quadrics, and a cut vertex's grew in each of
+// its cells: add up what each cell added.
+void PassAroundCellCuts(size_t n, int rings, int64_t target_faces, const std::vector<double>& goals2,
+                        const QemOptions& options, std::vector<Eigen::Vector3d>& positions, QuadricStore& quadrics,
+                        std::vector<uint32_t>& scratch, std::vector<Piece>& band_pieces) {
+  const std::vector<Quadric> base = quadrics.values;
+  for (const Piece& piece : band_pieces) {
+    for (size_t k = 0; k < piece.vertices.size(); ++k) {
+      const uint32_t slot = quadrics.slot[piece.vertices[k]];
+      quadrics.values[slot] += piece.quadric(k);
+      quadrics.values[slot] -= base[slot];
+    }
+  }
+  std::vector<std::array<uint32_t, 3>> around_cuts, rest;
+  SplitCutBand(band_pieces, n, rings, &around_cuts, &rest);
+  const int64_t around_target = target_faces - static_cast<int64_t>(rest.size());
+  if (around_target > 0) {
+    PieceJob job = PreparePiece(positions, &quadrics, around_cuts, {}, goals2, options, scratch);
+    Piece last = FinishPiece(job, around_target);
+    for (size_t k = 0; k < last.vertices.size(); ++k) positions[last.vertices[k]] = last.positions[k];
+    band_pieces.assign(1, Piece{});
+    band_pieces[0].faces = std::move(rest);
+    band_pieces[0].faces.insert(band_pieces[0].faces.end(), last.faces.begin(), last.faces.end());
+  }
+}
+
+// The centre of the vertices' bounding box. Minima and maxima are the same in any order of reduction,
+// so the parallel passes give the same numbers on any thread count.
+Eigen::Vector3d BoundingBoxCenter(const std::vector<Eigen::Vector3d>& vertices) {
+  const size_t n = vertices.size();
+  using Box3 = std::pair<Eigen::Vector3d, Eigen::Vector3d>;
+  const Box3 empty3(Eigen::Vector3d::Constant(INFINITY), Eigen::Vector3d::Constant(-INFINITY));
+  const auto [lo, hi] = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, n, kBlock), empty3,
+      [&](const tbb::blocked_range<size_t>& range, Box3 box) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+          box.first = box.first.cwiseMin(vertices[i]);
+          box.second = box.second.cwiseMax(vertices[i]);
+        }
+        return box;
+      },
+      [](const Box3& a, const Box3& b) { return Box3(a.first.cwiseMin(b.first), a.second.cwiseMax(b.second)); });
+  return n > 0 ? Eigen::Vector3d(0.5 * (lo + hi)) : Eigen::Vector3d::Zero();
+}
+
+bool IsValidFace(const std::array<uint32_t, 3>& f) { return f[0] != f[1] && f[1] != f[2] && f[0] != f[2]; }
+
+// The xy bounding box of the valid faces' centroids (fixed by the geometry), and how many faces are valid.
+struct CentroidBox {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = Eigen::Vector2d::Constant(-INFINITY);
+  size_t faces = 0;
+};
+
+Eigen::Vector2d CentroidXy(const std::vector<Eigen::Vector3d>& positions, const std::array<uint32_t, 3>& t) {
+  return ((positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0).head<2>();
+}
+
+CentroidBox FaceCentroidBox(const std::vector<Eigen::Vector3d>& positions,
+                            const std::vector<std::array<uint32_t, 3>>& faces) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, faces.size(), kBlock), CentroidBox{},
+      [&](const tbb::blocked_range<size_t>& range, CentroidBox box) {
+        for (size_t f = range.begin(); f != range.end(); ++f) {
+          if (!IsValidFace(faces[f])) continue;
+          ++box.faces;
+          const Eigen::Vector2d c = CentroidXy(positions, faces[f]);
+          box.lo = box.lo.cwiseMin(c);
+          box.hi = box.hi.cwiseMax(c);
+        }
+        return box;
+      },
+      [](const CentroidBox& a, const CentroidBox& b) {
+        return CentroidBox{a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi), a.faces + b.faces};
+      });
+}
+
+// The surviving vertices (those `kept` uses) in their input order, then the faces. `remap`: n slots of
+// scratch. A vertex that never moved keeps its input coordinates exactly ((v − c) + c need not be v).
+TriangleMesh CompactMesh(const TriangleMesh& mesh, const std::vector<std::array<uint32_t, 3>>& kept,
+                         const std::vector<Eigen::Vector3d>& positions, const Eigen::Vector3d& center,
+                         std::vector<uint32_t>& remap) {
+  const size_t n = mesh.num_vertices();
+  TriangleMesh out;
+  std::vector<char> used(n, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, kept.size(), kBlock), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t f = range.begin(); f != range.end(); ++f) {
+      // Threads may mark the same vertex: the same value, stored atomically.
+      for (uint32_t v : kept[f]) std::atomic_ref<char>(used[v]).store(1, std::memory_order_relaxed);
+    }
+  });
+  // Output ids by blocks of input ids: each block's count, their running sum, then each block filled.
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<size_t> block_start(blocks + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      block_start[b + 1] =
+          static_cast<size_t>(std::count(used.begin() + b * kBlock, used.begin() + std::min(n, (b + 1) * kBlock), 1));
+    }
+  });
+  for (size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
+  out.vertices_m.resize(block_start[blocks]);
+  if (mesh.has_colors()) out.colors_rgb.resize(block_start[blocks]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      size_t id = block_start[b];
+      for (size_t g = b * kBlock; g < std::min(n, (b + 1) * kBlock); ++g) {
+        if (!used[g]) continue;
+        remap[g] = static_cast<uint32_t>(id);
+        const bool moved = positions[g] != Eigen::Vector3d(mesh.vertices_m[g] - center);
+        out.vertices_m[id] = moved ? Eigen::Vector3d(positions[g] + center) : mesh.vertices_m[g];
+        if (mesh.has_colors()) out.colors_rgb[id] = mesh.colors_rgb[g];
+        ++id;
+      }
+    }
+  });
+  out.faces.resize(kept.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, kept.size()), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t f = range.begin(); f != range.end(); ++f) {
+      out.faces[f] = {remap[kept[f][0]], remap[kept[f][1]], remap[kept[f][2]]};
+    }
+  });
+  return out;
+}
+
 }  // namespace
 
 TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions, const QemOptions& options,
@@ -915,57 +1069,23 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     for (size_t i = 0; i < n; ++i) goals2[i] = (*goal_error_m)[i] > 0 ? (*goal_error_m)[i] * (*goal_error_m)[i] : 0.0;
     target_faces = 0;
   }
-  // Work relative to the bounding-box centre (better conditioned quadrics). Minima and maxima are the
-  // same in any order of reduction, so the parallel passes give the same numbers on any thread count.
-  using Box3 = std::pair<Eigen::Vector3d, Eigen::Vector3d>;
-  const Box3 empty3(Eigen::Vector3d::Constant(INFINITY), Eigen::Vector3d::Constant(-INFINITY));
-  const auto [lo, hi] = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, n, kBlock), empty3,
-      [&](const tbb::blocked_range<size_t>& range, Box3 box) {
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-          box.first = box.first.cwiseMin(mesh.vertices_m[i]);
-          box.second = box.second.cwiseMax(mesh.vertices_m[i]);
-        }
-        return box;
-      },
-      [](const Box3& a, const Box3& b) { return Box3(a.first.cwiseMin(b.first), a.second.cwiseMax(b.second)); });
-  const Eigen::Vector3d center = n > 0 ? Eigen::Vector3d(0.5 * (lo + hi)) : Eigen::Vector3d::Zero();
+  // Work relative to the bounding-box centre (better conditioned quadrics).
+  const Eigen::Vector3d center = BoundingBoxCenter(mesh.vertices_m);
   std::vector<Eigen::Vector3d> positions(n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) positions[i] = mesh.vertices_m[i] - center;
   });
   // Tiles on a grid over the xy bounding box of the face centroids (fixed by the geometry), in the
   // faces' order; faces with a repeated corner are dropped.
-  const auto is_valid = [](const std::array<uint32_t, 3>& f) { return f[0] != f[1] && f[1] != f[2] && f[0] != f[2]; };
-  const auto centroid_xy = [&](const std::array<uint32_t, 3>& t) -> Eigen::Vector2d {
-    return ((positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0).head<2>();
-  };
+  const auto centroid_xy = [&](const std::array<uint32_t, 3>& t) { return CentroidXy(positions, t); };
   const int grid = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, partitions)))));
-  struct Box2 {
-    Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = Eigen::Vector2d::Constant(-INFINITY);
-    size_t faces = 0;
-  };
-  const Box2 centroids = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, mesh.faces.size(), kBlock), Box2{},
-      [&](const tbb::blocked_range<size_t>& range, Box2 box) {
-        for (size_t f = range.begin(); f != range.end(); ++f) {
-          if (!is_valid(mesh.faces[f])) continue;
-          ++box.faces;
-          const Eigen::Vector2d c = centroid_xy(mesh.faces[f]);
-          box.lo = box.lo.cwiseMin(c);
-          box.hi = box.hi.cwiseMax(c);
-        }
-        return box;
-      },
-      [](const Box2& a, const Box2& b) {
-        return Box2{a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi), a.faces + b.faces};
-      });
+  const CentroidBox centroids = FaceCentroidBox(positions, mesh.faces);
   const Eigen::Vector2d clo = centroids.lo;
   const size_t valid_faces = centroids.faces;
   const Eigen::Vector2d extent = (centroids.hi - clo).cwiseMax(Eigen::Vector2d(1e-9, 1e-9));
   std::vector<std::vector<std::array<uint32_t, 3>>> tiles =
       ScatterInOrder(mesh.faces, static_cast<size_t>(grid) * grid, [&](const std::array<uint32_t, 3>& f) {
-        if (!is_valid(f)) return kUnmapped;
+        if (!IsValidFace(f)) return kUnmapped;
         const Eigen::Vector2d c = centroid_xy(f);
         const int ix = std::min(grid - 1, static_cast<int>((c.x() - clo.x()) / extent.x() * grid));
         const int iy = std::min(grid - 1, static_cast<int>((c.y() - clo.y()) / extent.y() * grid));
@@ -975,26 +1095,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   // PreparePiece's scratch, one per thread (kUnmapped between calls).
   tbb::enumerable_thread_specific<std::vector<uint32_t>> scratches(n, kUnmapped);
   std::vector<Piece> pieces(tiles.size());
-  if (tiles.size() > 1) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      std::vector<uint32_t>& scratch = scratches.local();
-      for (size_t t = range.begin(); t != range.end(); ++t) {
-        if (tiles[t].empty()) continue;
-        // No halo: the tiles cut the input mesh, whose faces around a cut vertex close no short loop
-        // that a collapse could turn into a doubled edge (the band cells, cut from a thinned mesh, do).
-        PieceJob job = PreparePiece(positions, nullptr, tiles[t], {}, goals2, options, scratch);
-        int64_t tile_target = 0;  // with error goals: as far as they allow
-        if (goals2.empty()) {
-          // The faces that touch a locked (cut) vertex stay for the band pass, which simplifies them
-          // with the others near the cut; the rest are kept in proportion.
-          const int64_t touching = job.simplifier->FacesTouchingLocked() - job.halo_faces;
-          const int64_t rest = static_cast<int64_t>(tiles[t].size()) - touching;
-          tile_target = touching + static_cast<int64_t>(std::llround(keep_ratio * static_cast<double>(rest)));
-        }
-        pieces[t] = FinishPiece(job, tile_target);
-      }
-    });
-  }
+  if (tiles.size() > 1) pieces = SimplifyTiles(positions, tiles, goals2, options, keep_ratio, scratches);
   // Merge: the survivors' positions (and goals).
   std::vector<std::array<uint32_t, 3>> merged;  // the faces of the last pass
   if (tiles.size() > 1) {
@@ -1093,28 +1194,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
       band_kept += static_cast<int64_t>(piece.faces.size());
     }
     if (goals2.empty() && band_kept > target_faces && band_pieces.size() > 1) {
-      // A cell walled in by its locked cuts could not take its share: one more pass, over the faces
-      // around the cells' cuts, takes the rest. Each cell started from the same quadrics, and a cut
-      // vertex's grew in each of its cells: add up what each cell added.
-      const std::vector<Quadric> base = quadrics.values;
-      for (const Piece& piece : band_pieces) {
-        for (size_t k = 0; k < piece.vertices.size(); ++k) {
-          const uint32_t slot = quadrics.slot[piece.vertices[k]];
-          quadrics.values[slot] += piece.quadric(k);
-          quadrics.values[slot] -= base[slot];
-        }
-      }
-      std::vector<std::array<uint32_t, 3>> around_cuts, rest;
-      SplitCutBand(band_pieces, n, rings, &around_cuts, &rest);
-      const int64_t around_target = target_faces - static_cast<int64_t>(rest.size());
-      if (around_target > 0) {
-        PieceJob job = PreparePiece(positions, &quadrics, around_cuts, {}, goals2, options, scratch);
-        Piece last = FinishPiece(job, around_target);
-        for (size_t k = 0; k < last.vertices.size(); ++k) positions[last.vertices[k]] = last.positions[k];
-        band_pieces.assign(1, Piece{});
-        band_pieces[0].faces = std::move(rest);
-        band_pieces[0].faces.insert(band_pieces[0].faces.end(), last.faces.begin(), last.faces.end());
-      }
+      PassAroundCellCuts(n, rings, target_faces, goals2, options, positions, quadrics, scratch, band_pieces);
     }
     size_t kept_faces = kept.size();
     for (const Piece& piece : band_pieces) kept_faces += piece.faces.size();
@@ -1123,48 +1203,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   }
 
   // The surviving vertices in their input order, then the faces.
-  TriangleMesh out;
-  std::vector<uint32_t>& remap = scratch;
-  std::vector<char> used(n, 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, kept.size(), kBlock), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t f = range.begin(); f != range.end(); ++f) {
-      // Threads may mark the same vertex: the same value, stored atomically.
-      for (uint32_t v : kept[f]) std::atomic_ref<char>(used[v]).store(1, std::memory_order_relaxed);
-    }
-  });
-  // Output ids by blocks of input ids: each block's count, their running sum, then each block filled.
-  const size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<size_t> block_start(blocks + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t b = range.begin(); b != range.end(); ++b) {
-      block_start[b + 1] =
-          static_cast<size_t>(std::count(used.begin() + b * kBlock, used.begin() + std::min(n, (b + 1) * kBlock), 1));
-    }
-  });
-  for (size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
-  out.vertices_m.resize(block_start[blocks]);
-  if (mesh.has_colors()) out.colors_rgb.resize(block_start[blocks]);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t b = range.begin(); b != range.end(); ++b) {
-      size_t id = block_start[b];
-      for (size_t g = b * kBlock; g < std::min(n, (b + 1) * kBlock); ++g) {
-        if (!used[g]) continue;
-        remap[g] = static_cast<uint32_t>(id);
-        // A vertex that never moved keeps its input coordinates exactly ((v − c) + c need not be v).
-        const bool moved = positions[g] != Eigen::Vector3d(mesh.vertices_m[g] - center);
-        out.vertices_m[id] = moved ? Eigen::Vector3d(positions[g] + center) : mesh.vertices_m[g];
-        if (mesh.has_colors()) out.colors_rgb[id] = mesh.colors_rgb[g];
-        ++id;
-      }
-    }
-  });
-  out.faces.resize(kept.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, kept.size()), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t f = range.begin(); f != range.end(); ++f) {
-      out.faces[f] = {remap[kept[f][0]], remap[kept[f][1]], remap[kept[f][2]]};
-    }
-  });
-  return out;
+  return CompactMesh(mesh, kept, positions, center, scratch);
 }
 
 }  // namespace cinepath::photogrammetry::internal

@@ -155,10 +155,10 @@ Json PoissonReport::ToJson() const {
   return j;
 }
 
-TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options, PoissonReport* report_out) {
-  PoissonReport report;
-  std::vector<PointWithNormal> points;
-  std::vector<uint32_t> source;
+namespace {
+
+// The finite points with their normals (zero where the cloud has none), and the cloud index of each.
+void FinitePoints(const PointCloud& cloud, std::vector<PointWithNormal>* points, std::vector<uint32_t>* source) {
   for (uint32_t i = 0; i < cloud.size(); ++i) {
     const auto& p = cloud.positions_m[i];
     if (!p.allFinite()) continue;
@@ -166,28 +166,21 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     if (cloud.has_normals() && cloud.normals[i].allFinite()) {
       n = Vector(cloud.normals[i].x(), cloud.normals[i].y(), cloud.normals[i].z());
     }
-    points.emplace_back(Point(p.x(), p.y(), p.z()), n);
-    source.push_back(i);
+    points->emplace_back(Point(p.x(), p.y(), p.z()), n);
+    source->push_back(i);
   }
-  if (const auto problem = PoissonInputProblem(cloud)) {
-    throw InputError("poisson: " + *problem + ": CGAL's Poisson solver needs points that span a volume");
-  }
-  MergeCoincident(options, &points, &source, &report);
-  report.points = static_cast<int64_t>(points.size());
-  if (points.size() < 10) {
-    throw InputError("poisson: fewer than 10 distinct points (" + std::to_string(points.size()) +
-                     ") once coincident points are merged");
-  }
-  const int k = std::max(3, std::min<int>(options.normal_neighbours, static_cast<int>(points.size()) - 1));
+}
 
-  // Normals: estimated by jet fitting when the cloud has none, then oriented toward the cameras
-  // that saw each point (mean direction to them), or up when nobody is recorded.
+// Normals: estimated by jet fitting when the cloud has none, then oriented toward the cameras that saw
+// each point (mean direction to them), or up when nobody is recorded.
+void OrientNormals(const PointCloud& cloud, const std::vector<uint32_t>& source, int k,
+                   std::vector<PointWithNormal>* points, PoissonReport* report) {
   if (!cloud.has_normals()) {
-    report.normals_estimated = true;
-    CGAL::jet_estimate_normals<CGAL::Sequential_tag>(points, k,
+    report->normals_estimated = true;
+    CGAL::jet_estimate_normals<CGAL::Sequential_tag>(*points, k,
                                                      CGAL::parameters::point_map(PointMap()).normal_map(NormalMap()));
   }
-  for (size_t j = 0; j < points.size(); ++j) {
+  for (size_t j = 0; j < points->size(); ++j) {
     const uint32_t i = source[j];
     Vector toward(0, 0, 1);
     bool from_cameras = false;
@@ -203,17 +196,16 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
         from_cameras = true;
       }
     }
-    if (points[j].second * toward < 0) {
-      points[j].second = -points[j].second;
-      ++(from_cameras ? report.normals_flipped_toward_cameras : report.normals_oriented_up);
+    if ((*points)[j].second * toward < 0) {
+      (*points)[j].second = -(*points)[j].second;
+      ++(from_cameras ? report->normals_flipped_toward_cameras : report->normals_oriented_up);
     }
   }
+}
 
-  report.average_spacing_m =
-      CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, k, CGAL::parameters::point_map(PointMap()));
-  if (!(report.average_spacing_m > 0)) {
-    throw InputError("poisson: the points have no spacing (all coincide)");
-  }
+// CGAL::poisson_surface_reconstruction_delaunay's steps, with the surface mesher on a triangulation whose
+// handles compare in creation order (cgal_poisson_order_internal.h). RuntimeError when CGAL fails.
+Mesh MeshImplicitSurface(const std::vector<PointWithNormal>& points, double spacing_m, const PoissonOptions& options) {
   // CGAL's surface mesher seeds its first points from CGAL::get_default_random(), a thread-local generator
   // that CGAL seeds with the wall clock (std::time) on first use: the same input gave another mesh every
   // second. Reset it to a fixed seed first, so the surface depends on the input alone.
@@ -221,11 +213,8 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
   // And CGAL walks its triangulations in creation order, not in address order (see the header).
   const internal::CreationOrderScope creation_order;
   Mesh sm;
-  // CGAL::poisson_surface_reconstruction_delaunay's steps, with the surface mesher on a triangulation
-  // whose handles compare in creation order (cgal_poisson_order_internal.h).
   using Function = CGAL::Poisson_reconstruction_function<Kernel>;
   using Complex = CGAL::Surface_mesh_complex_2_in_triangulation_3<internal::PoissonMesherTriangulation>;
-  const double spacing_m = report.average_spacing_m * std::max(options.spacing_factor, 1e-3);
   try {
     Function function(points.begin(), points.end(), PointMap(), NormalMap());
     if (!function.compute_implicit_function()) throw RuntimeError("poisson: CGAL's Poisson solver failed");
@@ -251,15 +240,13 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     // falls back to it, or names it).
     throw RuntimeError("poisson: CGAL's surface mesher failed (" + what + ")");
   }
-  report.faces_reconstructed = static_cast<int64_t>(sm.number_of_faces());
+  return sm;
+}
 
-  // Trim: drop triangles whose centroid is far from every input point.
-  std::vector<Eigen::Vector3d> positions;
-  positions.reserve(points.size());
-  for (const auto& pn : points) positions.emplace_back(pn.first.x(), pn.first.y(), pn.first.z());
-  const internal::PointSearch search(positions);
-  const double max_distance_m = options.trim_factor * report.average_spacing_m;
-
+// The mesher's triangles as a TriangleMesh, without those whose centroid is farther than max_distance_m
+// from every input point (with trim_factor > 0).
+TriangleMesh TrimmedTriangles(const Mesh& sm, const internal::PointSearch& search, double max_distance_m,
+                              const PoissonOptions& options, PoissonReport* report) {
   TriangleMesh mesh;
   std::vector<int64_t> remap(sm.number_of_vertices() + sm.number_of_removed_vertices(), -1);
   for (Mesh::Face_index f : sm.faces()) {
@@ -274,7 +261,7 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     for (auto u : v) centroid += Eigen::Vector3d(sm.point(u).x(), sm.point(u).y(), sm.point(u).z());
     centroid /= 3.0;
     if (options.trim_factor > 0 && std::sqrt(search.Nearest(centroid, 1).front().first) > max_distance_m) {
-      ++report.faces_trimmed;
+      ++report->faces_trimmed;
       continue;
     }
     std::array<uint32_t, 3> tri{};
@@ -288,6 +275,42 @@ TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& optio
     }
     mesh.faces.push_back(tri);
   }
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh PoissonSurface(const PointCloud& cloud, const PoissonOptions& options, PoissonReport* report_out) {
+  PoissonReport report;
+  std::vector<PointWithNormal> points;
+  std::vector<uint32_t> source;
+  FinitePoints(cloud, &points, &source);
+  if (const auto problem = PoissonInputProblem(cloud)) {
+    throw InputError("poisson: " + *problem + ": CGAL's Poisson solver needs points that span a volume");
+  }
+  MergeCoincident(options, &points, &source, &report);
+  report.points = static_cast<int64_t>(points.size());
+  if (points.size() < 10) {
+    throw InputError("poisson: fewer than 10 distinct points (" + std::to_string(points.size()) +
+                     ") once coincident points are merged");
+  }
+  const int k = std::max(3, std::min<int>(options.normal_neighbours, static_cast<int>(points.size()) - 1));
+  OrientNormals(cloud, source, k, &points, &report);
+  report.average_spacing_m =
+      CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, k, CGAL::parameters::point_map(PointMap()));
+  if (!(report.average_spacing_m > 0)) {
+    throw InputError("poisson: the points have no spacing (all coincide)");
+  }
+  const Mesh sm =
+      MeshImplicitSurface(points, report.average_spacing_m * std::max(options.spacing_factor, 1e-3), options);
+  report.faces_reconstructed = static_cast<int64_t>(sm.number_of_faces());
+
+  // Trim: drop triangles whose centroid is far from every input point.
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(points.size());
+  for (const auto& pn : points) positions.emplace_back(pn.first.x(), pn.first.y(), pn.first.z());
+  const internal::PointSearch search(positions);
+  TriangleMesh mesh = TrimmedTriangles(sm, search, options.trim_factor * report.average_spacing_m, options, &report);
   SortCanonically(&mesh);
   if (cloud.has_colors() && mesh.num_vertices() > 0) {
     mesh.colors_rgb.reserve(mesh.num_vertices());

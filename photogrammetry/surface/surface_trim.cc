@@ -245,6 +245,334 @@ void SettleOntoData(TriangleMesh& mesh, const PointCloud& points, const internal
   }
 }
 
+// The local spacing of every data point: `spacing` floored by the surface's resolution (min_spacing_m) sets
+// the distance tests (steps 1 and 2); `point_spacing`, the points' own, sets the border fit and the settling
+// (steps 2c and 4). Both are capped at max_spacing_ratio × the median.
+struct DataSpacing {
+  std::vector<double> spacing;
+  std::vector<double> point_spacing;
+};
+
+// The mean distance from each point to its k nearest others (0 for a non-finite point or a lone one).
+std::vector<double> MeanNeighbourDistances(const PointCloud& points, const internal::PointSearch& search, int k) {
+  std::vector<double> spacing(points.size(), 0.0);
+  if (search.size() <= 1) return spacing;
+  ForEachIndex(points.size(), [&](size_t i) {
+    if (!points.positions_m[i].allFinite()) return;
+    double sum = 0;
+    int count = 0;
+    for (const auto& [d2, j] : search.Nearest(points.positions_m[i], k + 1)) {
+      if (j == i || count == k) continue;
+      sum += std::sqrt(d2);
+      ++count;
+    }
+    spacing[i] = count > 0 ? sum / count : 0.0;
+  });
+  return spacing;
+}
+
+// Smoothed: the median over each point's 16 nearest points (a clump of near-duplicate points or a lone
+// stray point does not set the scale of its area).
+std::vector<double> SmoothedSpacings(const PointCloud& points, const internal::PointSearch& search,
+                                     const std::vector<double>& spacing) {
+  std::vector<double> smoothed(points.size(), 0.0);
+  ForEachIndex(points.size(), [&](size_t i) {
+    if (!points.positions_m[i].allFinite()) return;
+    std::vector<double> around;
+    for (const auto& hit : search.Nearest(points.positions_m[i], kSmoothingNeighbours)) {
+      around.push_back(spacing[hit.second]);
+    }
+    smoothed[i] = Median(around);
+  });
+  return smoothed;
+}
+
+double MedianOverFinitePoints(const PointCloud& points, const std::vector<double>& values) {
+  std::vector<double> finite;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (points.positions_m[i].allFinite()) finite.push_back(values[i]);
+  }
+  return Median(finite);
+}
+
+DataSpacing MeasureDataSpacing(const PointCloud& points, const internal::PointSearch& search,
+                               const SurfaceTrimOptions& options, SurfaceTrimReport* report) {
+  DataSpacing s;
+  s.point_spacing =
+      SmoothedSpacings(points, search, MeanNeighbourDistances(points, search, std::max(1, options.spacing_neighbours)));
+  s.spacing.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) s.spacing[i] = std::max(s.point_spacing[i], options.min_spacing_m);
+  report->median_spacing_m = MedianOverFinitePoints(points, s.spacing);
+  report->median_point_spacing_m = MedianOverFinitePoints(points, s.point_spacing);
+  // The spacing that sets a criterion is at most max_spacing_ratio × the median: where the points thin
+  // out to metres apart, a face that far from all of them has no point under it.
+  if (options.max_spacing_ratio > 0 && report->median_point_spacing_m > 0) {
+    const double cap_m = options.max_spacing_ratio * report->median_point_spacing_m;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (s.point_spacing[i] > cap_m || s.spacing[i] > std::max(cap_m, options.min_spacing_m)) {
+        ++report->spacings_capped;
+      }
+      s.point_spacing[i] = std::min(s.point_spacing[i], cap_m);
+      s.spacing[i] = std::min(s.spacing[i], std::max(cap_m, options.min_spacing_m));
+    }
+  }
+  return s;
+}
+
+// How far each face (its vertices and centroid) is from the data, and its longest edge, in local spacings.
+struct FaceSupport {
+  std::vector<double> support_ratio;
+  std::vector<double> edge_ratio;
+};
+
+FaceSupport MeasureFaceSupport(const TriangleMesh& mesh, const internal::PointSearch& search,
+                               const std::vector<double>& spacing) {
+  FaceSupport support{std::vector<double>(mesh.num_faces(), 0.0), std::vector<double>(mesh.num_faces(), 0.0)};
+  if (search.size() == 0) return support;
+  const auto& v = mesh.vertices_m;
+  auto ratio_at = [&](const Eigen::Vector3d& q, double* s_out) {
+    const auto nearest = search.Nearest(q, 1).front();
+    const double s = std::max(spacing[nearest.second], 1e-9);
+    if (s_out) *s_out = s;
+    return std::sqrt(nearest.first) / s;
+  };
+  std::vector<double> vertex_ratio(v.size(), 0.0), vertex_spacing(v.size(), 0.0);
+  ForEachIndex(v.size(), [&](size_t i) { vertex_ratio[i] = ratio_at(v[i], &vertex_spacing[i]); });
+  ForEachIndex(mesh.num_faces(), [&](size_t f) {
+    const auto& t = mesh.faces[f];
+    const Eigen::Vector3d centroid = (v[t[0]] + v[t[1]] + v[t[2]]) / 3.0;
+    double ratio = ratio_at(centroid, nullptr), s = 0, longest = 0;
+    for (int c = 0; c < 3; ++c) {
+      ratio = std::max(ratio, vertex_ratio[t[c]]);
+      s = std::max(s, vertex_spacing[t[c]]);
+      longest = std::max(longest, (v[t[c]] - v[t[(c + 1) % 3]]).norm());
+    }
+    support.support_ratio[f] = ratio;
+    support.edge_ratio[f] = longest / s;
+  });
+  return support;
+}
+
+// Step 1: the faces far from the data, anywhere.
+void CutFarFaces(const FaceSupport& support, double far_factor, std::vector<char>* alive, SurfaceTrimReport* report) {
+  for (size_t f = 0; f < alive->size(); ++f) {
+    if (support.support_ratio[f] > far_factor) {
+      (*alive)[f] = 0;
+      ++report->faces_far_from_data;
+    }
+  }
+}
+
+// The faces still kept and, for every edge, how many kept faces share it: a kept face with an edge no
+// other kept face shares is on the border.
+class KeptFaces {
+ public:
+  KeptFaces(const std::vector<std::array<uint32_t, 3>>& faces, std::vector<char>* alive)
+      : edges(faces), alive(*alive), alive_around_(edges.num_edges(), 0) {
+    for (size_t f = 0; f < faces.size(); ++f) {
+      if (!this->alive[f]) continue;
+      for (uint32_t e : edges.face_edges[f]) ++alive_around_[e];
+    }
+  }
+  int BorderEdges(uint32_t f) const {
+    int count = 0;
+    for (uint32_t e : edges.face_edges[f]) count += alive_around_[e] == 1;
+    return count;
+  }
+  bool OnBorder(uint32_t f) const { return BorderEdges(f) > 0; }
+  void Remove(uint32_t f) {
+    alive[f] = 0;
+    for (uint32_t e : edges.face_edges[f]) --alive_around_[e];
+  }
+
+  const EdgeTable edges;
+  std::vector<char>& alive;
+
+ private:
+  std::vector<uint32_t> alive_around_;
+};
+
+// The kept faces that share an edge with one of `removed`, sorted, each once.
+std::vector<uint32_t> KeptNeighbours(const KeptFaces& kept, const std::vector<uint32_t>& removed) {
+  std::vector<uint32_t> next;
+  for (uint32_t f : removed) {
+    for (uint32_t e : kept.edges.face_edges[f]) {
+      for (uint32_t i = kept.edges.offsets[e]; i < kept.edges.offsets[e + 1]; ++i) {
+        if (kept.alive[kept.edges.faces[i]]) next.push_back(kept.edges.faces[i]);
+      }
+    }
+  }
+  std::sort(next.begin(), next.end());
+  next.erase(std::unique(next.begin(), next.end()), next.end());
+  return next;
+}
+
+// Step 2: border peeling, one ring of unsupported or stretched border faces per pass.
+void PeelBorder(KeptFaces& kept, const FaceSupport& support, const SurfaceTrimOptions& options,
+                SurfaceTrimReport* report) {
+  auto unsupported = [&](uint32_t f) {
+    return options.border_factor > 0 && support.support_ratio[f] > options.border_factor;
+  };
+  auto stretched = [&](uint32_t f) {
+    return options.border_edge_factor > 0 && support.edge_ratio[f] > options.border_edge_factor;
+  };
+  std::vector<uint32_t> candidates;
+  for (uint32_t f = 0; f < kept.alive.size(); ++f) {
+    if (kept.alive[f] && kept.OnBorder(f)) candidates.push_back(f);
+  }
+  while (!candidates.empty() && report->border_passes < options.max_border_passes) {
+    std::vector<uint32_t> removed;
+    for (uint32_t f : candidates) {
+      if (!kept.alive[f] || !kept.OnBorder(f)) continue;
+      if (unsupported(f)) {
+        ++report->border_faces_unsupported;
+      } else if (stretched(f)) {
+        ++report->border_faces_stretched;
+      } else {
+        continue;
+      }
+      removed.push_back(f);
+    }
+    if (removed.empty()) break;
+    ++report->border_passes;
+    for (uint32_t f : removed) kept.Remove(f);
+    candidates = KeptNeighbours(kept, removed);
+  }
+}
+
+// Step 2b: stretched ears and stray border vertices, all measured on the same border in each pass.
+void CutStretchedEars(const TriangleMesh& mesh, KeptFaces& kept, const std::vector<double>& edge_ratio,
+                      const SurfaceTrimOptions& options, SurfaceTrimReport* report) {
+  const size_t num_faces = mesh.num_faces();
+  const VertexFaces around(mesh.vertices_m.size(), mesh.faces);
+  auto stretched_ear = [&](uint32_t f) { return edge_ratio[f] > options.ear_edge_factor; };
+  // A border vertex with one or two faces, both stretched: a stray point the surface reached out to.
+  // (Not more faces: in an arm of stretched triangles every vertex would be a stray, and the cut would
+  // run its whole length in one pass.)
+  auto stray = [&](uint32_t i) {
+    int count = 0;
+    bool border = false;
+    for (uint32_t k = around.offsets[i]; k < around.offsets[i + 1]; ++k) {
+      const uint32_t f = around.faces[k];
+      if (!kept.alive[f]) continue;
+      if (!stretched_ear(f) || ++count > 2) return false;
+      border = border || kept.OnBorder(f);
+    }
+    return count > 0 && border;
+  };
+  while (report->ear_passes < options.max_ear_passes) {
+    std::vector<char> cut(num_faces, 0);
+    for (uint32_t f = 0; f < num_faces; ++f) {
+      if (!kept.alive[f] || !stretched_ear(f)) continue;
+      const auto& t = mesh.faces[f];
+      cut[f] = kept.BorderEdges(f) >= 2 || stray(t[0]) || stray(t[1]) || stray(t[2]);
+    }
+    const int64_t count = std::count(cut.begin(), cut.end(), 1);
+    if (count == 0) break;
+    ++report->ear_passes;
+    report->border_ears_cut += count;
+    for (uint32_t f = 0; f < num_faces; ++f) {
+      if (cut[f]) kept.Remove(f);
+    }
+  }
+}
+
+// The kept faces, with the vertices they use (in their original order).
+TriangleMesh KeptMesh(const TriangleMesh& mesh, const std::vector<char>& alive) {
+  const auto& v = mesh.vertices_m;
+  TriangleMesh out;
+  std::vector<int64_t> remap(v.size(), -1);
+  for (size_t f = 0; f < mesh.num_faces(); ++f) {
+    if (!alive[f]) continue;
+    for (uint32_t i : mesh.faces[f]) remap[i] = 0;
+  }
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (remap[i] < 0) continue;
+    remap[i] = static_cast<int64_t>(out.vertices_m.size());
+    out.vertices_m.push_back(v[i]);
+    if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[i]);
+  }
+  for (size_t f = 0; f < mesh.num_faces(); ++f) {
+    if (!alive[f]) continue;
+    const auto& t = mesh.faces[f];
+    out.faces.push_back(
+        {static_cast<uint32_t>(remap[t[0]]), static_cast<uint32_t>(remap[t[1]]), static_cast<uint32_t>(remap[t[2]])});
+  }
+  return out;
+}
+
+// Every vertex's 1-ring: the vertices it shares a face with, sorted, each once.
+std::vector<std::vector<uint32_t>> VertexRings(const TriangleMesh& mesh) {
+  std::vector<std::vector<uint32_t>> ring(mesh.vertices_m.size());
+  for (const auto& t : mesh.faces) {
+    for (int c = 0; c < 3; ++c) {
+      ring[t[c]].push_back(t[(c + 1) % 3]);
+      ring[t[c]].push_back(t[(c + 2) % 3]);
+    }
+  }
+  for (auto& r : ring) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+  return ring;
+}
+
+// One pass of step 3: where vertex i stands out of the plane of its ring (the 2-ring when the ring is too
+// small to span a plane, as at a border corner), its foot on that plane in (*moved)[i] and its height in
+// (*height)[i]; every vertex measured on the same positions.
+void MeasureSpikes(const TriangleMesh& mesh, const std::vector<std::vector<uint32_t>>& ring,
+                   const SurfaceTrimOptions& options, std::vector<Eigen::Vector3d>* moved,
+                   std::vector<double>* height) {
+  ForEachIndex(mesh.vertices_m.size(), [&](size_t i) {
+    std::vector<uint32_t> around = ring[i];
+    if (around.size() < 4) {
+      for (uint32_t j : ring[i]) around.insert(around.end(), ring[j].begin(), ring[j].end());
+      std::sort(around.begin(), around.end());
+      around.erase(std::unique(around.begin(), around.end()), around.end());
+      around.erase(std::remove(around.begin(), around.end(), static_cast<uint32_t>(i)), around.end());
+    }
+    std::vector<Eigen::Vector3d> q;
+    q.reserve(around.size());
+    for (uint32_t j : around) q.push_back(mesh.vertices_m[j]);
+    const internal::FittedPlane plane = internal::FitPlane(q);
+    if (!plane.valid) return;
+    const Eigen::Vector3d& p = mesh.vertices_m[i];
+    const double h = (p - plane.centroid).dot(plane.normal);
+    const Eigen::Vector3d foot = p - h * plane.normal;
+    double radius = 0;  // mean distance, in the plane, from the foot to the ring
+    for (const auto& x : q) {
+      const Eigen::Vector3d d = x - foot;
+      radius += (d - d.dot(plane.normal) * plane.normal).norm();
+    }
+    radius /= static_cast<double>(q.size());
+    if (std::abs(h) > std::max(options.spike_min_m, options.spike_factor * radius)) {
+      (*moved)[i] = foot;
+      (*height)[i] = std::abs(h);
+    }
+  });
+}
+
+// Step 3: spikes flattened onto the plane of their ring, pass by pass until none is left.
+void FlattenSpikes(TriangleMesh& mesh, const SurfaceTrimOptions& options, SurfaceTrimReport* report) {
+  const size_t n = mesh.vertices_m.size();
+  const std::vector<std::vector<uint32_t>> ring = VertexRings(mesh);
+  for (int pass = 0; pass < options.spike_passes; ++pass) {
+    std::vector<Eigen::Vector3d> moved = mesh.vertices_m;
+    std::vector<double> height(n, 0.0);
+    MeasureSpikes(mesh, ring, options, &moved, &height);
+    int64_t flattened = 0;
+    for (size_t i = 0; i < n; ++i) {
+      if (height[i] > 0) {
+        ++flattened;
+        report->max_spike_height_m = std::max(report->max_spike_height_m, height[i]);
+      }
+    }
+    if (flattened == 0) break;
+    report->spike_vertices_flattened += flattened;
+    mesh.vertices_m = std::move(moved);
+  }
+}
+
 }  // namespace
 
 Json SurfaceTrimReport::ToJson() const {
@@ -297,283 +625,29 @@ TriangleMesh TrimSurfaceToData(const TriangleMesh& mesh, const PointCloud& point
   SurfaceTrimReport report;
   report.options = options;
   report.faces_in = static_cast<int64_t>(mesh.num_faces());
-  const size_t num_faces = mesh.num_faces();
-  const auto& v = mesh.vertices_m;
-
-  // Local spacing of every data point.
   const internal::PointSearch search(points.positions_m);
-  std::vector<double> spacing(points.size(), 0.0);
-  const int k = std::max(1, options.spacing_neighbours);
-  if (search.size() > 1) {
-    ForEachIndex(points.size(), [&](size_t i) {
-      if (!points.positions_m[i].allFinite()) return;
-      double sum = 0;
-      int count = 0;
-      for (const auto& [d2, j] : search.Nearest(points.positions_m[i], k + 1)) {
-        if (j == i || count == k) continue;
-        sum += std::sqrt(d2);
-        ++count;
-      }
-      spacing[i] = count > 0 ? sum / count : 0.0;
-    });
-  }
-  // Smoothed: the median over each point's 16 nearest points (a clump of near-duplicate points or a
-  // lone stray point does not set the scale of its area), floored by the surface's own resolution.
-  // point_spacing keeps the points' own (smoothed, not floored): step 2c's scale.
-  std::vector<double> point_spacing(points.size(), 0.0);
-  {
-    ForEachIndex(points.size(), [&](size_t i) {
-      if (!points.positions_m[i].allFinite()) return;
-      std::vector<double> around;
-      for (const auto& hit : search.Nearest(points.positions_m[i], kSmoothingNeighbours)) {
-        around.push_back(spacing[hit.second]);
-      }
-      point_spacing[i] = Median(around);
-    });
-    for (size_t i = 0; i < points.size(); ++i) spacing[i] = std::max(point_spacing[i], options.min_spacing_m);
-  }
-  {
-    std::vector<double> finite;
-    for (size_t i = 0; i < points.size(); ++i) {
-      if (points.positions_m[i].allFinite()) finite.push_back(spacing[i]);
-    }
-    report.median_spacing_m = Median(finite);
-    finite.clear();
-    for (size_t i = 0; i < points.size(); ++i) {
-      if (points.positions_m[i].allFinite()) finite.push_back(point_spacing[i]);
-    }
-    report.median_point_spacing_m = Median(finite);
-  }
-  // The spacing that sets a criterion is at most max_spacing_ratio × the median: where the points thin
-  // out to metres apart, a face that far from all of them has no point under it.
-  if (options.max_spacing_ratio > 0 && report.median_point_spacing_m > 0) {
-    const double cap_m = options.max_spacing_ratio * report.median_point_spacing_m;
-    for (size_t i = 0; i < points.size(); ++i) {
-      if (point_spacing[i] > cap_m || spacing[i] > std::max(cap_m, options.min_spacing_m)) ++report.spacings_capped;
-      point_spacing[i] = std::min(point_spacing[i], cap_m);
-      spacing[i] = std::min(spacing[i], std::max(cap_m, options.min_spacing_m));
-    }
-  }
+  const DataSpacing spacing = MeasureDataSpacing(points, search, options, &report);
+  const FaceSupport support = MeasureFaceSupport(mesh, search, spacing.spacing);
 
-  // How far each vertex and each face centroid is from the data, in local spacings; each face's
-  // longest edge in local spacings.
-  std::vector<char> alive(num_faces, 1);
-  std::vector<double> support_ratio(num_faces, 0.0), edge_ratio(num_faces, 0.0);
-  if (search.size() > 0) {
-    auto ratio_at = [&](const Eigen::Vector3d& q, double* s_out) {
-      const auto nearest = search.Nearest(q, 1).front();
-      const double s = std::max(spacing[nearest.second], 1e-9);
-      if (s_out) *s_out = s;
-      return std::sqrt(nearest.first) / s;
-    };
-    std::vector<double> vertex_ratio(v.size(), 0.0), vertex_spacing(v.size(), 0.0);
-    ForEachIndex(v.size(), [&](size_t i) { vertex_ratio[i] = ratio_at(v[i], &vertex_spacing[i]); });
-    ForEachIndex(num_faces, [&](size_t f) {
-      const auto& t = mesh.faces[f];
-      const Eigen::Vector3d centroid = (v[t[0]] + v[t[1]] + v[t[2]]) / 3.0;
-      double ratio = ratio_at(centroid, nullptr), s = 0, longest = 0;
-      for (int c = 0; c < 3; ++c) {
-        ratio = std::max(ratio, vertex_ratio[t[c]]);
-        s = std::max(s, vertex_spacing[t[c]]);
-        longest = std::max(longest, (v[t[c]] - v[t[(c + 1) % 3]]).norm());
-      }
-      support_ratio[f] = ratio;
-      edge_ratio[f] = longest / s;
-    });
-  }
-
-  // 1. Far from the data, anywhere.
-  if (options.far_factor > 0) {
-    for (size_t f = 0; f < num_faces; ++f) {
-      if (support_ratio[f] > options.far_factor) {
-        alive[f] = 0;
-        ++report.faces_far_from_data;
-      }
-    }
-  }
-
-  // 2. Border peeling, one ring of border faces per pass; then 2b, stretched ears.
+  std::vector<char> alive(mesh.num_faces(), 1);
+  if (options.far_factor > 0) CutFarFaces(support, options.far_factor, &alive, &report);
   const bool peel = options.border_factor > 0 || options.border_edge_factor > 0;
   const bool cut_ears = options.ear_edge_factor > 0 && options.max_ear_passes > 0;
   if (peel || cut_ears) {
-    const EdgeTable edges(mesh.faces);
-    std::vector<uint32_t> alive_around(edges.num_edges(), 0);
-    for (size_t f = 0; f < num_faces; ++f) {
-      if (!alive[f]) continue;
-      for (uint32_t e : edges.face_edges[f]) ++alive_around[e];
-    }
-    auto border_edges = [&](uint32_t f) {
-      int count = 0;
-      for (uint32_t e : edges.face_edges[f]) count += alive_around[e] == 1;
-      return count;
-    };
-    auto on_border = [&](uint32_t f) { return border_edges(f) > 0; };
-    auto remove = [&](uint32_t f) {
-      alive[f] = 0;
-      for (uint32_t e : edges.face_edges[f]) --alive_around[e];
-    };
-    auto unsupported = [&](uint32_t f) {
-      return options.border_factor > 0 && support_ratio[f] > options.border_factor;
-    };
-    auto stretched = [&](uint32_t f) {
-      return options.border_edge_factor > 0 && edge_ratio[f] > options.border_edge_factor;
-    };
-    std::vector<uint32_t> candidates;
-    if (peel) {
-      for (uint32_t f = 0; f < num_faces; ++f) {
-        if (alive[f] && on_border(f)) candidates.push_back(f);
-      }
-    }
-    while (!candidates.empty() && report.border_passes < options.max_border_passes) {
-      std::vector<uint32_t> removed;
-      for (uint32_t f : candidates) {
-        if (!alive[f] || !on_border(f)) continue;
-        if (unsupported(f)) {
-          ++report.border_faces_unsupported;
-        } else if (stretched(f)) {
-          ++report.border_faces_stretched;
-        } else {
-          continue;
-        }
-        removed.push_back(f);
-      }
-      if (removed.empty()) break;
-      ++report.border_passes;
-      for (uint32_t f : removed) remove(f);
-      // The next candidates: the faces that shared an edge with a removed face.
-      candidates.clear();
-      for (uint32_t f : removed) {
-        for (uint32_t e : edges.face_edges[f]) {
-          for (uint32_t i = edges.offsets[e]; i < edges.offsets[e + 1]; ++i) {
-            if (alive[edges.faces[i]]) candidates.push_back(edges.faces[i]);
-          }
-        }
-      }
-      std::sort(candidates.begin(), candidates.end());
-      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    }
-    // 2b. Stretched ears and stray border vertices, all measured on the same border in each pass.
-    if (cut_ears) {
-      const VertexFaces around(v.size(), mesh.faces);
-      auto stretched_ear = [&](uint32_t f) { return edge_ratio[f] > options.ear_edge_factor; };
-      // A border vertex with one or two faces, both stretched: a stray point the surface reached out to.
-      // (Not more faces: in an arm of stretched triangles every vertex would be a stray, and the cut would
-      // run its whole length in one pass.)
-      auto stray = [&](uint32_t i) {
-        int count = 0;
-        bool border = false;
-        for (uint32_t k = around.offsets[i]; k < around.offsets[i + 1]; ++k) {
-          const uint32_t f = around.faces[k];
-          if (!alive[f]) continue;
-          if (!stretched_ear(f) || ++count > 2) return false;
-          border = border || on_border(f);
-        }
-        return count > 0 && border;
-      };
-      while (report.ear_passes < options.max_ear_passes) {
-        std::vector<char> cut(num_faces, 0);
-        for (uint32_t f = 0; f < num_faces; ++f) {
-          if (!alive[f] || !stretched_ear(f)) continue;
-          const auto& t = mesh.faces[f];
-          cut[f] = border_edges(f) >= 2 || stray(t[0]) || stray(t[1]) || stray(t[2]);
-        }
-        const int64_t count = std::count(cut.begin(), cut.end(), 1);
-        if (count == 0) break;
-        ++report.ear_passes;
-        report.border_ears_cut += count;
-        for (uint32_t f = 0; f < num_faces; ++f) {
-          if (cut[f]) remove(f);
-        }
-      }
-    }
+    KeptFaces kept(mesh.faces, &alive);
+    if (peel) PeelBorder(kept, support, options, &report);
+    if (cut_ears) CutStretchedEars(mesh, kept, support.edge_ratio, options, &report);
   }
-
-  // The kept faces, with the vertices they use (in their original order).
-  TriangleMesh out;
-  {
-    std::vector<int64_t> remap(v.size(), -1);
-    for (size_t f = 0; f < num_faces; ++f) {
-      if (!alive[f]) continue;
-      for (uint32_t i : mesh.faces[f]) remap[i] = 0;
-    }
-    for (size_t i = 0; i < v.size(); ++i) {
-      if (remap[i] < 0) continue;
-      remap[i] = static_cast<int64_t>(out.vertices_m.size());
-      out.vertices_m.push_back(v[i]);
-      if (mesh.has_colors()) out.colors_rgb.push_back(mesh.colors_rgb[i]);
-    }
-    for (size_t f = 0; f < num_faces; ++f) {
-      if (!alive[f]) continue;
-      const auto& t = mesh.faces[f];
-      out.faces.push_back(
-          {static_cast<uint32_t>(remap[t[0]]), static_cast<uint32_t>(remap[t[1]]), static_cast<uint32_t>(remap[t[2]])});
-    }
-  }
+  TriangleMesh out = KeptMesh(mesh, alive);
 
   // 2c. Border fit: the border's vertices onto the data's border.
-  if (options.border_pull_factor > 0 && search.size() > 0 && !out.faces.empty())
-    FitBorderToData(out, points, search, point_spacing, options, &report);
-
-  // 3. Spikes: every vertex against the plane of its ring (the 2-ring when the ring is too small to
-  // span a plane, as at a border corner), all measured on the same positions in each pass.
-  if (options.spike_factor > 0 && options.spike_passes > 0 && !out.faces.empty()) {
-    const size_t n = out.vertices_m.size();
-    std::vector<std::vector<uint32_t>> ring(n);
-    for (const auto& t : out.faces) {
-      for (int c = 0; c < 3; ++c) {
-        ring[t[c]].push_back(t[(c + 1) % 3]);
-        ring[t[c]].push_back(t[(c + 2) % 3]);
-      }
-    }
-    for (auto& r : ring) {
-      std::sort(r.begin(), r.end());
-      r.erase(std::unique(r.begin(), r.end()), r.end());
-    }
-    for (int pass = 0; pass < options.spike_passes; ++pass) {
-      std::vector<Eigen::Vector3d> moved = out.vertices_m;
-      std::vector<double> height(n, 0.0);
-      ForEachIndex(n, [&](size_t i) {
-        std::vector<uint32_t> around = ring[i];
-        if (around.size() < 4) {
-          for (uint32_t j : ring[i]) around.insert(around.end(), ring[j].begin(), ring[j].end());
-          std::sort(around.begin(), around.end());
-          around.erase(std::unique(around.begin(), around.end()), around.end());
-          around.erase(std::remove(around.begin(), around.end(), static_cast<uint32_t>(i)), around.end());
-        }
-        std::vector<Eigen::Vector3d> q;
-        q.reserve(around.size());
-        for (uint32_t j : around) q.push_back(out.vertices_m[j]);
-        const internal::FittedPlane plane = internal::FitPlane(q);
-        if (!plane.valid) return;
-        const Eigen::Vector3d& p = out.vertices_m[i];
-        const double h = (p - plane.centroid).dot(plane.normal);
-        const Eigen::Vector3d foot = p - h * plane.normal;
-        double radius = 0;  // mean distance, in the plane, from the foot to the ring
-        for (const auto& x : q) {
-          const Eigen::Vector3d d = x - foot;
-          radius += (d - d.dot(plane.normal) * plane.normal).norm();
-        }
-        radius /= static_cast<double>(q.size());
-        if (std::abs(h) > std::max(options.spike_min_m, options.spike_factor * radius)) {
-          moved[i] = foot;
-          height[i] = std::abs(h);
-        }
-      });
-      int64_t flattened = 0;
-      for (size_t i = 0; i < n; ++i) {
-        if (height[i] > 0) {
-          ++flattened;
-          report.max_spike_height_m = std::max(report.max_spike_height_m, height[i]);
-        }
-      }
-      if (flattened == 0) break;
-      report.spike_vertices_flattened += flattened;
-      out.vertices_m = std::move(moved);
-    }
+  if (options.border_pull_factor > 0 && search.size() > 0 && !out.faces.empty()) {
+    FitBorderToData(out, points, search, spacing.point_spacing, options, &report);
   }
+  if (options.spike_factor > 0 && options.spike_passes > 0 && !out.faces.empty()) FlattenSpikes(out, options, &report);
   // 4. Onto the points.
   if (options.settle_factor > 0 && search.size() > 0 && !out.faces.empty()) {
-    SettleOntoData(out, points, search, point_spacing, options, &report);
+    SettleOntoData(out, points, search, spacing.point_spacing, options, &report);
   }
   report.faces_out = static_cast<int64_t>(out.num_faces());
   if (report_out) *report_out = report;

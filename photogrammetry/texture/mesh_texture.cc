@@ -40,6 +40,83 @@ Json Rounded3(const Eigen::Vector3f& v, int decimals) {
       {RoundToDecimals(v.x(), decimals), RoundToDecimals(v.y(), decimals), RoundToDecimals(v.z(), decimals)});
 }
 
+// The output mesh: the input's faces in order, their vertices split where charts meet, each with its texture
+// coordinates; white on faces a photo textures, the input's colours (or grey) on the others.
+void SplitVerticesPerChart(const TriangleMesh& mesh, const TextureAtlas& atlas, TexturedMesh* out) {
+  std::map<std::pair<int, uint32_t>, uint32_t> vertex_of;  // (chart, input vertex) -> output vertex
+  const std::array<uint8_t, 3> white = {255, 255, 255}, grey = {128, 128, 128};
+  out->mesh.faces.resize(mesh.num_faces());
+  const float inv = 1.0f / float(atlas.size_px);
+  for (uint32_t f = 0; f < mesh.num_faces(); ++f) {
+    const int chart = atlas.face_chart[f];
+    const bool textured = atlas.charts[size_t(chart)].view >= 0;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.faces[f][size_t(k)];
+      const auto [it, inserted] = vertex_of.emplace(std::make_pair(chart, v), uint32_t(out->mesh.vertices_m.size()));
+      if (inserted) {
+        out->mesh.vertices_m.push_back(mesh.vertices_m[v]);
+        out->mesh.colors_rgb.push_back(textured ? white : (mesh.has_colors() ? mesh.colors_rgb[v] : grey));
+        out->texcoords.push_back(atlas.corner_texel[f][size_t(k)] * inv);
+      }
+      out->mesh.faces[f][size_t(k)] = it->second;
+    }
+  }
+}
+
+// scene.json's "texture" (without times): the photos and their use, the selection, the exposure, the atlas.
+Json TextureReport(const TriangleMesh& mesh, const std::vector<TextureView>& views, const ViewSelection& selection,
+                   const ExposureGains& gains, const TextureAtlas& atlas, const BakeStats& bake_stats,
+                   const TexturedMesh& out, const MeshTextureOptions& options) {
+  Json report = Json::object();
+  int64_t textured_faces = 0;
+  std::vector<int64_t> faces_per_view(views.size(), 0);
+  for (int l : selection.label) {
+    if (l >= 0) {
+      ++textured_faces;
+      ++faces_per_view[size_t(l)];
+    }
+  }
+  report["photos"] = int64_t(views.size());
+  Json per_photo = Json::array();
+  int photos_used = 0;
+  for (size_t v = 0; v < views.size(); ++v) {
+    photos_used += faces_per_view[v] > 0;
+    per_photo.push_back(
+        {{"image", views[v].name()}, {"faces", faces_per_view[v]}, {"gain_rgb", Rounded3(gains.gain[v], 4)}});
+  }
+  report["photos_used"] = photos_used;
+  report["faces"] = int64_t(mesh.num_faces());
+  report["faces_textured"] = textured_faces;
+  report["faces_vertex_color"] = int64_t(mesh.num_faces()) - textured_faces;
+  report["selection"] = {{"min_cosine", options.selection.min_cosine},
+                         {"seam_penalty", options.selection.seam_penalty},
+                         {"iterations", selection.iterations_run},
+                         {"seam_edges_best_view", selection.seam_edges_before},
+                         {"seam_edges", selection.seam_edges_after},
+                         {"photo_consistency", options.selection.consistency.enabled},
+                         {"views_inconsistent", selection.views_inconsistent},
+                         {"faces_with_inconsistent_views", selection.faces_with_inconsistent_views}};
+  report["exposure"] = {{"leveled", options.level_exposure},
+                        {"pairs_used", gains.pairs_used},
+                        {"pairs_rejected", gains.pairs_rejected},
+                        {"rms_linear_before", RoundToDecimals(gains.rms_before, 5)},
+                        {"rms_linear_after", RoundToDecimals(gains.rms_after, 5)}};
+  report["atlas"] = {
+      {"width_px", atlas.size_px},
+      {"height_px", atlas.size_px},
+      {"charts", int64_t(atlas.charts.size())},
+      {"texels_per_photo_pixel", RoundToDecimals(atlas.texels_per_pixel, 4)},
+      {"padding_px", atlas.padding_px},
+      {"texels_covered", bake_stats.texels_covered},
+      {"fill", RoundToDecimals(double(bake_stats.texels_covered) / (double(atlas.size_px) * atlas.size_px), 4)},
+      {"mime_type", out.mime_type},
+      {"jpeg_quality", options.format == TextureFormat::kJpeg ? Json(options.jpeg_quality) : Json(nullptr)},
+      {"bytes", int64_t(out.image_bytes.size())}};
+  report["vertices_out"] = int64_t(out.mesh.num_vertices());
+  report["photo_gains"] = per_photo;
+  return report;
+}
+
 }  // namespace
 
 int DefaultTexturePx(Quality quality) {
@@ -63,7 +140,6 @@ TexturedMesh TextureMesh(const TriangleMesh& mesh, const std::vector<TextureView
   options.Check();
   CINEPATH_CHECK(photos.size() == views.size());
   if (mesh.num_faces() == 0) throw InputError("texture: the mesh has no faces");
-  Json report = Json::object();
   Json times = Json::object();
 
   // 1. Which photo textures each face.
@@ -120,24 +196,7 @@ TexturedMesh TextureMesh(const TriangleMesh& mesh, const std::vector<TextureView
 
   // 5. Vertices split per chart, with their texture coordinates.
   timer.Restart();
-  std::map<std::pair<int, uint32_t>, uint32_t> vertex_of;  // (chart, input vertex) -> output vertex
-  const std::array<uint8_t, 3> white = {255, 255, 255}, grey = {128, 128, 128};
-  out.mesh.faces.resize(mesh.num_faces());
-  const float inv = 1.0f / float(atlas.size_px);
-  for (uint32_t f = 0; f < mesh.num_faces(); ++f) {
-    const int chart = atlas.face_chart[f];
-    const bool textured = atlas.charts[size_t(chart)].view >= 0;
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t v = mesh.faces[f][size_t(k)];
-      const auto [it, inserted] = vertex_of.emplace(std::make_pair(chart, v), uint32_t(out.mesh.vertices_m.size()));
-      if (inserted) {
-        out.mesh.vertices_m.push_back(mesh.vertices_m[v]);
-        out.mesh.colors_rgb.push_back(textured ? white : (mesh.has_colors() ? mesh.colors_rgb[v] : grey));
-        out.texcoords.push_back(atlas.corner_texel[f][size_t(k)] * inv);
-      }
-      out.mesh.faces[f][size_t(k)] = it->second;
-    }
-  }
+  SplitVerticesPerChart(mesh, atlas, &out);
 
   // 6. The atlas encoded.
   if (options.format == TextureFormat::kJpeg) {
@@ -149,52 +208,7 @@ TexturedMesh TextureMesh(const TriangleMesh& mesh, const std::vector<TextureView
   }
   times["encode_s"] = timer.RoundedSeconds();
 
-  int64_t textured_faces = 0;
-  std::vector<int64_t> faces_per_view(views.size(), 0);
-  for (int l : selection.label) {
-    if (l >= 0) {
-      ++textured_faces;
-      ++faces_per_view[size_t(l)];
-    }
-  }
-  report["photos"] = int64_t(views.size());
-  Json per_photo = Json::array();
-  int photos_used = 0;
-  for (size_t v = 0; v < views.size(); ++v) {
-    photos_used += faces_per_view[v] > 0;
-    per_photo.push_back(
-        {{"image", views[v].name()}, {"faces", faces_per_view[v]}, {"gain_rgb", Rounded3(gains.gain[v], 4)}});
-  }
-  report["photos_used"] = photos_used;
-  report["faces"] = int64_t(mesh.num_faces());
-  report["faces_textured"] = textured_faces;
-  report["faces_vertex_color"] = int64_t(mesh.num_faces()) - textured_faces;
-  report["selection"] = {{"min_cosine", options.selection.min_cosine},
-                         {"seam_penalty", options.selection.seam_penalty},
-                         {"iterations", selection.iterations_run},
-                         {"seam_edges_best_view", selection.seam_edges_before},
-                         {"seam_edges", selection.seam_edges_after},
-                         {"photo_consistency", options.selection.consistency.enabled},
-                         {"views_inconsistent", selection.views_inconsistent},
-                         {"faces_with_inconsistent_views", selection.faces_with_inconsistent_views}};
-  report["exposure"] = {{"leveled", options.level_exposure},
-                        {"pairs_used", gains.pairs_used},
-                        {"pairs_rejected", gains.pairs_rejected},
-                        {"rms_linear_before", RoundToDecimals(gains.rms_before, 5)},
-                        {"rms_linear_after", RoundToDecimals(gains.rms_after, 5)}};
-  report["atlas"] = {
-      {"width_px", atlas.size_px},
-      {"height_px", atlas.size_px},
-      {"charts", int64_t(atlas.charts.size())},
-      {"texels_per_photo_pixel", RoundToDecimals(atlas.texels_per_pixel, 4)},
-      {"padding_px", atlas.padding_px},
-      {"texels_covered", bake_stats.texels_covered},
-      {"fill", RoundToDecimals(double(bake_stats.texels_covered) / (double(atlas.size_px) * atlas.size_px), 4)},
-      {"mime_type", out.mime_type},
-      {"jpeg_quality", options.format == TextureFormat::kJpeg ? Json(options.jpeg_quality) : Json(nullptr)},
-      {"bytes", int64_t(out.image_bytes.size())}};
-  report["vertices_out"] = int64_t(out.mesh.num_vertices());
-  report["photo_gains"] = per_photo;
+  Json report = TextureReport(mesh, views, selection, gains, atlas, bake_stats, out, options);
   if (options.report_times) report["time_s"] = times;
   out.report = std::move(report);
   return out;
