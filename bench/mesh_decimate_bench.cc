@@ -41,11 +41,11 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/json.h"
-#include "photogrammetry/mesh_clean.h"
-#include "photogrammetry/mesh_decimate.h"
-#include "photogrammetry/mesh_distance.h"
-#include "photogrammetry/surface_height_field.h"
-#include "photogrammetry/surface_pipeline.h"
+#include "photogrammetry/mesh/mesh_clean.h"
+#include "photogrammetry/mesh/mesh_decimate.h"
+#include "photogrammetry/mesh/mesh_distance.h"
+#include "photogrammetry/pipeline/surface_pipeline.h"
+#include "photogrammetry/surface/surface_height_field.h"
 
 namespace pg = cinepath::photogrammetry;
 using cinepath::Json;

@@ -27,8 +27,8 @@
 
 #include "core/json.h"
 #include "core/plan_file.h"
-#include "photogrammetry/mesh_decimate.h"
-#include "photogrammetry/mesh_decimate_for_plan.h"
+#include "photogrammetry/mesh/mesh_decimate.h"
+#include "photogrammetry/mesh/mesh_decimate_for_plan.h"
 #include "scene/glb_reader.h"
 
 namespace {
@@ -105,7 +105,7 @@ void Synthetic(int cells, bool building, TriangleMesh* mesh, Trajectory* plan) {
   }
 }
 
-// The scene of tests/photogrammetry/mesh_decimate_for_plan_test.cc: a 300 m plane (1 m cells, 0.2 m
+// The scene of tests/photogrammetry/mesh/mesh_decimate_for_plan_test.cc: a 300 m plane (1 m cells, 0.2 m
 // swells 60 m long) and a 10 m box with 5 cm bumps (0.2 m cells); 120 frames orbiting it, radius 30 m,
 // 25 m up, 24 mm.
 void BoxScene(TriangleMesh* mesh, Trajectory* plan) {

@@ -6,7 +6,7 @@
 // it, so a vertex-coloured GLB is measured the same way.
 //
 // --leave-one-out PX: the mesh of scene.glb (give a vertex-coloured one, `mesh --no-texture`) textured
-// in this process (photogrammetry/mesh_texture.h, a PX-texel atlas) from every photo but k, then
+// in this process (photogrammetry/texture/mesh_texture.h, a PX-texel atlas) from every photo but k, then
 // rendered from camera k: a view the texture has not seen. (The atlas is used as baked, before its JPEG
 // encoding.)
 //
@@ -26,9 +26,9 @@
 
 #include "core/file_io.h"
 #include "core/json.h"
-#include "photogrammetry/camera_models.h"
-#include "photogrammetry/mesh_texture.h"
-#include "photogrammetry/photo_image.h"
+#include "photogrammetry/georef/camera_models.h"
+#include "photogrammetry/io/photo_image.h"
+#include "photogrammetry/texture/mesh_texture.h"
 #include "scene/glb_reader.h"
 #include "scene/ray_caster.h"
 

@@ -23,7 +23,7 @@
 #include "core/file_io.h"
 #include "core/json.h"
 #include "core/plan_file.h"
-#include "photogrammetry/build_scene.h"
+#include "photogrammetry/pipeline/build_scene.h"
 
 namespace cinepath::cli {
 namespace {

@@ -3,7 +3,7 @@
 // (a runtime failure), instead of the shell's bare "Floating point exception" and exit code 136.
 //
 // This is the last line of defence, not the error path: every library call known to trap on degenerate
-// input is guarded before it is called (photogrammetry/surface_poisson.h, PoissonInputProblem) and fails
+// input is guarded before it is called (photogrammetry/surface/surface_poisson.h, PoissonInputProblem) and fails
 // with a typed error. A signal handler cannot unwind, so nothing after the signal runs: outputs are only
 // ever renamed into place once complete (core/file_io.h), so none is left half written; a staged
 // temporary file may remain beside its target.

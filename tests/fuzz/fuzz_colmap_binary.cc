@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "photogrammetry/colmap_reader.h"
+#include "photogrammetry/io/colmap_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;

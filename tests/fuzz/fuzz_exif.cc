@@ -1,5 +1,5 @@
 // libFuzzer target: EXIF (camera, focal length, GPS) read from a photo through the OpenImageIO plugin
-// (photogrammetry/exif_oiio_plugin.cc), as `mesh --images` reads every photo. The input is written to a
+// (photogrammetry/io/exif_oiio_plugin.cc), as `mesh --images` reads every photo. The input is written to a
 // temporary .jpg, since the plugin opens files by name. OpenImageIO itself is not instrumented: a crash in
 // it still stops the run, as a deadly signal.
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "photogrammetry/exif_gps_abi.h"
+#include "photogrammetry/io/exif_gps_abi.h"
 
 extern "C" int cinepath_exif_read(const char* path, CinepathExifRecord* record, char* error, size_t error_size);
 

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "photogrammetry/gcp_file.h"
+#include "photogrammetry/io/gcp_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "photogrammetry/ply_reader.h"
+#include "photogrammetry/io/ply_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

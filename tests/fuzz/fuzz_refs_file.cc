@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "photogrammetry/refs_file.h"
+#include "photogrammetry/io/refs_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -16,8 +16,8 @@
 
 #include "core/geodesy.h"
 #include "core/json.h"
-#include "photogrammetry/mesh_distance.h"
-#include "photogrammetry/ply_reader.h"
+#include "photogrammetry/io/ply_reader.h"
+#include "photogrammetry/mesh/mesh_distance.h"
 #include "scene/glb_reader.h"
 
 namespace cinepath::testing {

@@ -8,8 +8,8 @@
 
 #include <Eigen/Geometry>
 
-#include "photogrammetry/point_cloud.h"
-#include "photogrammetry/triangle_mesh.h"
+#include "photogrammetry/io/point_cloud.h"
+#include "photogrammetry/mesh/triangle_mesh.h"
 
 namespace cinepath::photogrammetry::testing {
 

@@ -15,9 +15,9 @@
 
 #include <Eigen/Geometry>
 
-#include "photogrammetry/camera_models.h"
-#include "photogrammetry/colmap_model.h"
-#include "photogrammetry/georeference.h"
+#include "photogrammetry/georef/camera_models.h"
+#include "photogrammetry/georef/georeference.h"
+#include "photogrammetry/io/colmap_model.h"
 
 namespace cinepath::photogrammetry::testing {
 

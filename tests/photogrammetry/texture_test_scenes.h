@@ -7,11 +7,11 @@
 
 #include <Eigen/Geometry>
 
-#include "photogrammetry/camera_models.h"
-#include "photogrammetry/colmap_model.h"
-#include "photogrammetry/photo_image.h"
-#include "photogrammetry/texture_view.h"
-#include "photogrammetry/triangle_mesh.h"
+#include "photogrammetry/georef/camera_models.h"
+#include "photogrammetry/io/colmap_model.h"
+#include "photogrammetry/io/photo_image.h"
+#include "photogrammetry/mesh/triangle_mesh.h"
+#include "photogrammetry/texture/texture_view.h"
 
 namespace cinepath::photogrammetry::testing {
 

@@ -1,7 +1,7 @@
-// scene.glb as `cinepath mesh` writes it (photogrammetry/gltf_writer.h), plain and Draco, read back.
+// scene.glb as `cinepath mesh` writes it (photogrammetry/gltf/gltf_writer.h), plain and Draco, read back.
 #include <gtest/gtest.h>
 
-#include "photogrammetry/gltf_writer.h"
+#include "photogrammetry/gltf/gltf_writer.h"
 #include "scene/glb_reader.h"
 
 namespace cinepath::scene {

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "core/file_io.h"
-#include "photogrammetry/gltf_writer.h"
+#include "photogrammetry/gltf/gltf_writer.h"
 
 namespace pg = cinepath::photogrammetry;
 

@@ -10,9 +10,9 @@
 #include "../../photogrammetry/surface_test_meshes.h"
 #include "../../photogrammetry/texture_test_scenes.h"
 #include "core/json.h"
-#include "photogrammetry/gltf_writer.h"
-#include "photogrammetry/mesh_texture.h"
-#include "photogrammetry/surface_pipeline.h"
+#include "photogrammetry/gltf/gltf_writer.h"
+#include "photogrammetry/pipeline/surface_pipeline.h"
+#include "photogrammetry/texture/mesh_texture.h"
 
 namespace pg = cinepath::photogrammetry;
 

@@ -1,0 +1,379 @@
+#include "photogrammetry/mesh/mesh_decimate.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <Eigen/Geometry>
+
+#include "core/error.h"
+#include "photogrammetry/mesh/mesh_distance.h"
+#include "tests/photogrammetry/surface_test_meshes.h"
+
+namespace cinepath::photogrammetry {
+namespace {
+
+Eigen::AlignedBox3d Bounds(const TriangleMesh& mesh) {
+  Eigen::AlignedBox3d box;
+  for (const auto& v : mesh.vertices_m) box.extend(v);
+  return box;
+}
+
+class DecimateEveryMethod : public ::testing::TestWithParam<DecimationMethod> {};
+
+TEST_P(DecimateEveryMethod, ReachesTheBudgetKeepsTheBorderAndStaysClose) {
+  const TriangleMesh grid = testing::TerrainGrid(101, 101, 1.0);  // 20,000 faces, 100 m square
+  DecimateOptions options;
+  options.method = GetParam();
+  options.target_faces = 2000;
+  options.partitions = 4;
+  DecimateStats stats;
+  const TriangleMesh out = DecimateMesh(grid, options, &stats);
+  EXPECT_EQ(stats.faces_in, 20000);
+  EXPECT_EQ(stats.faces_out, static_cast<int64_t>(out.num_faces()));
+  EXPECT_LE(out.num_faces(), 2600u);
+  EXPECT_GE(out.num_faces(), 1200u);
+  ASSERT_EQ(out.colors_rgb.size(), out.num_vertices());
+  for (const auto& f : out.faces) {
+    for (uint32_t i : f) ASSERT_LT(i, out.num_vertices());
+  }
+  // The outer border stays: the horizontal bounds are those of the input.
+  const Eigen::AlignedBox3d in_box = Bounds(grid), out_box = Bounds(out);
+  EXPECT_NEAR(out_box.min().x(), in_box.min().x(), 1e-9);
+  EXPECT_NEAR(out_box.max().y(), in_box.max().y(), 1e-9);
+  // Rolling terrain with 3 m amplitude: a 10 % mesh stays within 0.3 m.
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = 20000;
+  EXPECT_LT(ApproximateHausdorff(grid, out, hausdorff).symmetric_m, 0.3);
+  // Deterministic.
+  EXPECT_EQ(DecimateMesh(grid, options).faces, out.faces);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, DecimateEveryMethod,
+                         ::testing::Values(DecimationMethod::kMeshoptimizer,
+                                           DecimationMethod::kMeshoptimizerPartitioned,
+                                           DecimationMethod::kCgalGarlandHeckbert,
+                                           DecimationMethod::kCgalGarlandHeckbertProbabilistic,
+                                           DecimationMethod::kOpenMeshQuadric, DecimationMethod::kQemTiled),
+                         [](const auto& info) { return std::string(DecimationMethodName(info.param)); });
+
+TEST(DecimateMesh, ErrorBoundStopsEarlier) {
+  const TriangleMesh grid = testing::TerrainGrid(101, 101, 1.0);
+  DecimateOptions tight, loose;
+  tight.max_error_m = 0.01;
+  loose.max_error_m = 0.2;
+  DecimateStats tight_stats, loose_stats;
+  const TriangleMesh a = DecimateMesh(grid, tight, &tight_stats);
+  const TriangleMesh b = DecimateMesh(grid, loose, &loose_stats);
+  EXPECT_LT(b.num_faces(), a.num_faces());
+  EXPECT_LT(a.num_faces(), grid.num_faces());
+  EXPECT_LE(tight_stats.simplifier_error_m, 0.01 * 1.001);
+}
+
+// qem_tiled with an error goal instead of a face budget: a looser goal keeps fewer faces, the measured
+// Hausdorff distance follows the goal (within a few × of it: the goal bounds an RMS distance to planes,
+// not the largest distance), and a budget with a goal is refused.
+TEST(DecimateMesh, QemTiledTakesAnErrorGoal) {
+  const TriangleMesh grid = testing::TerrainGrid(101, 101, 1.0);
+  DecimateOptions tight, loose;
+  tight.method = loose.method = DecimationMethod::kQemTiled;
+  tight.max_error_m = 0.01;
+  loose.max_error_m = 0.2;
+  const TriangleMesh a = DecimateMesh(grid, tight);
+  const TriangleMesh b = DecimateMesh(grid, loose);
+  EXPECT_LT(b.num_faces(), a.num_faces());
+  EXPECT_LT(a.num_faces(), grid.num_faces());
+  const HausdorffOptions hausdorff;
+  const double tight_m = ApproximateHausdorff(grid, a, hausdorff).symmetric_m;
+  const double loose_m = ApproximateHausdorff(grid, b, hausdorff).symmetric_m;
+  std::printf("qem_tiled error goals: 0.01 m -> %zu faces, %.4f m; 0.2 m -> %zu faces, %.4f m (of %zu)\n",
+              a.num_faces(), tight_m, b.num_faces(), loose_m, grid.num_faces());
+  EXPECT_LT(tight_m, loose_m);
+  EXPECT_LT(tight_m, 4 * 0.01);
+  tight.target_faces = 1000;
+  EXPECT_THROW(DecimateMesh(grid, tight), InputError);
+}
+
+TEST(DecimateMesh, NoGoalOrABudgetAboveTheInputKeepsEveryFace) {
+  const TriangleMesh grid = testing::TerrainGrid(11, 11, 1.0);
+  DecimateOptions options;
+  EXPECT_EQ(DecimateMesh(grid, options).num_faces(), grid.num_faces());
+  options.target_faces = 1000000;
+  EXPECT_EQ(DecimateMesh(grid, options).faces, grid.faces);
+}
+
+TEST(DecimationMethod, NamesRoundTrip) {
+  EXPECT_EQ(ParseDecimationMethod("openmesh_quadric", "--decimator"), DecimationMethod::kOpenMeshQuadric);
+  EXPECT_EQ(ParseDecimationMethod("qem_tiled", "--decimator"), DecimationMethod::kQemTiled);
+  for (DecimationMethod m : AllDecimationMethods()) EXPECT_EQ(ParseDecimationMethod(DecimationMethodName(m), "x"), m);
+  EXPECT_EQ(AllDecimationMethods().size(), 6u);
+  EXPECT_THROW(ParseDecimationMethod("qslim", "--decimator"), InputError);
+}
+
+class TiledMethod : public ::testing::TestWithParam<DecimationMethod> {};
+
+TEST_P(TiledMethod, ResultDoesNotDependOnTheThreadCount) {
+  const TriangleMesh grid = testing::TerrainGrid(121, 121, 0.5);  // 28,800 faces
+  DecimateOptions options;
+  options.method = GetParam();
+  options.target_faces = 3000;
+  const TriangleMesh parallel = DecimateMesh(grid, options);
+  TriangleMesh serial;
+  {
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);
+    serial = DecimateMesh(grid, options);
+  }
+  EXPECT_EQ(serial.faces, parallel.faces);
+  EXPECT_EQ(serial.vertices_m, parallel.vertices_m);
+  EXPECT_LE(parallel.num_faces(), 3300u);
+  EXPECT_GE(parallel.num_faces(), 2500u);
+  {
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 2);
+    const TriangleMesh two = DecimateMesh(grid, options);
+    EXPECT_EQ(two.faces, parallel.faces);
+    EXPECT_EQ(two.vertices_m, parallel.vertices_m);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Tiled, TiledMethod,
+                         ::testing::Values(DecimationMethod::kMeshoptimizerPartitioned, DecimationMethod::kQemTiled),
+                         [](const auto& info) { return std::string(DecimationMethodName(info.param)); });
+
+// Rolling ground with 6 m box "buildings" on a jittered 0.5 m grid: sharp walls, as the bench
+// terrain has (bench/mesh_decimate_bench.cc), small enough for a unit test.
+TriangleMesh TerrainWithBuildings(int side) {
+  TriangleMesh mesh;
+  auto height = [](double e, double n) {
+    double z = testing::TerrainHeightM(e, n);
+    const double u = std::fmod(e, 20.0), v = std::fmod(n, 20.0);
+    if (u > 5 && u < 15 && v > 6 && v < 14) z += 6.0;
+    return z;
+  };
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      const double jitter_e = (i > 0 && i + 1 < side) ? 0.15 * std::sin(12.9898 * i + 78.233 * j) : 0.0;
+      const double jitter_n = (j > 0 && j + 1 < side) ? 0.15 * std::cos(4.1414 * i + 31.337 * j) : 0.0;
+      const double e = 0.5 * i + jitter_e, n = 0.5 * j + jitter_n;
+      mesh.vertices_m.emplace_back(e, n, height(e, n));
+    }
+  }
+  auto id = [side](int i, int j) { return static_cast<uint32_t>(j * side + i); };
+  for (int j = 0; j + 1 < side; ++j) {
+    for (int i = 0; i + 1 < side; ++i) {
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  return mesh;
+}
+
+// The vertices on the outer border of a grid mesh built by TerrainWithBuildings / TerrainGrid.
+std::vector<Eigen::Vector3d> GridBorder(const TriangleMesh& mesh, int side) {
+  std::vector<Eigen::Vector3d> border;
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      if (i == 0 || j == 0 || i + 1 == side || j + 1 == side) border.push_back(mesh.vertices_m[j * side + i]);
+    }
+  }
+  return border;
+}
+
+// The number of edges used by one face, or -1 when an edge is used by more than two (not manifold).
+int BorderEdgesOrMinusOneIfNotManifold(const TriangleMesh& mesh) {
+  std::map<std::pair<uint32_t, uint32_t>, int> edge_uses;
+  for (const auto& f : mesh.faces) {
+    for (int k = 0; k < 3; ++k) ++edge_uses[std::minmax(f[k], f[(k + 1) % 3])];
+  }
+  int border_edges = 0;
+  for (const auto& [edge, uses] : edge_uses) {
+    if (uses > 2) return -1;
+    border_edges += uses == 1 ? 1 : 0;
+  }
+  return border_edges;
+}
+
+// `terrain` decimated by qem_tiled to `ratio` of its faces in two ways (options `a` and `b`); checks
+// that `a` meets the budget, and measures both errors (400 k samples a side).
+struct TwoWays {
+  TriangleMesh a, b;
+  double a_m = 0, b_m = 0;
+};
+TwoWays DecimateTwoWays(const TriangleMesh& terrain, double ratio, DecimateOptions a, DecimateOptions b,
+                        const char* a_name, const char* b_name) {
+  a.method = b.method = DecimationMethod::kQemTiled;
+  a.target_faces = b.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
+  TwoWays out;
+  out.a = DecimateMesh(terrain, a);
+  out.b = DecimateMesh(terrain, b);
+  EXPECT_LE(static_cast<int64_t>(out.a.num_faces()), a.target_faces) << ratio;
+  EXPECT_GE(static_cast<int64_t>(out.a.num_faces()), a.target_faces - 2) << ratio;
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = 400000;
+  out.a_m = ApproximateHausdorff(terrain, out.a, hausdorff).symmetric_m;
+  out.b_m = ApproximateHausdorff(terrain, out.b, hausdorff).symmetric_m;
+  std::printf("ratio %.1f: %s %.4f m (%zu faces), %s %.4f m (%zu faces)\n", ratio, a_name, out.a_m, out.a.num_faces(),
+              b_name, out.b_m, out.b.num_faces());
+  return out;
+}
+
+TEST(QemTiled, HonoursTheBudgetAndKeepsEveryOuterBorderVertex) {
+  const int side = 161;
+  const TriangleMesh terrain = TerrainWithBuildings(side);  // 51,200 faces
+  for (double ratio : {0.1, 0.5}) {
+    DecimateOptions options;
+    options.method = DecimationMethod::kQemTiled;
+    options.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
+    const TriangleMesh out = DecimateMesh(terrain, options);
+    EXPECT_LE(static_cast<int64_t>(out.num_faces()), options.target_faces) << ratio;
+    EXPECT_GE(static_cast<int64_t>(out.num_faces()), options.target_faces - 2) << ratio;
+    // Every border vertex of the input is still a vertex of the output, at the same place, and the
+    // output has no border vertex the input did not have (its boundary edges lie on the input's).
+    std::vector<Eigen::Vector3d> out_vertices = out.vertices_m;
+    auto less = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    };
+    std::sort(out_vertices.begin(), out_vertices.end(), less);
+    for (const Eigen::Vector3d& b : GridBorder(terrain, side)) {
+      ASSERT_TRUE(std::binary_search(out_vertices.begin(), out_vertices.end(), b, less)) << b.transpose();
+    }
+    // Manifold, and no edge of the outer border was collapsed, no hole opened.
+    EXPECT_EQ(BorderEdgesOrMinusOneIfNotManifold(out), 4 * (side - 1));
+  }
+}
+
+TEST(QemTiled, IsAtLeastAsAccurateAsTheTiledMeshoptimizerAtTheSameBudget) {
+  const TriangleMesh terrain = TerrainWithBuildings(161);
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = 400000;
+  for (double ratio : {0.1, 0.3, 0.8}) {
+    DecimateOptions qem, meshopt;
+    qem.method = DecimationMethod::kQemTiled;
+    meshopt.method = DecimationMethod::kMeshoptimizerPartitioned;
+    qem.target_faces = meshopt.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
+    const TriangleMesh a = DecimateMesh(terrain, qem), b = DecimateMesh(terrain, meshopt);
+    EXPECT_LE(a.num_faces(), b.num_faces() + 2) << ratio;
+    const double qem_m = ApproximateHausdorff(terrain, a, hausdorff).symmetric_m;
+    const double meshopt_m = ApproximateHausdorff(terrain, b, hausdorff).symmetric_m;
+    std::printf("ratio %.1f: qem_tiled %.4f m (%zu faces), meshoptimizer_partitioned %.4f m (%zu faces)\n", ratio,
+                qem_m, a.num_faces(), meshopt_m, b.num_faces());
+    EXPECT_LE(qem_m, meshopt_m) << ratio;
+  }
+}
+
+// The pass after the tiles works only on the band around the tiles' cuts; on a terrain with walls it
+// meets the budget and stays as accurate as the pass over every merged face (within 10 %), and the
+// faces away from the cuts are left as the tiles made them.
+TEST(QemTiled, TheBandPassIsAsAccurateAsThePassOverEveryFace) {
+  const int side = 241;
+  const TriangleMesh terrain = TerrainWithBuildings(side);  // 115,200 faces
+  for (double ratio : {0.1, 0.5}) {
+    DecimateOptions band, whole;
+    band.qem.tiles = whole.qem.tiles = 16;
+    band.qem.band_cell_faces = whole.qem.band_cell_faces = 0;  // each pass in one piece (cells: below)
+    whole.qem.final_band_rings = 0;
+    const TwoWays r = DecimateTwoWays(terrain, ratio, band, whole, "band pass", "pass over every face");
+    EXPECT_LE(r.a_m, 1.1 * r.b_m) << ratio;
+    EXPECT_EQ(BorderEdgesOrMinusOneIfNotManifold(r.a), 4 * (side - 1)) << ratio;  // manifold where band meets the rest
+  }
+}
+
+// The band pass runs on parallel cells (a grid shifted by half a tile) when the band keeps enough
+// faces; here cells far smaller than the default are forced on a small mesh. Against the band as one
+// piece: the budget is met, the mesh stays manifold with its outer border whole, and the result is
+// the same on 1 thread and on all. The cells' locked cuts cost accuracy at 10 % on this terrain with
+// walls (0.39 m against 0.31 m; the same with the shares taken from the one-piece result, so it is
+// the cuts, not the shares); at 50 % the error is the same.
+TEST(QemTiled, TheBandInCellsIsAsAccurateAsTheBandInOnePiece) {
+  const int side = 241;
+  const TriangleMesh terrain = TerrainWithBuildings(side);  // 115,200 faces
+  for (double ratio : {0.1, 0.5}) {
+    DecimateOptions cells, one_piece;
+    cells.qem.tiles = one_piece.qem.tiles = 64;
+    cells.qem.band_cell_faces = 2000;
+    one_piece.qem.band_cell_faces = 0;
+    const TwoWays r = DecimateTwoWays(terrain, ratio, cells, one_piece, "band in cells", "in one piece");
+    EXPECT_LE(r.a_m, (ratio < 0.3 ? 1.3 : 1.1) * r.b_m) << ratio;
+    EXPECT_NE(r.a.faces, r.b.faces) << ratio;                                     // the cells did run
+    EXPECT_EQ(BorderEdgesOrMinusOneIfNotManifold(r.a), 4 * (side - 1)) << ratio;  // manifold where cells meet
+    cells.method = DecimationMethod::kQemTiled;
+    cells.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);
+    const TriangleMesh serial = DecimateMesh(terrain, cells);
+    EXPECT_EQ(serial.faces, r.a.faces) << ratio;
+    EXPECT_EQ(serial.vertices_m, r.a.vertices_m) << ratio;
+  }
+}
+
+// A closed box, each side an n × n grid of 1 m cells, rotated off the axes and moved off the origin
+// (so no coordinate is exact), faces outward; `corners` gets its 8 corners.
+TriangleMesh TessellatedBox(int n, std::vector<Eigen::Vector3d>* corners) {
+  TriangleMesh mesh;
+  std::map<std::array<int, 3>, uint32_t> index;
+  const Eigen::Matrix3d turn =
+      (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
+  auto vertex = [&](std::array<int, 3> g) {
+    auto [it, added] = index.emplace(g, static_cast<uint32_t>(mesh.vertices_m.size()));
+    if (added)
+      mesh.vertices_m.push_back(turn * Eigen::Vector3d(g[0], g[1], g[2]) + Eigen::Vector3d(1000.3, -2000.7, 55.1));
+    return it->second;
+  };
+  for (int c = 0; c < 8; ++c)
+    corners->push_back(mesh.vertices_m[vertex({(c & 1) * n, (c >> 1 & 1) * n, (c >> 2) * n})]);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = 0; side <= 1; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int di, int dj) {
+            std::array<int, 3> g{};
+            g[axis] = side * n;
+            g[u] = i + di;
+            g[v] = j + dj;
+            return vertex(g);
+          };
+          const uint32_t a = at(0, 0), b = at(1, 0), c = at(1, 1), d = at(0, 1);
+          if (side == 1) {
+            mesh.faces.push_back({a, b, c});
+            mesh.faces.push_back({a, c, d});
+          } else {
+            mesh.faces.push_back({a, c, b});
+            mesh.faces.push_back({a, d, c});
+          }
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+// Optimal placement on a shape whose quadrics are exact: a box decimated to 3 % stays the box. Its
+// corners (three planes: the full solve) stay where they are, and every vertex stays on the box's
+// faces and edges (one or two planes: the directions the quadric leaves free are held at the edge's
+// midpoint, on the same plane or line, not slid off it).
+TEST(QemTiled, ABoxStaysTheBoxCornersAndAll) {
+  const int n = 40;
+  std::vector<Eigen::Vector3d> corners;
+  const TriangleMesh box = TessellatedBox(n, &corners);  // 19,200 faces
+  DecimateOptions options;
+  options.method = DecimationMethod::kQemTiled;
+  options.qem.tiles = 16;
+  options.target_faces = static_cast<int64_t>(0.03 * box.num_faces());
+  const TriangleMesh out = DecimateMesh(box, options);
+  EXPECT_LE(static_cast<int64_t>(out.num_faces()), options.target_faces);
+  for (const Eigen::Vector3d& corner : corners) {
+    double nearest_m = INFINITY;
+    for (const auto& v : out.vertices_m) nearest_m = std::min(nearest_m, (v - corner).norm());
+    EXPECT_LT(nearest_m, 1e-6) << corner.transpose();
+  }
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = 200000;
+  const double error_m = ApproximateHausdorff(box, out, hausdorff).symmetric_m;
+  std::printf("box at 3 %%: %zu faces, Hausdorff %.2e m\n", out.num_faces(), error_m);
+  EXPECT_LT(error_m, 1e-6);
+}
+
+}  // namespace
+}  // namespace cinepath::photogrammetry
