@@ -46,7 +46,9 @@ class ExportCommand : public Command {
                    "Output format (repeatable): " + JoinNames(missions) + " (missions); " + JoinNames(cameras) +
                        " (camera tracks)")
         ->required();
-    app.add_option("--firmware", firmware_name_, "MAVLink target firmware: px4 (default) or ardupilot");
+    app.add_option("--firmware", firmware_name_,
+                   "MAVLink target firmware, px4 or ardupilot, for every drone (default: each drone profile's; "
+                   "px4 for DJI and custom profiles). A report note says when it overrides a profile's");
     app.add_option("--drone", drone_name_,
                    "Drone profile to check the missions against: " + JoinNames(DroneProfileNames()) +
                        " (docs/drones.md; default: the plan's drone block)");
@@ -71,7 +73,7 @@ class ExportCommand : public Command {
   int Run() override {
     exporter::ExportOptions options;
     for (const auto& name : format_names_) options.formats.push_back(exporter::ParseFormat(name));
-    options.firmware = exporter::ParseFirmware(firmware_name_);
+    if (!firmware_name_.empty()) options.firmware = exporter::ParseFirmware(firmware_name_);
     if (!drone_name_.empty()) options.build.drone = RequireDroneProfile(drone_name_, "--drone");
     if (altitude_ref_name_ == "relative") {
       options.altitude_ref = AltitudeRef::kRelative;
@@ -305,7 +307,7 @@ class ExportCommand : public Command {
   std::string plan_path_;
   std::string scene_path_;
   std::vector<std::string> format_names_;
-  std::string firmware_name_ = "px4";
+  std::string firmware_name_;  // empty: each drone profile's
   std::string drone_name_;
   std::string altitude_ref_name_ = "relative";
   std::string home_text_;

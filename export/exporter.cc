@@ -37,9 +37,16 @@ bool ExportResult::has_violations() const {
   return false;
 }
 
+Firmware FirmwareOf(const DroneProfile& profile) {
+  return profile.firmware == "ardupilot" ? Firmware::kArduPilot : Firmware::kPx4;
+}
+
 ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& options) {
   options.Check();
   const DroneProfile& profile = options.build.drone ? *options.build.drone : trajectory.drone;
+  const Firmware firmware = options.firmware.value_or(FirmwareOf(profile));
+  const bool overridden = options.firmware && (profile.firmware == "px4" || profile.firmware == "ardupilot") &&
+                          *options.firmware != FirmwareOf(profile);
   MissionBuildOptions build = options.build;
   build.absolute_altitudes = options.altitude_ref != AltitudeRef::kRelative;
 
@@ -69,13 +76,18 @@ ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& op
     const FlightModel model = info.flight_model(roi_auto);
     const int mission_index = static_cast<int>(std::find(models.begin(), models.end(), model) - models.begin());
     const Mission& mission = result.missions[mission_index];
-    FormatOutput written = info.write({mission, options.firmware, options.altitude_ref, profile,
-                                       any_rois && model.roi_tracking == RoiTracking::kNone});
+    FormatOutput written = info.write(
+        {mission, firmware, options.altitude_ref, profile, any_rois && model.roi_tracking == RoiTracking::kNone});
     FormatReport report;
     report.mission = mission_index;
     report.format = format;
     report.file_name = info.file_name;
     report.notes = std::move(written.notes);
+    if (overridden && info.mavlink) {
+      report.notes.insert(report.notes.begin(),
+                          fmt::format("--firmware {} overrides drone profile '{}', which flies {}",
+                                      FirmwareName(firmware), profile.name, profile.firmware));
+    }
     report.mission_items = written.mission_items;
     report.violations = ValidateMission(written.checked_mission ? *written.checked_mission : mission, format, profile,
                                         report.mission_items);
@@ -84,6 +96,7 @@ ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& op
   }
   result.mission = result.missions[result.reports.front().mission];
   result.drone_name = profile.name;
+  result.firmware = firmware;
 
   if (result.has_violations() && !options.force) {
     std::string message = "the mission breaks platform limits (nothing written; --force writes it anyway):";
@@ -107,7 +120,7 @@ ExportResult ExportMission(const Trajectory& trajectory, const ExportOptions& op
 Json ReportJson(const ExportResult& result, const ExportOptions& options) {
   const Mission& m = result.mission;
   Json j;
-  j["firmware"] = FirmwareName(options.firmware);
+  j["firmware"] = FirmwareName(result.firmware);
   j["drone"] = result.drone_name;
   j["altitude_ref"] = AltitudeRefName(options.altitude_ref);
   j["home"] = Json{{"lat_deg", m.home.lat_deg},
@@ -203,7 +216,7 @@ std::string ReportText(const ExportResult& result, const ExportOptions& options)
     out += fmt::format(", angle {:.2f} deg", fm.max_angle_error_reached_deg);
     if (!fm.rois.empty()) out += fmt::format(", {} point(s) of interest", fm.rois.size());
     if (IsMavlinkFormat(r.format))
-      out += fmt::format("; {} mission items, {}", r.mission_items, FirmwareName(options.firmware));
+      out += fmt::format("; {} mission items, {}", r.mission_items, FirmwareName(result.firmware));
     out += ")\n";
     for (const auto& n : r.notes) out += "  note: " + n + "\n";
     for (const auto& v : r.violations) out += "  LIMIT (forced): " + v.message + "\n";

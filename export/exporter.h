@@ -23,7 +23,8 @@ enum class RoiMode { kAuto, kOff };
 
 struct ExportOptions {
   std::vector<Format> formats;
-  Firmware firmware = Firmware::kPx4;
+  // --firmware: the MAVLink dialect for every drone. Unset, each drone's profile says (FirmwareOf).
+  std::optional<Firmware> firmware;
   AltitudeRef altitude_ref = AltitudeRef::kRelative;
   bool force = false;  // write even when a limit is broken (still reported)
   RoiMode roi = RoiMode::kAuto;
@@ -53,9 +54,14 @@ struct ExportResult {
   std::vector<Mission> missions;
   std::vector<ExportFile> files;
   std::vector<FormatReport> reports;
-  std::string drone_name;  // the drone profile the missions were checked against
+  std::string drone_name;              // the drone profile the missions were checked against
+  Firmware firmware = Firmware::kPx4;  // the MAVLink dialect the missions were written in
   bool has_violations() const;
 };
+
+// The MAVLink firmware of a drone profile: its own ("px4" or "ardupilot"); PX4's dialect, the generic
+// MAVLink one, for a profile that flies neither (DJI, a custom profile).
+Firmware FirmwareOf(const DroneProfile& profile);
 
 // Throws InputError for bad input, InfeasibleError (naming the waypoint and limit of the first
 // violations) when a limit is broken and !force.

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/drone_profiles.h"
 #include "core/error.h"
 #include "sample_trajectories.h"
 
@@ -42,6 +43,39 @@ TEST(Exporter, RoiAutoAndOffAndOneMissionPerFlightModel) {
   EXPECT_EQ(off.files[0].contents.find("\"command\": 195"), std::string::npos);
   EXPECT_EQ(off.files[3].contents.find("towardPOI"), std::string::npos);
   EXPECT_GT(off.missions[off.reports[0].mission].waypoints.size(), 2u);
+}
+
+// The firmware comes from the drone's profile unless --firmware says otherwise, and the report says
+// when it overrides a profile that flies PX4 or ArduPilot.
+TEST(Exporter, TheFirmwareIsTheProfilesUnlessOverridden) {
+  for (const DroneProfile& profile : DroneProfiles()) {
+    SCOPED_TRACE(profile.name);
+    Trajectory t = testing::FlybyPlan();
+    t.drone = profile;
+    ExportOptions options;
+    options.formats = {Format::kQgcPlan, Format::kLitchiCsv};
+    options.force = true;  // this test is about the dialect, not about whether every drone can fly the plan
+    const bool ardupilot = profile.firmware == "ardupilot";
+    const ExportResult own = ExportMission(t, options);
+    EXPECT_EQ(own.firmware, ardupilot ? Firmware::kArduPilot : Firmware::kPx4);
+    EXPECT_EQ(ReportJson(own, options)["firmware"], ardupilot ? "ardupilot" : "px4");
+    EXPECT_NE(own.files[0].contents.find(ardupilot ? "\"firmwareType\": 3" : "\"firmwareType\": 12"),
+              std::string::npos);
+    for (const auto& report : own.reports)
+      for (const auto& note : report.notes) EXPECT_EQ(note.find("overrides"), std::string::npos) << note;
+
+    options.firmware = ardupilot ? Firmware::kPx4 : Firmware::kArduPilot;
+    const ExportResult other = ExportMission(t, options);
+    EXPECT_EQ(other.firmware, *options.firmware);
+    EXPECT_NE(other.files[0].contents.find(ardupilot ? "\"firmwareType\": 12" : "\"firmwareType\": 3"),
+              std::string::npos);
+    const bool flies_mavlink = profile.firmware == "px4" || ardupilot;
+    const auto& notes = other.reports[0].notes;
+    const bool said = !notes.empty() && notes.front().find("--firmware") != std::string::npos &&
+                      notes.front().find(profile.name) != std::string::npos;
+    EXPECT_EQ(said, flies_mavlink) << (notes.empty() ? "" : notes.front());
+    for (const auto& note : other.reports[1].notes) EXPECT_EQ(note.find("--firmware"), std::string::npos) << note;
+  }
 }
 
 TEST(Exporter, EveryFormatDeterministic) {
