@@ -32,6 +32,7 @@
 #include <ctime>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -259,7 +260,10 @@ std::vector<std::string> Split(const std::string& text) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+
+// The command line (each flag is documented in the header comment).
+struct BenchArgs {
   int64_t faces = 2500000;
   double ratio = 0.1;
   int64_t samples = 1000000;
@@ -275,6 +279,27 @@ int main(int argc, char** argv) {
   std::string sample_counts;  // --sample-counts a,b,...: the sampled estimate at each count (convergence)
   int threads = 0;
   std::string export_raw, import_raw, label = "external";
+};
+
+// Fills `args` from the command line; an exit code when the run ends here (--list-methods, a bad flag).
+std::optional<int> ParseArgs(int argc, char** argv, BenchArgs& args) {
+  int64_t& faces = args.faces;
+  double& ratio = args.ratio;
+  int64_t& samples = args.samples;
+  std::string& methods = args.methods;
+  std::string& ratios = args.ratios;
+  std::string& error_goals = args.error_goals;
+  bool& presets = args.presets;
+  bool& end_to_end = args.end_to_end;
+  bool& defects = args.defects;
+  pg::internal::QemOptions& qem = args.qem;
+  int& partitions = args.partitions;
+  bool& bound = args.bound;
+  std::string& sample_counts = args.sample_counts;
+  int& threads = args.threads;
+  std::string& export_raw = args.export_raw;
+  std::string& import_raw = args.import_raw;
+  std::string& label = args.label;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -332,136 +357,128 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  return std::nullopt;
+}
 
-  std::unique_ptr<tbb::global_control> thread_cap;
-  if (threads > 0) {
-    thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                       static_cast<size_t>(threads));
-  }
+// --import-raw: another tool's decimation of the same input, measured as ours are.
+Json MeasureExternal(const pg::TriangleMesh& input, const BenchArgs& args, const pg::HausdorffOptions& hausdorff) {
+  const std::string& label = args.label;
+  const pg::TriangleMesh other = ReadRaw(args.import_raw);
+  const auto start = std::chrono::steady_clock::now();
+  const pg::HausdorffDistance d = pg::ApproximateHausdorff(input, other, hausdorff);
+  std::fprintf(stderr, "%s: %zu faces  hausdorff %.4f m\n", label.c_str(), other.num_faces(), d.symmetric_m);
   Json result;
-  auto start = std::chrono::steady_clock::now();
-  const pg::TriangleMesh input = [&] {
-    pg::TriangleMesh mesh = MakeTerrainMesh(faces);
-    if (defects) AddDefects(mesh);
-    return mesh;
-  }();
-  result["input"] = {{"faces", input.num_faces()},
-                     {"defects", defects},
-                     {"threads_cap", threads},
-                     {"vertices", input.num_vertices()},
-                     {"generate_s", Seconds(start)}};
-  std::fprintf(stderr, "input: %zu faces, %zu vertices\n", input.num_faces(), input.num_vertices());
-  if (!export_raw.empty()) WriteRaw(input, export_raw);
-  const int64_t target = static_cast<int64_t>(std::llround(ratio * input.num_faces()));
-  result["target_faces"] = target;
-  result["hausdorff_samples_per_mesh"] = samples;
-  pg::HausdorffOptions hausdorff;
-  hausdorff.samples_per_mesh = samples;
-
-  if (!import_raw.empty()) {
-    const pg::TriangleMesh other = ReadRaw(import_raw);
-    start = std::chrono::steady_clock::now();
-    const pg::HausdorffDistance d = pg::ApproximateHausdorff(input, other, hausdorff);
-    std::fprintf(stderr, "%s: %zu faces  hausdorff %.4f m\n", label.c_str(), other.num_faces(), d.symmetric_m);
-    result["external"] = {{"label", label},
-                          {"faces_out", other.num_faces()},
-                          {"hausdorff_m", d.symmetric_m},
-                          {"hausdorff_in_to_out_m", d.a_to_b_m},
-                          {"hausdorff_out_to_in_m", d.b_to_a_m},
-                          {"hausdorff_s", Seconds(start)}};
-    std::printf("%s", cinepath::DumpJson(result).c_str());
-    return 0;
-  }
-
-  if (end_to_end) {
-    const std::vector<std::string> names = Split(methods);
-    pg::DecimateOptions options;
-    options.method = pg::ParseDecimationMethod(names.empty() ? std::string("meshoptimizer_partitioned") : names.front(),
-                                               "--methods");
-    options.target_faces = target;
-    options.qem = qem;
-    if (partitions > 0) options.partitions = options.qem.tiles = partitions;
-    Json e2e;
-    start = std::chrono::steady_clock::now();
-    double cpu0 = CpuSeconds();
-    pg::MeshCleanReport report;
-    const pg::TriangleMesh cleaned = pg::CleanMesh(input, pg::MeshCleanOptions{}, &report);
-    const double clean_s = Seconds(start), clean_cpu = CpuSeconds() - cpu0;
-    start = std::chrono::steady_clock::now();
-    cpu0 = CpuSeconds();
-    const pg::TriangleMesh out = pg::DecimateMesh(cleaned, options);
-    const double decimate_s = Seconds(start), decimate_cpu = CpuSeconds() - cpu0;
-    start = std::chrono::steady_clock::now();
-    cpu0 = CpuSeconds();
-    std::unique_ptr<pg::MeshDistanceIndex> cleaned_index_ptr, out_index_ptr;
-    tbb::parallel_invoke([&] { cleaned_index_ptr = std::make_unique<pg::MeshDistanceIndex>(cleaned, "cleaned"); },
-                         [&] { out_index_ptr = std::make_unique<pg::MeshDistanceIndex>(out, "decimated"); });
-    const pg::MeshDistanceIndex& cleaned_index = *cleaned_index_ptr;
-    const pg::MeshDistanceIndex& out_index = *out_index_ptr;
-    const double index_s = Seconds(start), index_cpu = CpuSeconds() - cpu0;
-    auto phase = std::chrono::steady_clock::now();
-    double phase_cpu = CpuSeconds();
-    pg::HausdorffDistance d;
-    d.a_to_b_m = cleaned_index.MaxDistanceTo(out_index, hausdorff, &d.samples_a);
-    const double in_to_out_s = Seconds(phase), in_to_out_cpu = CpuSeconds() - phase_cpu;
-    phase = std::chrono::steady_clock::now();
-    phase_cpu = CpuSeconds();
-    d.b_to_a_m = out_index.MaxDistanceTo(cleaned_index, hausdorff, &d.samples_b);
-    const double out_to_in_s = Seconds(phase), out_to_in_cpu = CpuSeconds() - phase_cpu;
-    d.symmetric_m = std::max(d.a_to_b_m, d.b_to_a_m);
-    const double hausdorff_s = Seconds(start), hausdorff_cpu = CpuSeconds() - cpu0;
-    std::fprintf(stderr,
-                 "hausdorff phases: trees %.2f s (cpu %.2f), input->output %.2f s (cpu %.2f), "
-                 "output->input %.2f s (cpu %.2f)\n",
-                 index_s, index_cpu, in_to_out_s, in_to_out_cpu, out_to_in_s, out_to_in_cpu);
-    const double n = static_cast<double>(input.num_faces());
-    e2e["method"] = pg::DecimationMethodName(options.method);
-    e2e["clean"] = {
-        {"seconds", clean_s}, {"cpu_seconds", clean_cpu}, {"report", report.ToJson()}, {"digest", Digest(cleaned)}};
-    e2e["decimate"] = {{"seconds", decimate_s},
-                       {"cpu_seconds", decimate_cpu},
-                       {"faces_out", out.num_faces()},
-                       {"digest", Digest(out)}};
-    e2e["hausdorff"] = {{"seconds", hausdorff_s},
-                        {"cpu_seconds", hausdorff_cpu},
+  result["external"] = {{"label", label},
+                        {"faces_out", other.num_faces()},
                         {"hausdorff_m", d.symmetric_m},
-                        {"in_to_out_m", d.a_to_b_m},
-                        {"out_to_in_m", d.b_to_a_m},
-                        {"points_measured", d.samples_a + d.samples_b},
-                        {"trees_seconds", index_s},
-                        {"trees_cpu_seconds", index_cpu},
-                        {"in_to_out_cpu_seconds", in_to_out_cpu},
-                        {"out_to_in_cpu_seconds", out_to_in_cpu}};
-    const double cd = clean_s + decimate_s, cd_cpu = clean_cpu + decimate_cpu;
-    e2e["clean_decimate"] = {{"seconds", cd}, {"cpu_seconds", cd_cpu}, {"input_faces_per_s", n / cd}};
-    e2e["clean_decimate_hausdorff"] = {{"seconds", cd + hausdorff_s},
-                                       {"cpu_seconds", cd_cpu + hausdorff_cpu},
-                                       {"input_faces_per_s", n / (cd + hausdorff_s)}};
-    std::fprintf(stderr,
-                 "end-to-end %s: clean %.2f s (cpu %.2f)  decimate %.2f s (cpu %.2f) -> %zu faces  "
-                 "hausdorff %.4f m %.2f s (cpu %.2f)  clean+decimate %.2f M faces/s, with hausdorff "
-                 "%.2f M faces/s\n",
-                 e2e["method"].get<std::string>().c_str(), clean_s, clean_cpu, decimate_s, decimate_cpu,
-                 out.num_faces(), d.symmetric_m, hausdorff_s, hausdorff_cpu, n / cd / 1e6,
-                 n / (cd + hausdorff_s) / 1e6);
-    result["end_to_end"] = e2e;
-    std::printf("%s", cinepath::DumpJson(result).c_str());
-    return 0;
-  }
+                        {"hausdorff_in_to_out_m", d.a_to_b_m},
+                        {"hausdorff_out_to_in_m", d.b_to_a_m},
+                        {"hausdorff_s", Seconds(start)}};
+  return result;
+}
 
-  {
-    start = std::chrono::steady_clock::now();
-    const double cpu0 = CpuSeconds();
-    pg::MeshCleanReport report;
-    const pg::TriangleMesh cleaned = pg::CleanMesh(input, pg::MeshCleanOptions{}, &report);
-    const double s = Seconds(start);
-    result["clean"] = {{"seconds", s},
-                       {"cpu_seconds", CpuSeconds() - cpu0},
-                       {"faces_per_s", input.num_faces() / s},
-                       {"faces_out", cleaned.num_faces()}};
-    std::fprintf(stderr, "clean: %.2f s\n", s);
-  }
+// --end-to-end: clean, decimate and measure with one method, each phase timed (wall and CPU).
+Json MeasureEndToEnd(const pg::TriangleMesh& input, const BenchArgs& args, int64_t target,
+                     const pg::HausdorffOptions& hausdorff) {
+  const std::string& methods = args.methods;
+  const pg::internal::QemOptions& qem = args.qem;
+  const int& partitions = args.partitions;
+  auto start = std::chrono::steady_clock::now();
+  const std::vector<std::string> names = Split(methods);
+  pg::DecimateOptions options;
+  options.method =
+      pg::ParseDecimationMethod(names.empty() ? std::string("meshoptimizer_partitioned") : names.front(), "--methods");
+  options.target_faces = target;
+  options.qem = qem;
+  if (partitions > 0) options.partitions = options.qem.tiles = partitions;
+  Json e2e;
+  start = std::chrono::steady_clock::now();
+  double cpu0 = CpuSeconds();
+  pg::MeshCleanReport report;
+  const pg::TriangleMesh cleaned = pg::CleanMesh(input, pg::MeshCleanOptions{}, &report);
+  const double clean_s = Seconds(start), clean_cpu = CpuSeconds() - cpu0;
+  start = std::chrono::steady_clock::now();
+  cpu0 = CpuSeconds();
+  const pg::TriangleMesh out = pg::DecimateMesh(cleaned, options);
+  const double decimate_s = Seconds(start), decimate_cpu = CpuSeconds() - cpu0;
+  start = std::chrono::steady_clock::now();
+  cpu0 = CpuSeconds();
+  std::unique_ptr<pg::MeshDistanceIndex> cleaned_index_ptr, out_index_ptr;
+  tbb::parallel_invoke([&] { cleaned_index_ptr = std::make_unique<pg::MeshDistanceIndex>(cleaned, "cleaned"); },
+                       [&] { out_index_ptr = std::make_unique<pg::MeshDistanceIndex>(out, "decimated"); });
+  const pg::MeshDistanceIndex& cleaned_index = *cleaned_index_ptr;
+  const pg::MeshDistanceIndex& out_index = *out_index_ptr;
+  const double index_s = Seconds(start), index_cpu = CpuSeconds() - cpu0;
+  auto phase = std::chrono::steady_clock::now();
+  double phase_cpu = CpuSeconds();
+  pg::HausdorffDistance d;
+  d.a_to_b_m = cleaned_index.MaxDistanceTo(out_index, hausdorff, &d.samples_a);
+  const double in_to_out_s = Seconds(phase), in_to_out_cpu = CpuSeconds() - phase_cpu;
+  phase = std::chrono::steady_clock::now();
+  phase_cpu = CpuSeconds();
+  d.b_to_a_m = out_index.MaxDistanceTo(cleaned_index, hausdorff, &d.samples_b);
+  const double out_to_in_s = Seconds(phase), out_to_in_cpu = CpuSeconds() - phase_cpu;
+  d.symmetric_m = std::max(d.a_to_b_m, d.b_to_a_m);
+  const double hausdorff_s = Seconds(start), hausdorff_cpu = CpuSeconds() - cpu0;
+  std::fprintf(stderr,
+               "hausdorff phases: trees %.2f s (cpu %.2f), input->output %.2f s (cpu %.2f), "
+               "output->input %.2f s (cpu %.2f)\n",
+               index_s, index_cpu, in_to_out_s, in_to_out_cpu, out_to_in_s, out_to_in_cpu);
+  const double n = static_cast<double>(input.num_faces());
+  e2e["method"] = pg::DecimationMethodName(options.method);
+  e2e["clean"] = {
+      {"seconds", clean_s}, {"cpu_seconds", clean_cpu}, {"report", report.ToJson()}, {"digest", Digest(cleaned)}};
+  e2e["decimate"] = {
+      {"seconds", decimate_s}, {"cpu_seconds", decimate_cpu}, {"faces_out", out.num_faces()}, {"digest", Digest(out)}};
+  e2e["hausdorff"] = {{"seconds", hausdorff_s},
+                      {"cpu_seconds", hausdorff_cpu},
+                      {"hausdorff_m", d.symmetric_m},
+                      {"in_to_out_m", d.a_to_b_m},
+                      {"out_to_in_m", d.b_to_a_m},
+                      {"points_measured", d.samples_a + d.samples_b},
+                      {"trees_seconds", index_s},
+                      {"trees_cpu_seconds", index_cpu},
+                      {"in_to_out_cpu_seconds", in_to_out_cpu},
+                      {"out_to_in_cpu_seconds", out_to_in_cpu}};
+  const double cd = clean_s + decimate_s, cd_cpu = clean_cpu + decimate_cpu;
+  e2e["clean_decimate"] = {{"seconds", cd}, {"cpu_seconds", cd_cpu}, {"input_faces_per_s", n / cd}};
+  e2e["clean_decimate_hausdorff"] = {{"seconds", cd + hausdorff_s},
+                                     {"cpu_seconds", cd_cpu + hausdorff_cpu},
+                                     {"input_faces_per_s", n / (cd + hausdorff_s)}};
+  std::fprintf(stderr,
+               "end-to-end %s: clean %.2f s (cpu %.2f)  decimate %.2f s (cpu %.2f) -> %zu faces  "
+               "hausdorff %.4f m %.2f s (cpu %.2f)  clean+decimate %.2f M faces/s, with hausdorff "
+               "%.2f M faces/s\n",
+               e2e["method"].get<std::string>().c_str(), clean_s, clean_cpu, decimate_s, decimate_cpu, out.num_faces(),
+               d.symmetric_m, hausdorff_s, hausdorff_cpu, n / cd / 1e6, n / (cd + hausdorff_s) / 1e6);
+  return e2e;
+}
 
+// The cleaning step alone.
+Json MeasureClean(const pg::TriangleMesh& input) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu0 = CpuSeconds();
+  pg::MeshCleanReport report;
+  const pg::TriangleMesh cleaned = pg::CleanMesh(input, pg::MeshCleanOptions{}, &report);
+  const double s = Seconds(start);
+  std::fprintf(stderr, "clean: %.2f s\n", s);
+  return {{"seconds", s},
+          {"cpu_seconds", CpuSeconds() - cpu0},
+          {"faces_per_s", input.num_faces() / s},
+          {"faces_out", cleaned.num_faces()}};
+}
+
+// Every method at every budget (a face ratio, or an error goal), with its Hausdorff distance to the input.
+Json DecimationTable(const pg::TriangleMesh& input, const BenchArgs& args, const pg::HausdorffOptions& hausdorff) {
+  const double& ratio = args.ratio;
+  const std::string& methods = args.methods;
+  const std::string& ratios = args.ratios;
+  const std::string& error_goals = args.error_goals;
+  const pg::internal::QemOptions& qem = args.qem;
+  const int& partitions = args.partitions;
+  const bool& bound = args.bound;
+  const std::string& sample_counts = args.sample_counts;
+  auto start = std::chrono::steady_clock::now();
   Json rows = Json::array();
   std::unique_ptr<pg::MeshDistanceIndex> input_index;  // built once, for every method
   std::vector<double> budgets;
@@ -549,31 +566,83 @@ int main(int argc, char** argv) {
                       {"hausdorff_s", hs}});
       for (auto it = extra.begin(); it != extra.end(); ++it) rows.back()[it.key()] = it.value();
     }
-  result["decimation"] = rows;
+  return rows;
+}
 
-  if (presets) {
-    Json table = Json::array();
-    for (cinepath::Quality quality :
-         {cinepath::Quality::kDraft, cinepath::Quality::kStandard, cinepath::Quality::kFinal}) {
-      pg::SurfacePipelineOptions options;
-      options.quality = quality;
-      start = std::chrono::steady_clock::now();
-      const double cpu0 = CpuSeconds();
-      const pg::SurfacePipelineResult r = pg::BuildSurfaceFromMesh(input, nullptr, options);
-      const double s = Seconds(start);
-      const double cpu = CpuSeconds() - cpu0;
-      std::fprintf(stderr, "preset %-8s %8.2f s  %9zu faces  hausdorff %.4f m\n", cinepath::QualityName(quality), s,
-                   r.mesh.num_faces(), r.report["output"]["hausdorff_m"].get<double>());
-      table.push_back({{"quality", cinepath::QualityName(quality)},
-                       {"seconds", s},
-                       {"cpu_seconds", cpu},
-                       {"faces_out", r.mesh.num_faces()},
-                       {"hausdorff_m", r.report["output"]["hausdorff_m"]},
-                       {"glb_bytes", r.glb.size()},
-                       {"steps", r.report["steps"]}});
-    }
-    result["presets"] = table;
+// --presets: the surface pipeline's draft, standard and final on the input.
+Json PresetTable(const pg::TriangleMesh& input) {
+  Json table = Json::array();
+  for (cinepath::Quality quality :
+       {cinepath::Quality::kDraft, cinepath::Quality::kStandard, cinepath::Quality::kFinal}) {
+    pg::SurfacePipelineOptions options;
+    options.quality = quality;
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu0 = CpuSeconds();
+    const pg::SurfacePipelineResult r = pg::BuildSurfaceFromMesh(input, nullptr, options);
+    const double s = Seconds(start);
+    const double cpu = CpuSeconds() - cpu0;
+    std::fprintf(stderr, "preset %-8s %8.2f s  %9zu faces  hausdorff %.4f m\n", cinepath::QualityName(quality), s,
+                 r.mesh.num_faces(), r.report["output"]["hausdorff_m"].get<double>());
+    table.push_back({{"quality", cinepath::QualityName(quality)},
+                     {"seconds", s},
+                     {"cpu_seconds", cpu},
+                     {"faces_out", r.mesh.num_faces()},
+                     {"hausdorff_m", r.report["output"]["hausdorff_m"]},
+                     {"glb_bytes", r.glb.size()},
+                     {"steps", r.report["steps"]}});
   }
+  return table;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  BenchArgs args;
+  if (const auto exit_code = ParseArgs(argc, argv, args)) return *exit_code;
+  const int64_t& faces = args.faces;
+  const double& ratio = args.ratio;
+  const int64_t& samples = args.samples;
+  const bool& defects = args.defects;
+  const int& threads = args.threads;
+  const std::string& export_raw = args.export_raw;
+  std::unique_ptr<tbb::global_control> thread_cap;
+  if (threads > 0) {
+    thread_cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                       static_cast<size_t>(threads));
+  }
+  Json result;
+  const auto start = std::chrono::steady_clock::now();
+  const pg::TriangleMesh input = [&] {
+    pg::TriangleMesh mesh = MakeTerrainMesh(faces);
+    if (defects) AddDefects(mesh);
+    return mesh;
+  }();
+  result["input"] = {{"faces", input.num_faces()},
+                     {"defects", defects},
+                     {"threads_cap", threads},
+                     {"vertices", input.num_vertices()},
+                     {"generate_s", Seconds(start)}};
+  std::fprintf(stderr, "input: %zu faces, %zu vertices\n", input.num_faces(), input.num_vertices());
+  if (!export_raw.empty()) WriteRaw(input, export_raw);
+  const int64_t target = static_cast<int64_t>(std::llround(ratio * input.num_faces()));
+  result["target_faces"] = target;
+  result["hausdorff_samples_per_mesh"] = samples;
+  pg::HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = samples;
+
+  if (!args.import_raw.empty()) {
+    result.update(MeasureExternal(input, args, hausdorff));
+    std::printf("%s", cinepath::DumpJson(result).c_str());
+    return 0;
+  }
+  if (args.end_to_end) {
+    result["end_to_end"] = MeasureEndToEnd(input, args, target, hausdorff);
+    std::printf("%s", cinepath::DumpJson(result).c_str());
+    return 0;
+  }
+  result["clean"] = MeasureClean(input);
+  result["decimation"] = DecimationTable(input, args, hausdorff);
+  if (args.presets) result["presets"] = PresetTable(input);
   std::printf("%s", cinepath::DumpJson(result).c_str());
   return 0;
 }
