@@ -180,7 +180,10 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbWriteOptions& option
   return WriteGlb(mesh_enu, nullptr, options);
 }
 
-std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbTexture* texture, const GlbWriteOptions& options) {
+namespace {
+
+// The refusals of WriteGlb: an empty mesh, per-vertex arrays of the wrong size, extras that are not an object.
+void CheckGlbInput(const TriangleMesh& mesh_enu, const GlbTexture* texture, const GlbWriteOptions& options) {
   if (mesh_enu.num_faces() == 0 || mesh_enu.num_vertices() == 0) {
     throw InputError("glb: the mesh is empty");
   }
@@ -197,7 +200,10 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbTexture* texture, co
     }
     if (texture->image_bytes.empty() || texture->mime_type.empty()) throw InputError("glb: texture: no image");
   }
+}
 
+// The vertex and index arrays in glTF's frame and colour space (positions Y-up, colours linear).
+VertexData GltfVertexData(const TriangleMesh& mesh_enu, const GlbTexture* texture) {
   VertexData data;
   if (texture != nullptr) {
     data.texcoords.reserve(2 * texture->texcoords.size());
@@ -229,97 +235,87 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbTexture* texture, co
       data.indices.push_back(index);
     }
   }
+  return data;
+}
 
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "cinepath";
-  if (options.extras.is_object()) model.asset.extras = ValueFromJson(options.extras);
-
-  std::vector<unsigned char> bin;
-  tinygltf::Primitive primitive;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
-
-  tinygltf::Accessor index_accessor;
-  index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  index_accessor.type = TINYGLTF_TYPE_SCALAR;
-  tinygltf::Accessor position_accessor;
-  position_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  position_accessor.type = TINYGLTF_TYPE_VEC3;
-  tinygltf::Accessor color_accessor;
-  color_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  color_accessor.type = TINYGLTF_TYPE_VEC3;
-  tinygltf::Accessor texcoord_accessor;
-  texcoord_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  texcoord_accessor.type = TINYGLTF_TYPE_VEC2;
-
-  if (options.draco) {
-    const DracoResult draco = EncodeDraco(data, options);
-    AppendBytes(bin, draco.bytes.data(), draco.bytes.size());
-    const int view = AddBufferView(model, 0, draco.bytes.size(), 0);
-    PadTo4(bin);
-    index_accessor.count = 3 * draco.num_faces;
-    position_accessor.count = draco.num_points;
-    position_accessor.minValues = draco.position_min;
-    position_accessor.maxValues = draco.position_max;
-    color_accessor.count = draco.num_points;
-    texcoord_accessor.count = draco.num_points;
-
-    tinygltf::Value::Object attributes;
-    attributes["POSITION"] = tinygltf::Value(draco.position_id);
-    if (draco.color_id >= 0) attributes["COLOR_0"] = tinygltf::Value(draco.color_id);
-    if (draco.texcoord_id >= 0) attributes["TEXCOORD_0"] = tinygltf::Value(draco.texcoord_id);
-    tinygltf::Value::Object extension;
-    extension["bufferView"] = tinygltf::Value(view);
-    extension["attributes"] = tinygltf::Value(std::move(attributes));
-    primitive.extensions[kDracoExtension] = tinygltf::Value(std::move(extension));
-    model.extensionsUsed.push_back(kDracoExtension);
-    model.extensionsRequired.push_back(kDracoExtension);
-  } else {
-    const size_t index_offset = bin.size();
-    AppendBytes(bin, data.indices.data(), data.indices.size() * sizeof(uint32_t));
-    index_accessor.bufferView =
-        AddBufferView(model, index_offset, bin.size() - index_offset, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    index_accessor.count = data.indices.size();
-    PadTo4(bin);
-
-    const size_t position_offset = bin.size();
-    AppendBytes(bin, data.positions.data(), data.positions.size() * sizeof(float));
-    position_accessor.bufferView =
-        AddBufferView(model, position_offset, bin.size() - position_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
-    position_accessor.count = mesh_enu.num_vertices();
-    MinMax(data.positions, position_accessor.minValues, position_accessor.maxValues);
-
-    if (!data.colors.empty()) {
-      const size_t color_offset = bin.size();
-      AppendBytes(bin, data.colors.data(), data.colors.size() * sizeof(float));
-      color_accessor.bufferView =
-          AddBufferView(model, color_offset, bin.size() - color_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
-      color_accessor.count = mesh_enu.num_vertices();
-    }
-    if (!data.texcoords.empty()) {
-      const size_t texcoord_offset = bin.size();
-      AppendBytes(bin, data.texcoords.data(), data.texcoords.size() * sizeof(float));
-      texcoord_accessor.bufferView =
-          AddBufferView(model, texcoord_offset, bin.size() - texcoord_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
-      texcoord_accessor.count = mesh_enu.num_vertices();
-    }
+// The accessors of the one primitive, each with its component type and shape; counts and views are set
+// by the buffer writers below.
+struct PrimitiveAccessors {
+  tinygltf::Accessor index, position, color, texcoord;
+  PrimitiveAccessors() {
+    index.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    index.type = TINYGLTF_TYPE_SCALAR;
+    position.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    position.type = TINYGLTF_TYPE_VEC3;
+    color.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    color.type = TINYGLTF_TYPE_VEC3;
+    texcoord.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    texcoord.type = TINYGLTF_TYPE_VEC2;
   }
+};
 
-  model.accessors.push_back(index_accessor);
-  primitive.indices = 0;
-  model.accessors.push_back(position_accessor);
-  primitive.attributes["POSITION"] = 1;
+// KHR_draco_mesh_compression: one compressed buffer view the extension points at.
+void AddDracoPrimitive(const VertexData& data, const GlbWriteOptions& options, tinygltf::Model& model,
+                       std::vector<unsigned char>& bin, PrimitiveAccessors& accessors, tinygltf::Primitive& primitive) {
+  const DracoResult draco = EncodeDraco(data, options);
+  AppendBytes(bin, draco.bytes.data(), draco.bytes.size());
+  const int view = AddBufferView(model, 0, draco.bytes.size(), 0);
+  PadTo4(bin);
+  accessors.index.count = 3 * draco.num_faces;
+  accessors.position.count = draco.num_points;
+  accessors.position.minValues = draco.position_min;
+  accessors.position.maxValues = draco.position_max;
+  accessors.color.count = draco.num_points;
+  accessors.texcoord.count = draco.num_points;
+
+  tinygltf::Value::Object attributes;
+  attributes["POSITION"] = tinygltf::Value(draco.position_id);
+  if (draco.color_id >= 0) attributes["COLOR_0"] = tinygltf::Value(draco.color_id);
+  if (draco.texcoord_id >= 0) attributes["TEXCOORD_0"] = tinygltf::Value(draco.texcoord_id);
+  tinygltf::Value::Object extension;
+  extension["bufferView"] = tinygltf::Value(view);
+  extension["attributes"] = tinygltf::Value(std::move(attributes));
+  primitive.extensions[kDracoExtension] = tinygltf::Value(std::move(extension));
+  model.extensionsUsed.push_back(kDracoExtension);
+  model.extensionsRequired.push_back(kDracoExtension);
+}
+
+// Plain buffers: one view each for the indices, positions, colours and texture coordinates.
+void AddPlainPrimitive(const VertexData& data, size_t num_vertices, tinygltf::Model& model,
+                       std::vector<unsigned char>& bin, PrimitiveAccessors& accessors) {
+  const size_t index_offset = bin.size();
+  AppendBytes(bin, data.indices.data(), data.indices.size() * sizeof(uint32_t));
+  accessors.index.bufferView =
+      AddBufferView(model, index_offset, bin.size() - index_offset, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  accessors.index.count = data.indices.size();
+  PadTo4(bin);
+
+  const size_t position_offset = bin.size();
+  AppendBytes(bin, data.positions.data(), data.positions.size() * sizeof(float));
+  accessors.position.bufferView =
+      AddBufferView(model, position_offset, bin.size() - position_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
+  accessors.position.count = num_vertices;
+  MinMax(data.positions, accessors.position.minValues, accessors.position.maxValues);
+
   if (!data.colors.empty()) {
-    model.accessors.push_back(color_accessor);
-    primitive.attributes["COLOR_0"] = static_cast<int>(model.accessors.size()) - 1;
+    const size_t color_offset = bin.size();
+    AppendBytes(bin, data.colors.data(), data.colors.size() * sizeof(float));
+    accessors.color.bufferView =
+        AddBufferView(model, color_offset, bin.size() - color_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
+    accessors.color.count = num_vertices;
   }
   if (!data.texcoords.empty()) {
-    model.accessors.push_back(texcoord_accessor);
-    primitive.attributes["TEXCOORD_0"] = static_cast<int>(model.accessors.size()) - 1;
+    const size_t texcoord_offset = bin.size();
+    AppendBytes(bin, data.texcoords.data(), data.texcoords.size() * sizeof(float));
+    accessors.texcoord.bufferView =
+        AddBufferView(model, texcoord_offset, bin.size() - texcoord_offset, TINYGLTF_TARGET_ARRAY_BUFFER);
+    accessors.texcoord.count = num_vertices;
   }
+}
 
-  // A matte material: the colour comes from COLOR_0 (multiplied with baseColorFactor 1) and, with a
-  // texture, from the texture multiplied by COLOR_0.
+// A matte material: the colour comes from COLOR_0 (multiplied with baseColorFactor 1) and, with a
+// texture, from the texture multiplied by COLOR_0.
+void AddMaterial(const GlbTexture* texture, tinygltf::Model& model, std::vector<unsigned char>& bin) {
   tinygltf::Material material;
   if (texture != nullptr) {
     PadTo4(bin);
@@ -349,8 +345,10 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbTexture* texture, co
   material.pbrMetallicRoughness.roughnessFactor = 1.0;
   material.doubleSided = true;
   model.materials.push_back(material);
-  primitive.material = 0;
+}
 
+// The one mesh, its node and the scene (extras copied onto the scene too).
+void AddSceneGraph(tinygltf::Primitive primitive, const GlbWriteOptions& options, tinygltf::Model& model) {
   tinygltf::Mesh mesh;
   mesh.name = "scene";
   mesh.primitives.push_back(primitive);
@@ -367,6 +365,44 @@ std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbTexture* texture, co
   if (options.extras.is_object()) scene.extras = ValueFromJson(options.extras);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
+}
+
+}  // namespace
+
+std::string WriteGlb(const TriangleMesh& mesh_enu, const GlbTexture* texture, const GlbWriteOptions& options) {
+  CheckGlbInput(mesh_enu, texture, options);
+  const VertexData data = GltfVertexData(mesh_enu, texture);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "cinepath";
+  if (options.extras.is_object()) model.asset.extras = ValueFromJson(options.extras);
+
+  std::vector<unsigned char> bin;
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  PrimitiveAccessors accessors;
+  if (options.draco) {
+    AddDracoPrimitive(data, options, model, bin, accessors, primitive);
+  } else {
+    AddPlainPrimitive(data, mesh_enu.num_vertices(), model, bin, accessors);
+  }
+  model.accessors.push_back(accessors.index);
+  primitive.indices = 0;
+  model.accessors.push_back(accessors.position);
+  primitive.attributes["POSITION"] = 1;
+  if (!data.colors.empty()) {
+    model.accessors.push_back(accessors.color);
+    primitive.attributes["COLOR_0"] = static_cast<int>(model.accessors.size()) - 1;
+  }
+  if (!data.texcoords.empty()) {
+    model.accessors.push_back(accessors.texcoord);
+    primitive.attributes["TEXCOORD_0"] = static_cast<int>(model.accessors.size()) - 1;
+  }
+
+  AddMaterial(texture, model, bin);
+  primitive.material = 0;
+  AddSceneGraph(primitive, options, model);
 
   tinygltf::Buffer buffer;
   buffer.data = std::move(bin);
