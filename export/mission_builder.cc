@@ -62,9 +62,10 @@ HomeSpec ParseHomeSpec(const std::string& text, const std::string& option) {
   return home;
 }
 
-Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& options) {
-  const std::string& plan = options.plan_name;
-  const auto& samples = trajectory.samples;
+namespace {
+
+// Every sample finite, times increasing; InputError naming the plan, the sample and the field.
+void CheckSamples(const std::vector<TrajectorySample>& samples, const std::string& plan) {
   if (samples.empty()) throw InputError(Located(plan, "samples: the plan has no samples"));
   for (size_t i = 0; i < samples.size(); ++i) {
     const TrajectorySample& s = samples[i];
@@ -80,9 +81,13 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
       throw InputError(Located(plan, "samples[" + std::to_string(i) + "].time_s: times must increase"));
     }
   }
+}
 
-  const Egm96Geoid& geoid = Egm96Geoid::Default();
-  Mission mission;
+// The mission's WGS84 origin (the plan's, else the scene's, else home's) and its home (--home, else the
+// origin); InputError when neither places the plan.
+Geodetic PlaceMission(const Trajectory& trajectory, const MissionBuildOptions& options, const Egm96Geoid& geoid,
+                      Mission& mission) {
+  const std::string& plan = options.plan_name;
   std::optional<Geodetic> origin = trajectory.origin ? trajectory.origin : options.scene_origin;
   if (!origin) {
     if (options.absolute_altitudes) {
@@ -112,7 +117,13 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
     mission.home.ellipsoidal_height_m = origin->height_m;
     mission.home.amsl_m = geoid.AmslFromEllipsoidalM(origin->lat_deg, origin->lon_deg, origin->height_m);
   }
+  return *origin;
+}
 
+// The limits the platform checks read: the lens's range, the drone's fence and speed, home's height.
+void SetPlatformLimits(const Trajectory& trajectory, const MissionBuildOptions& options, const Geodetic& origin,
+                       Mission& mission) {
+  const auto& samples = trajectory.samples;
   const CameraSpec& camera = trajectory.camera;
   mission.min_focal_length_mm = camera.min_focal_length_mm;
   mission.max_focal_length_mm = camera.max_focal_length_mm;
@@ -120,15 +131,18 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
   mission.plan_sample_count = static_cast<int>(samples.size());
   const DroneProfile& drone = options.drone ? *options.drone : trajectory.drone;
   mission.home_up_m =
-      EnuFrame(*origin)
+      EnuFrame(origin)
           .EnuFromGeodetic(Geodetic{mission.home.lat_deg, mission.home.lon_deg, mission.home.ellipsoidal_height_m})
           .z();
   mission.fence_min_up_m = drone.min_altitude_m;
   mission.fence_max_up_m = drone.max_altitude_m;
   mission.plan_max_horizontal_speed_mps = drone.max_horizontal_speed_m_s;
   mission.plan_drone_name = drone.name;
+}
 
-  // Continuous runs of samples, split where a shot with transition "cut" begins.
+// Continuous runs of samples, [first, last], split where a shot with transition "cut" begins.
+std::vector<std::pair<int, int>> CutRuns(const Trajectory& trajectory) {
+  const auto& samples = trajectory.samples;
   std::vector<std::pair<int, int>> runs;  // [first, last] sample indices
   int run_start = 0;
   for (size_t i = 1; i < samples.size(); ++i) {
@@ -140,32 +154,49 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
     run_start = static_cast<int>(i);
   }
   runs.emplace_back(run_start, static_cast<int>(samples.size()) - 1);
+  return runs;
+}
 
+// The selection options of one run: its points of interest detected where the target tracks them.
+SelectionOptions RunSelectionOptions(const std::vector<TrajectorySample>& run, const MissionBuildOptions& options) {
+  SelectionOptions selection_options = options.selection;
+  selection_options.rois.clear();
+  if (selection_options.roi_tracking != RoiTracking::kNone) {
+    selection_options.rois =
+        DetectRoiStretches(run, RoiOptions{selection_options.max_angle_deg, options.roi_min_duration_s});
+  }
+  if (selection_options.roi_tracking == RoiTracking::kHeading) {
+    // The target turns its nose to the point: only where the plan's nose already points at it (a
+    // gimbal panned off the nose would be turned away).
+    std::erase_if(selection_options.rois, [&](const RoiStretch& r) {
+      for (int k = r.first_sample; k <= r.last_sample; ++k) {
+        const Eigen::Vector3d to = r.point_enu_m - run[k].position_enu_m;
+        if (to.head<2>().norm() < 1e-6) return true;
+        const double bearing = HeadingDegFromEnuYaw(std::atan2(to.y(), to.x()));
+        if (std::abs(AngleDiffDeg(bearing, run[k].drone_heading_deg)) > selection_options.max_angle_deg) return true;
+      }
+      return false;
+    });
+  }
+  return selection_options;
+}
+
+// The waypoints chosen in every run (sample indices into the whole plan) with their record and transit
+// marks and turn damping, and the points of interest; the deviations reached go into `mission`.
+struct SelectedWaypoints {
   std::vector<int> idx;
   std::vector<bool> starts, stops, transits;
   std::vector<double> damping;
   std::vector<RoiStretch> roi_stretches;
+};
+
+SelectedWaypoints SelectRunWaypoints(const std::vector<TrajectorySample>& samples,
+                                     const std::vector<std::pair<int, int>>& runs, const MissionBuildOptions& options,
+                                     Mission& mission) {
+  SelectedWaypoints out;
   for (const auto& [first, last] : runs) {
     const std::vector<TrajectorySample> run(samples.begin() + first, samples.begin() + last + 1);
-    SelectionOptions selection_options = options.selection;
-    selection_options.rois.clear();
-    if (selection_options.roi_tracking != RoiTracking::kNone) {
-      selection_options.rois =
-          DetectRoiStretches(run, RoiOptions{selection_options.max_angle_deg, options.roi_min_duration_s});
-    }
-    if (selection_options.roi_tracking == RoiTracking::kHeading) {
-      // The target turns its nose to the point: only where the plan's nose already points at it (a
-      // gimbal panned off the nose would be turned away).
-      std::erase_if(selection_options.rois, [&](const RoiStretch& r) {
-        for (int k = r.first_sample; k <= r.last_sample; ++k) {
-          const Eigen::Vector3d to = r.point_enu_m - run[k].position_enu_m;
-          if (to.head<2>().norm() < 1e-6) return true;
-          const double bearing = HeadingDegFromEnuYaw(std::atan2(to.y(), to.x()));
-          if (std::abs(AngleDiffDeg(bearing, run[k].drone_heading_deg)) > selection_options.max_angle_deg) return true;
-        }
-        return false;
-      });
-    }
+    const SelectionOptions selection_options = RunSelectionOptions(run, options);
     const Selection selection = SelectWaypoints(run, selection_options);
     double deviation_m = selection.max_deviation_m;
     mission.straight_deviation_reached_m = std::max(mission.straight_deviation_reached_m, deviation_m);
@@ -191,23 +222,24 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
       RoiStretch global = r;
       global.first_sample += first;
       global.last_sample += first;
-      roi_stretches.push_back(global);
+      out.roi_stretches.push_back(global);
     }
     mission.max_angle_error_reached_deg = std::max(mission.max_angle_error_reached_deg, angle_deg);
     for (size_t k = 0; k < selection.sample_indices.size(); ++k) {
-      idx.push_back(first + selection.sample_indices[k]);
-      starts.push_back(k == 0);
-      stops.push_back(k + 1 == selection.sample_indices.size());
-      transits.push_back(k + 1 == selection.sample_indices.size() && last + 1 < static_cast<int>(samples.size()));
-      damping.push_back(run_damping[k]);
+      out.idx.push_back(first + selection.sample_indices[k]);
+      out.starts.push_back(k == 0);
+      out.stops.push_back(k + 1 == selection.sample_indices.size());
+      out.transits.push_back(k + 1 == selection.sample_indices.size() && last + 1 < static_cast<int>(samples.size()));
+      out.damping.push_back(run_damping[k]);
     }
   }
-  mission.turn_model = options.turn_model;
-  mission.roi_tracking = options.selection.roi_tracking;
-  mission.cut_count = static_cast<int>(runs.size()) - 1;
-  mission.transit_speed_mps = options.transit_speed_mps;
+  return out;
+}
 
-  const EnuFrame frame(*origin);
+// One MissionWaypoint per selected sample, georeferenced.
+void AddWaypoints(const std::vector<TrajectorySample>& samples, const SelectedWaypoints& selected,
+                  const EnuFrame& frame, const Egm96Geoid& geoid, Mission& mission) {
+  const std::vector<int>& idx = selected.idx;
   for (size_t w = 0; w < idx.size(); ++w) {
     const TrajectorySample& s = samples[idx[w]];
     MissionWaypoint wp;
@@ -221,14 +253,19 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
     wp.focal_length_mm = s.focal_length_mm;
     wp.focus_distance_m = s.focus_distance_m;
     wp.f_number = s.f_number;
-    wp.record_start = starts[w];
-    wp.record_stop = stops[w];
-    wp.transit_after = transits[w];
-    wp.turn_damping_m = damping[w];
+    wp.record_start = selected.starts[w];
+    wp.record_stop = selected.stops[w];
+    wp.transit_after = selected.transits[w];
+    wp.turn_damping_m = selected.damping[w];
     mission.waypoints.push_back(wp);
   }
-  // Points of interest: georeferenced, and tied to the waypoints at their ends.
-  for (const RoiStretch& r : roi_stretches) {
+}
+
+// Points of interest: georeferenced, and tied to the waypoints at their ends.
+void AddRois(const std::vector<TrajectorySample>& samples, const SelectedWaypoints& selected, const EnuFrame& frame,
+             const Egm96Geoid& geoid, Mission& mission) {
+  const std::vector<int>& idx = selected.idx;
+  for (const RoiStretch& r : selected.roi_stretches) {
     MissionRoi roi;
     roi.first_waypoint = static_cast<int>(std::find(idx.begin(), idx.end(), r.first_sample) - idx.begin());
     roi.last_waypoint = static_cast<int>(std::find(idx.begin(), idx.end(), r.last_sample) - idx.begin());
@@ -243,7 +280,10 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
     }
     mission.rois.push_back(roi);
   }
-  // Speed of the leg leaving each waypoint; the last keeps the previous leg's speed.
+}
+
+// Speed of the leg leaving each waypoint; the last keeps the previous leg's speed.
+void SetLegSpeeds(const MissionBuildOptions& options, Mission& mission) {
   auto& wps = mission.waypoints;
   for (size_t w = 0; w + 1 < wps.size(); ++w) {
     const double length_m = (wps[w + 1].position_enu_m - wps[w].position_enu_m).norm();
@@ -251,6 +291,27 @@ Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& op
         wps[w].transit_after ? options.transit_speed_mps : length_m / (wps[w + 1].time_s - wps[w].time_s);
   }
   if (wps.size() >= 2) wps.back().speed_mps = wps[wps.size() - 2].speed_mps;
+}
+
+}  // namespace
+
+Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& options) {
+  const auto& samples = trajectory.samples;
+  CheckSamples(samples, options.plan_name);
+  const Egm96Geoid& geoid = Egm96Geoid::Default();
+  Mission mission;
+  const Geodetic origin = PlaceMission(trajectory, options, geoid, mission);
+  SetPlatformLimits(trajectory, options, origin, mission);
+  const std::vector<std::pair<int, int>> runs = CutRuns(trajectory);
+  const SelectedWaypoints selected = SelectRunWaypoints(samples, runs, options, mission);
+  mission.turn_model = options.turn_model;
+  mission.roi_tracking = options.selection.roi_tracking;
+  mission.cut_count = static_cast<int>(runs.size()) - 1;
+  mission.transit_speed_mps = options.transit_speed_mps;
+  const EnuFrame frame(origin);
+  AddWaypoints(samples, selected, frame, geoid, mission);
+  AddRois(samples, selected, frame, geoid, mission);
+  SetLegSpeeds(options, mission);
   return mission;
 }
 
