@@ -6,6 +6,10 @@
 #include <map>
 #include <optional>
 
+#include <Eigen/Eigenvalues>
+#include <string>
+#include <vector>
+
 #include "core/error.h"
 #include "core/fatal_signal.h"
 #include "core/geoid.h"
@@ -58,14 +62,15 @@ ColmapModel TransformModel(const ColmapModel& model, const Similarity3& t) {
 }
 
 AffineMap FitAffineBetweenModels(const ColmapModel& from, const ColmapModel& to) {
-  // Normal equations of [x 1] A = y, about the centroids for conditioning.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> pairs;
   for (const auto& [id, p] : from.points3d) {
     const auto it = to.points3d.find(id);
     if (it != to.points3d.end() && p.track.size() >= 2) pairs.emplace_back(p.xyz, it->second.xyz);
   }
-  AffineMap map;
-  if (pairs.size() < 4) return map;
+  if (pairs.size() < 3) {
+    throw InputError("mapping the dense input into ENU: the COLMAP model has " + std::to_string(pairs.size()) +
+                     " 3D points seen by two or more images; at least 3 are needed");
+  }
   Eigen::Vector3d cx = Eigen::Vector3d::Zero(), cy = Eigen::Vector3d::Zero();
   for (const auto& [x, y] : pairs) cx += x, cy += y;
   cx /= static_cast<double>(pairs.size());
@@ -75,8 +80,29 @@ AffineMap FitAffineBetweenModels(const ColmapModel& from, const ColmapModel& to)
     xx += (x - cx) * (x - cx).transpose();
     yx += (y - cy) * (x - cx).transpose();
   }
-  map.linear = yx * xx.inverse();
-  map.translation = cy - map.linear * cx;
+  // Guard before the solve: points on a plane or a line leave the normal equations singular, and
+  // the inverse would be inf/NaN. Their spread's eigenvalues say so; then the similarity (which a plane of
+  // points does determine, a line does not) maps the input.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spread(xx);
+  const Eigen::Vector3d ev = spread.eigenvalues();  // ascending
+  const double kCondition = 1e-10;
+  AffineMap map;
+  if (!(ev(2) > 0) || ev(1) <= kCondition * ev(2)) {
+    throw InputError(
+        "mapping the dense input into ENU: the COLMAP model's 3D points lie on a line (or coincide); "
+        "they do not fix the dense input's position");
+  }
+  if (ev(0) > kCondition * ev(2)) {
+    map.linear = yx * xx.inverse();
+    map.translation = cy - map.linear * cx;
+  } else {
+    std::vector<Eigen::Vector3d> source, target;
+    for (const auto& [x, y] : pairs) source.push_back(x), target.push_back(y);
+    const Similarity3 t = FitSimilarityLeastSquares(source, target);
+    map.linear = t.scale * t.rotation.toRotationMatrix();
+    map.translation = t.translation;
+    map.similarity_only = true;
+  }
   double sum = 0;
   for (const auto& [x, y] : pairs) sum += (map(x) - y).squaredNorm();
   map.rms_m = std::sqrt(sum / static_cast<double>(pairs.size()));

@@ -137,9 +137,13 @@ ColmapModel TransformModel(const ColmapModel& model, const Similarity3& target_f
 struct AffineMap {
   Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
-  double rms_m = 0;  // residual over the fitted points
+  double rms_m = 0;              // residual over the fitted points
+  bool similarity_only = false;  // the points lie on a plane: a similarity, not an affine map
   Eigen::Vector3d operator()(const Eigen::Vector3d& x) const { return linear * x + translation; }
 };
+// The affine map from `from`'s frame to `to`'s, least squares over the 3D points both hold (seen by two or
+// more images). Points on a plane give the similarity instead (`similarity_only`); fewer than 3 points, or
+// points on a line, throw InputError.
 AffineMap FitAffineBetweenModels(const ColmapModel& from, const ColmapModel& to);
 
 // scene.json members this part owns: {"origin": ..., "enu_from_colmap": ..., "georeferencing": ...}.

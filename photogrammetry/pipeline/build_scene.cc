@@ -83,9 +83,16 @@ SurfacePipelineResult BuildSurface(const SceneBuildOptions& options, const Colma
   surface.Check();
 
   PointCloud cloud = PointCloudFromModel(geo.model_enu);
-  const AffineMap enu_from_input = FitAffineBetweenModels(model, geo.model_enu);
+  AffineMap enu_from_input;
   if (!options.points_path.empty() || !options.mesh_path.empty()) {
+    const std::string& input = options.points_path.empty() ? options.mesh_path : options.points_path;
+    try {
+      enu_from_input = FitAffineBetweenModels(model, geo.model_enu);
+    } catch (const InputError& e) {
+      throw InputError(input + ": " + e.what());
+    }
     (*input_note)["enu_from_input_affine_rms_m"] = RoundToDecimals(enu_from_input.rms_m, 4);
+    if (enu_from_input.similarity_only) (*input_note)["enu_from_input_similarity_only"] = true;
   }
   if (!options.mesh_path.empty()) {
     PlyData ply = ReadPly(options.mesh_path);

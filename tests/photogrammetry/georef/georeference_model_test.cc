@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <random>
 #include <sstream>
@@ -57,6 +58,62 @@ ModelGeoreferenceOptions SyntheticOptions(const Geodetic& origin) {
   ModelGeoreferenceOptions o;
   o.origin = origin;
   return o;
+}
+
+// Two models holding the same 3D points (track length 2), the second the first under `map`.
+std::pair<ColmapModel, ColmapModel> ModelsRelatedBy(const std::vector<Eigen::Vector3d>& points,
+                                                    const std::function<Eigen::Vector3d(Eigen::Vector3d)>& map) {
+  ColmapModel from, to;
+  for (size_t i = 0; i < points.size(); ++i) {
+    ColmapPoint3D p;
+    p.point3d_id = i + 1;
+    p.xyz = points[i];
+    p.track = {{1, uint32_t(i)}, {2, uint32_t(i)}};
+    from.points3d[p.point3d_id] = p;
+    p.xyz = map(points[i]);
+    to.points3d[p.point3d_id] = p;
+  }
+  return {from, to};
+}
+
+TEST(FitAffineBetweenModels, PointsSpanningAVolumeGiveTheAffineMap) {
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 27; ++i) points.emplace_back(i % 3, (i / 3) % 3, i / 9);
+  Eigen::Matrix3d a;
+  a << 2, 0.1, 0, 0, 1.5, 0.2, 0.3, 0, 0.8;  // depths rescaled unevenly: not a similarity
+  const auto [from, to] =
+      ModelsRelatedBy(points, [&](Eigen::Vector3d x) -> Eigen::Vector3d { return a * x + Eigen::Vector3d(5, -3, 9); });
+  const AffineMap map = FitAffineBetweenModels(from, to);
+  EXPECT_FALSE(map.similarity_only);
+  EXPECT_LT((map.linear - a).norm(), 1e-9);
+  EXPECT_LT(map.rms_m, 1e-9);
+}
+
+TEST(FitAffineBetweenModels, PointsOnAPlaneGiveTheSimilarityNotNaN) {
+  // A flat sparse model: the affine normal equations are singular (their inverse was inf/NaN, and every
+  // vertex of a dense input mapped with it became NaN). The similarity is determined and is used.
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 25; ++i) points.emplace_back(i % 5, i / 5, 0.0);
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const auto [from, to] = ModelsRelatedBy(
+      points, [&](Eigen::Vector3d x) -> Eigen::Vector3d { return 3.0 * (r * x) + Eigen::Vector3d(1, 2, 3); });
+  const AffineMap map = FitAffineBetweenModels(from, to);
+  EXPECT_TRUE(map.similarity_only);
+  ASSERT_TRUE(map.linear.allFinite());
+  EXPECT_LT((map.linear - 3.0 * r).norm(), 1e-9);
+  EXPECT_LT(
+      (map(Eigen::Vector3d(7, -4, 2)) - (3.0 * (r * Eigen::Vector3d(7, -4, 2)) + Eigen::Vector3d(1, 2, 3))).norm(),
+      1e-8);
+}
+
+TEST(FitAffineBetweenModels, PointsOnALineOrTooFewAreRefused) {
+  std::vector<Eigen::Vector3d> line;
+  for (int i = 0; i < 10; ++i) line.emplace_back(i, 2 * i, 0.5 * i);
+  const auto identity = [](Eigen::Vector3d x) -> Eigen::Vector3d { return x; };
+  const auto [from_line, to_line] = ModelsRelatedBy(line, identity);
+  EXPECT_THROW(FitAffineBetweenModels(from_line, to_line), InputError);
+  const auto [from_two, to_two] = ModelsRelatedBy({{0, 0, 0}, {1, 0, 0}}, identity);
+  EXPECT_THROW(FitAffineBetweenModels(from_two, to_two), InputError);
 }
 
 TEST(GeoreferenceModel, SyntheticSurveyRecoversTheTransform) {
