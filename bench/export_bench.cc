@@ -114,17 +114,8 @@ double MedianSeconds(int repeats, F&& f) {
   return times[times.size() / 2];
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  int repeats = 20;
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], "--repeats") == 0) repeats = std::max(1, std::atoi(argv[i + 1]));
-  }
-  const Trajectory plan = FigureEight();
-  Json out;
-  out["plan"] = Json{{"duration_s", 60}, {"frame_rate_hz", 30}, {"samples", plan.samples.size()}};
-
+// Waypoints against the deviation and angle allowed: the selection's trade curve.
+Json TradeCurve(const Trajectory& plan, int repeats) {
   Json curve = Json::array();
   for (double angle : {3.0, 180.0}) {
     for (double e : {0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0}) {
@@ -138,11 +129,13 @@ int main(int argc, char** argv) {
                            {"selection_ms", RoundToDecimals(seconds * 1e3, 3)}});
     }
   }
-  out["trade_curve"] = curve;
+  return curve;
+}
 
-  // DJI WPML: the path flown with coordinated turns (modelled) against the same waypoints as straight
-  // legs, and what cutting every corner at the largest allowed damping (0.45 × the shorter leg) would
-  // deviate — the error a straight-leg report hides when the aircraft curves.
+// DJI WPML: the path flown with coordinated turns (modelled) against the same waypoints as straight
+// legs, and what cutting every corner at the largest allowed damping (0.45 × the shorter leg) would
+// deviate — the error a straight-leg report hides when the aircraft curves.
+Json DjiTurns(const Trajectory& plan, int repeats) {
   Json turns = Json::array();
   for (double e : {0.1, 0.5, 2.0}) {
     exporter::MissionBuildOptions b;
@@ -175,9 +168,11 @@ int main(int argc, char** argv) {
                           RoundToDecimals(exporter::TurnPathDeviation(plan.samples, idx, greedy), 4)},
                          {"build_ms", RoundToDecimals(seconds * 1e3, 3)}});
   }
-  out["dji_turns_at_3deg"] = turns;
+  return turns;
+}
 
-  // Points of interest: waypoints with and without them, per flight model, at 0.5 m / 3 deg.
+// Points of interest: waypoints with and without them, per flight model, at 0.5 m / 3 deg.
+Json PointsOfInterest(int repeats) {
   Json poi = Json::array();
   for (bool orbit : {true, false}) {
     const Trajectory t = PoiPlan(orbit);
@@ -199,8 +194,11 @@ int main(int argc, char** argv) {
                          {"build_ms", RoundToDecimals(seconds * 1e3, 3)}});
     }
   }
-  out["points_of_interest_at_0.5m_3deg"] = poi;
+  return poi;
+}
 
+// Each format's export time, and all six together.
+Json ExportTimes(const Trajectory& plan, int repeats) {
   const std::vector<exporter::Format> formats = {exporter::Format::kQgcPlan,     exporter::Format::kQgcWpl,
                                                  exporter::Format::kMavlinkBin,  exporter::Format::kDjiWpml,
                                                  exporter::Format::kDjiMsdkJson, exporter::Format::kLitchiCsv};
@@ -224,7 +222,23 @@ int main(int argc, char** argv) {
   };
   for (auto f : formats) time_export({f}, exporter::FormatName(f));
   time_export(formats, "all six");
-  out["export_time_at_0.5m_3deg"] = timings;
+  return timings;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeats = 20;
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--repeats") == 0) repeats = std::max(1, std::atoi(argv[i + 1]));
+  }
+  const Trajectory plan = FigureEight();
+  Json out;
+  out["plan"] = Json{{"duration_s", 60}, {"frame_rate_hz", 30}, {"samples", plan.samples.size()}};
+  out["trade_curve"] = TradeCurve(plan, repeats);
+  out["dji_turns_at_3deg"] = DjiTurns(plan, repeats);
+  out["points_of_interest_at_0.5m_3deg"] = PointsOfInterest(repeats);
+  out["export_time_at_0.5m_3deg"] = ExportTimes(plan, repeats);
   std::fputs(DumpJson(out).c_str(), stdout);
   return 0;
 }

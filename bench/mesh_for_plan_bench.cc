@@ -148,154 +148,154 @@ void BoxScene(TriangleMesh* mesh, Trajectory* plan) {
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct BenchArgs {
   std::string glb, plan_path;
   bool synthetic = false, building = true, box = false;
   int cells = 1000, tiles = 16, threads = 0, face_freeze_rounds = ForPlanOptions{}.face_freeze_rounds;
   double max_error_px = 0.5;
   int64_t samples = 200000;
   ForPlanSimplifier simplifier = ForPlanOptions{}.simplifier;
+};
+
+// The command line; false (after a message) on a bad one.
+bool ParseArgs(int argc, char** argv, BenchArgs* a) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
     if (arg == "--glb")
-      glb = next();
+      a->glb = next();
     else if (arg == "--plan")
-      plan_path = next();
+      a->plan_path = next();
     else if (arg == "--synthetic")
-      synthetic = true;
+      a->synthetic = true;
     else if (arg == "--box")
-      box = true;
+      a->box = true;
     else if (arg == "--no-building")
-      building = false;
+      a->building = false;
     else if (arg == "--cells")
-      cells = std::stoi(next());
+      a->cells = std::stoi(next());
     else if (arg == "--tiles")
-      tiles = std::stoi(next());
+      a->tiles = std::stoi(next());
     else if (arg == "--samples")
-      samples = std::stoll(next());
+      a->samples = std::stoll(next());
     else if (arg == "--max-error-px")
-      max_error_px = std::stod(next());
+      a->max_error_px = std::stod(next());
     else if (arg == "--threads")
-      threads = std::stoi(next());
+      a->threads = std::stoi(next());
     else if (arg == "--face-freeze-rounds")
-      face_freeze_rounds = std::stoi(next());
+      a->face_freeze_rounds = std::stoi(next());
     else if (arg == "--simplifier") {
       const std::string name = next();
       if (name == ForPlanSimplifierName(ForPlanSimplifier::kQemTiled)) {
-        simplifier = ForPlanSimplifier::kQemTiled;
+        a->simplifier = ForPlanSimplifier::kQemTiled;
       } else if (name == ForPlanSimplifierName(ForPlanSimplifier::kMeshoptimizer)) {
-        simplifier = ForPlanSimplifier::kMeshoptimizer;
+        a->simplifier = ForPlanSimplifier::kMeshoptimizer;
       } else {
         std::fprintf(stderr, "--simplifier: qem_tiled or meshoptimizer\n");
-        return 2;
+        return false;
       }
     } else {
       std::fprintf(stderr,
                    "usage: mesh_for_plan_bench (--glb scene.glb --plan plan.json | --synthetic [--cells N]) "
                    "[--max-error-px P] [--tiles N] [--samples S] [--threads T] [--face-freeze-rounds R] "
                    "[--simplifier qem_tiled|meshoptimizer]\n");
-      return 2;
+      return false;
     }
   }
-  std::unique_ptr<tbb::global_control> limit;
-  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+  return true;
+}
 
-  TriangleMesh mesh;
-  Trajectory plan;
-  std::string label;
-  if (box) {
-    BoxScene(&mesh, &plan);
-    label = "box on a plane (the unit test's scene), 120-frame orbit";
-  } else if (synthetic) {
-    Synthetic(cells, building, &mesh, &plan);
-    label = "synthetic orbit, " + std::to_string(cells) + "^2 terrain cells" + (building ? " + building" : "");
+// The mesh and plan the arguments name, and a label for the report; false (after a message) when
+// neither a scene nor a synthetic case is given.
+bool LoadCase(const BenchArgs& a, TriangleMesh* mesh, Trajectory* plan, std::string* label) {
+  if (a.box) {
+    BoxScene(mesh, plan);
+    *label = "box on a plane (the unit test's scene), 120-frame orbit";
+  } else if (a.synthetic) {
+    Synthetic(a.cells, a.building, mesh, plan);
+    *label = "synthetic orbit, " + std::to_string(a.cells) + "^2 terrain cells" + (a.building ? " + building" : "");
   } else {
-    if (glb.empty() || plan_path.empty()) {
+    if (a.glb.empty() || a.plan_path.empty()) {
       std::fprintf(stderr, "give --glb and --plan, or --synthetic\n");
-      return 2;
+      return false;
     }
-    const scene::SceneMesh scene = scene::ReadGlbFile(glb);
-    mesh.vertices_m = scene.positions_enu_m;
-    mesh.faces = scene.faces;
-    plan = ReadPlanFile(plan_path);
-    label = glb + " + " + plan_path;
+    const scene::SceneMesh scene = scene::ReadGlbFile(a.glb);
+    mesh->vertices_m = scene.positions_enu_m;
+    mesh->faces = scene.faces;
+    *plan = ReadPlanFile(a.plan_path);
+    *label = a.glb + " + " + a.plan_path;
   }
+  return true;
+}
 
-  ForPlanOptions options;
-  options.cameras = CamerasFromPlan(plan, plan_path.empty() ? "synthetic" : plan_path);
-  options.max_error_px = max_error_px;
-  options.tiles_per_side = tiles;
-  options.measure_samples = samples;
-  options.face_freeze_rounds = face_freeze_rounds;
-  options.simplifier = simplifier;
+struct UniformResult {
+  TriangleMesh mesh;
+  double goal_error_m = 0, worst_px = 0, time_s = 0, last_attempt_s = 0;
+  int attempts = 0;
+};
 
-  auto start = std::chrono::steady_clock::now();
-  ForPlanReport report;
-  const TriangleMesh for_plan = DecimateForPlan(mesh, options, &report);
-  const double for_plan_s = Seconds(start);
-
-  // Uniform, to the same worst projected error, measured on the same points: the same simplifier with
-  // one error goal for the whole mesh.
-  start = std::chrono::steady_clock::now();
-  const ProjectedErrorProbe probe(mesh, options.cameras, samples, options.seed);
+// Uniform, to the same worst projected error, measured on the same points: the same simplifier with
+// one error goal for the whole mesh. Halve the goal until the bound holds, then bisect (geometrically,
+// 4 steps) between the last goal over it and the first within, keeping the largest goal within.
+UniformResult UniformToSameBound(const TriangleMesh& mesh, const ForPlanOptions& options, const BenchArgs& a,
+                                 double start_goal_m) {
+  const auto start = std::chrono::steady_clock::now();
+  const ProjectedErrorProbe probe(mesh, options.cameras, a.samples, options.seed);
   DecimateOptions uniform;
   uniform.method = DecimationMethod::kMeshoptimizerPartitioned;
-  uniform.max_error_m = report.min_allowed_error_m;
-  TriangleMesh uniform_mesh;
-  double uniform_px = 0, last_s = 0;
-  int attempts = 0;
+  UniformResult r;
+  r.goal_error_m = start_goal_m;
   auto attempt = [&](double goal_m, TriangleMesh* out, double* px) {
     const auto attempt_start = std::chrono::steady_clock::now();
     DecimateOptions o = uniform;
     o.max_error_m = goal_m;
-    if (simplifier == ForPlanSimplifier::kQemTiled) {
+    if (a.simplifier == ForPlanSimplifier::kQemTiled) {
       const std::vector<double> goal(mesh.num_vertices(), goal_m);
       *out = internal::DecimateQemTiled(mesh, 0, o.qem.tiles, o.qem, &goal);
     } else {
       *out = DecimateMesh(mesh, o);
     }
     *px = probe.WorstPx(*out);
-    ++attempts;
+    ++r.attempts;
     return Seconds(attempt_start);
   };
-  // Halve the goal until the bound holds, then bisect (geometrically, 4 steps) between the last goal
-  // over it and the first within, keeping the largest goal within.
   double over_m = 0;
   for (int k = 0; k < 12; ++k) {
-    last_s = attempt(uniform.max_error_m, &uniform_mesh, &uniform_px);
-    if (uniform_px <= max_error_px) break;
-    over_m = uniform.max_error_m;
-    uniform.max_error_m *= 0.5;
+    r.last_attempt_s = attempt(r.goal_error_m, &r.mesh, &r.worst_px);
+    if (r.worst_px <= a.max_error_px) break;
+    over_m = r.goal_error_m;
+    r.goal_error_m *= 0.5;
   }
-  if (uniform_px <= max_error_px && over_m > 0) {
+  if (r.worst_px <= a.max_error_px && over_m > 0) {
     for (int k = 0; k < 4; ++k) {
-      const double goal_m = std::sqrt(uniform.max_error_m * over_m);
+      const double goal_m = std::sqrt(r.goal_error_m * over_m);
       TriangleMesh candidate;
       double px = 0;
       const double s = attempt(goal_m, &candidate, &px);
-      if (px <= max_error_px) {
-        uniform.max_error_m = goal_m;
-        uniform_mesh = std::move(candidate);
-        uniform_px = px;
-        last_s = s;
+      if (px <= a.max_error_px) {
+        r.goal_error_m = goal_m;
+        r.mesh = std::move(candidate);
+        r.worst_px = px;
+        r.last_attempt_s = s;
       } else {
         over_m = goal_m;
       }
     }
   }
-  const double uniform_s = Seconds(start);
+  r.time_s = Seconds(start);
+  return r;
+}
 
+Json ResultJson(const BenchArgs& a, const std::string& label, const TriangleMesh& mesh, const Trajectory& plan,
+                const ForPlanReport& report, double for_plan_s, const UniformResult& uniform) {
   Json out = Json::object();
   out["case"] = label;
-  out["threads"] = threads > 0 ? Json(threads) : Json("all");
+  out["threads"] = a.threads > 0 ? Json(a.threads) : Json("all");
   out["faces_in"] = static_cast<int64_t>(mesh.num_faces());
   out["frames"] = static_cast<int64_t>(plan.samples.size());
-  out["max_error_px"] = max_error_px;
-  out["simplifier"] = ForPlanSimplifierName(simplifier);
-  out["tiles_per_side"] = tiles;
+  out["max_error_px"] = a.max_error_px;
+  out["simplifier"] = ForPlanSimplifierName(a.simplifier);
+  out["tiles_per_side"] = a.tiles;
   out["points_measured"] = report.points_measured;
   out["points_seen"] = report.points_seen;
   out["for_plan"] = {{"faces_out", report.faces_out},
@@ -310,16 +310,46 @@ int main(int argc, char** argv) {
                      {"faces_frozen", report.faces_frozen},
                      {"freeze_rounds", report.freeze_rounds},
                      {"bound_met", report.bound_met}};
-  out["uniform"] = {{"faces_out", static_cast<int64_t>(uniform_mesh.num_faces())},
-                    {"bound_met", uniform_px <= max_error_px},
-                    {"worst_projected_px", RoundToDecimals(uniform_px, 4)},
-                    {"goal_error_m", RoundToDecimals(uniform.max_error_m, 6)},
-                    {"attempts", attempts},
-                    {"time_s", RoundToDecimals(uniform_s, 3)},
-                    {"last_attempt_time_s", RoundToDecimals(last_s, 3)}};
+  out["uniform"] = {{"faces_out", static_cast<int64_t>(uniform.mesh.num_faces())},
+                    {"bound_met", uniform.worst_px <= a.max_error_px},
+                    {"worst_projected_px", RoundToDecimals(uniform.worst_px, 4)},
+                    {"goal_error_m", RoundToDecimals(uniform.goal_error_m, 6)},
+                    {"attempts", uniform.attempts},
+                    {"time_s", RoundToDecimals(uniform.time_s, 3)},
+                    {"last_attempt_time_s", RoundToDecimals(uniform.last_attempt_s, 3)}};
   out["faces_ratio_for_plan_over_uniform"] =
-      RoundToDecimals(static_cast<double>(report.faces_out) / std::max<size_t>(1, uniform_mesh.num_faces()), 4);
+      RoundToDecimals(static_cast<double>(report.faces_out) / std::max<size_t>(1, uniform.mesh.num_faces()), 4);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  BenchArgs a;
+  if (!ParseArgs(argc, argv, &a)) return 2;
+  std::unique_ptr<tbb::global_control> limit;
+  if (a.threads > 0) {
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, a.threads);
+  }
+  TriangleMesh mesh;
+  Trajectory plan;
+  std::string label;
+  if (!LoadCase(a, &mesh, &plan, &label)) return 2;
+
+  ForPlanOptions options;
+  options.cameras = CamerasFromPlan(plan, a.plan_path.empty() ? "synthetic" : a.plan_path);
+  options.max_error_px = a.max_error_px;
+  options.tiles_per_side = a.tiles;
+  options.measure_samples = a.samples;
+  options.face_freeze_rounds = a.face_freeze_rounds;
+  options.simplifier = a.simplifier;
+
+  const auto start = std::chrono::steady_clock::now();
+  ForPlanReport report;
+  const TriangleMesh for_plan = DecimateForPlan(mesh, options, &report);
+  const double for_plan_s = Seconds(start);
+  const UniformResult uniform = UniformToSameBound(mesh, options, a, report.min_allowed_error_m);
   (void)for_plan;
-  std::printf("%s\n", DumpJson(out).c_str());
+  std::printf("%s\n", DumpJson(ResultJson(a, label, mesh, plan, report, for_plan_s, uniform)).c_str());
   return 0;
 }

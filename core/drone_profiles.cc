@@ -26,9 +26,8 @@ namespace {
 //          lens 24 mm equivalent (6.7 mm on its 1/1.3-inch sensor), f/1.7, focus 1 m to infinity.
 //  [CMPC]  CineMPC (Pueyo et al. 2022) keep-out of 2 m around the subject.
 // Figures no source gives are marked "assumed" here and in docs/drones.md.
-std::vector<DroneProfile> MakeProfiles() {
-  std::vector<DroneProfile> p;
-  p.push_back({
+DroneProfile Px4Multirotor() {
+  return {
       .name = "px4-multirotor",
       .firmware = "px4",
       .max_horizontal_speed_m_s = 12,     // [PX4] MPC_XY_VEL_MAX
@@ -49,8 +48,11 @@ std::vector<DroneProfile> MakeProfiles() {
       .max_mission_items = 2000,          // [PX4] NUM_MISSIONS_SUPPORTED
       .body_radius_m = 0.4,               // assumed: a 500 mm-wheelbase quad with 10-inch propellers
       .min_separation_m = 5,              // assumed
-  });
-  p.push_back({
+  };
+}
+
+DroneProfile ArdupilotCopter() {
+  return {
       .name = "ardupilot-copter",
       .firmware = "ardupilot",
       .max_horizontal_speed_m_s = 10,     // [AP] WPNAV_SPEED (settable up to 20 m/s: override it)
@@ -71,8 +73,11 @@ std::vector<DroneProfile> MakeProfiles() {
       .max_mission_items = 724,           // [AP]
       .body_radius_m = 0.4,               // assumed, as px4-multirotor
       .min_separation_m = 5,              // assumed
-  });
-  p.push_back({
+  };
+}
+
+DroneProfile DjiM30() {
+  return {
       .name = "dji-m30",
       .firmware = "dji",
       .max_horizontal_speed_m_s = 15,      // [WPML] [MSDK] mission speed
@@ -96,8 +101,11 @@ std::vector<DroneProfile> MakeProfiles() {
       .dji_payload_enum = 52,  // [WPML]
       .body_radius_m = 0.55,   // [M30] 668 mm diagonal wheelbase, half of it plus a propeller's radius
       .min_separation_m = 5,   // assumed
-  });
-  p.push_back({
+  };
+}
+
+DroneProfile DjiMini4Pro() {
+  return {
       .name = "dji-mini4pro",
       .firmware = "dji",
       .max_horizontal_speed_m_s = 15,      // [WPML] [MSDK] mission speed
@@ -126,9 +134,10 @@ std::vector<DroneProfile> MakeProfiles() {
                         .min_f_number = 1.7,  // [MINI4] fixed aperture
                         .max_f_number = 1.7,
                         .min_focus_distance_m = 1.0},  // [MINI4]
-  });
-  return p;
+  };
 }
+
+std::vector<DroneProfile> MakeProfiles() { return {Px4Multirotor(), ArdupilotCopter(), DjiM30(), DjiMini4Pro()}; }
 
 struct OldName {
   const char* old_name;

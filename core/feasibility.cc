@@ -60,147 +60,177 @@ std::vector<FeasibilityViolation> ViolationsOf(const LimitSeries& series, const 
   return out;
 }
 
+namespace {
+
+// One series per limit, in this order.
+enum LimitTrack {
+  kSpeed,
+  kClimb,
+  kDescent,
+  kAccel,
+  kJerk,
+  kYawRate,
+  kPitchMin,
+  kPitchMax,
+  kPitchRate,
+  kAltMin,
+  kAltMax,
+  kSubject,
+  kFocalMin,
+  kFocalMax,
+  kFocusMin,
+  kFNumberMin,
+  kFNumberMax,
+  kFocalRate,
+  kFocusRate,
+  kApertureRate,
+  kTerrain
+};
+
+std::vector<LimitSeries> UnmeasuredTracks(const DroneProfile& d, const CameraSpec& c, size_t n) {
+  const std::vector<double> none(n, kNotMeasured);
+  return {
+      {"horizontal_speed", "m/s", d.max_horizontal_speed_m_s, false, none},
+      {"climb_rate", "m/s", d.max_climb_rate_m_s, false, none},
+      {"descent_rate", "m/s", d.max_descent_rate_m_s, false, none},
+      {"horizontal_acceleration", "m/s^2", d.max_acceleration_m_s2, false, none},
+      {"jerk", "m/s^3", d.max_jerk_m_s3, false, none},
+      {"yaw_rate", "deg/s", d.max_yaw_rate_deg_s, false, none},
+      {"gimbal_pitch_min", "deg", d.min_gimbal_pitch_deg, true, none},
+      {"gimbal_pitch_max", "deg", d.max_gimbal_pitch_deg, false, none},
+      {"gimbal_pitch_rate", "deg/s", d.max_gimbal_pitch_rate_deg_s, false, none},
+      {"altitude_min", "m", d.min_altitude_m, true, none},
+      {"altitude_max", "m", d.max_altitude_m, false, none},
+      {"subject_distance", "m", d.min_subject_distance_m, true, none},
+      {"focal_length_min", "mm", c.min_focal_length_mm, true, none},
+      {"focal_length_max", "mm", c.max_focal_length_mm, false, none},
+      {"focus_distance_min", "m", c.min_focus_distance_m, true, none},
+      {"f_number_min", "", c.min_f_number, true, none},
+      {"f_number_max", "", c.max_f_number, false, none},
+      {"focal_length_rate", "mm/s", c.max_focal_rate_mm_s, false, none},
+      {"focus_rate", "m/s", c.max_focus_rate_m_s, false, none},
+      {"aperture_rate", "stops/s", c.max_aperture_rate_stops_s, false, none},
+      {"terrain_clearance", "m", d.min_terrain_clearance_m, true, none},
+  };
+}
+
+// The samples as segments between cuts: finite differences never reach across a cut.
+struct Segments {
+  const std::vector<TrajectorySample>& samples;
+  std::vector<size_t> id;  // per sample; a cut starts a new segment
+
+  Segments(const std::vector<TrajectorySample>& s, const std::vector<bool>& cut_before) : samples(s), id(s.size(), 0) {
+    for (size_t i = 1; i < id.size(); ++i) id[i] = id[i - 1] + (cut_before[i] ? 1 : 0);
+  }
+  // Both samples exist and lie in one segment.
+  bool Same(long a, long b) const {
+    const size_t n = id.size();
+    return a >= 0 && b >= 0 && static_cast<size_t>(a) < n && static_cast<size_t>(b) < n && id[a] == id[b];
+  }
+  const Eigen::Vector3d& P(long i) const { return samples[i].position_enu_m; }
+};
+
+// Altitude limits hold above the take-off point, as the autopilots apply them: ENU z = 0, or with
+// the mesh, the ground under the first sample (the drone takes off below where the plan starts).
+double TakeoffUpM(const Trajectory& plan, const Ground* ground) {
+  if (!ground || plan.samples.empty()) return 0;
+  const Eigen::Vector3d& start = plan.samples[0].position_enu_m;
+  return ground->SurfaceUpM(start.x(), start.y()).value_or(0.0);
+}
+
+// Speed, climb and descent, acceleration and jerk at sample k, by finite differences within its segment.
+void MeasureMotion(const Segments& g, size_t k, double dt, std::vector<LimitSeries>& tracks) {
+  const long i = static_cast<long>(k);
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  bool have_v = true;  // a sample alone in its segment has no velocity (nor any other rate)
+  if (g.Same(i - 1, i + 1)) {
+    v = (g.P(i + 1) - g.P(i - 1)) / (2 * dt);
+  } else if (g.Same(i, i + 1)) {
+    v = (g.P(i + 1) - g.P(i)) / dt;
+  } else if (g.Same(i - 1, i)) {
+    v = (g.P(i) - g.P(i - 1)) / dt;
+  } else {
+    have_v = false;
+  }
+  if (have_v) {
+    tracks[kSpeed].values[k] = std::hypot(v.x(), v.y());
+    tracks[kClimb].values[k] = v.z();
+    tracks[kDescent].values[k] = -v.z();
+  }
+  if (g.Same(i - 1, i + 1)) {
+    const Eigen::Vector3d a = (g.P(i + 1) - 2 * g.P(i) + g.P(i - 1)) / (dt * dt);
+    tracks[kAccel].values[k] = std::hypot(a.x(), a.y());
+  }
+  if (g.Same(i - 1, i + 2)) {
+    const Eigen::Vector3d j = (g.P(i + 2) - 3 * g.P(i + 1) + 3 * g.P(i) - g.P(i - 1)) / (dt * dt * dt);
+    tracks[kJerk].values[k] = j.norm();
+  }
+}
+
+// Yaw, gimbal and lens rates from sample k-1 to k (none across a cut).
+void MeasureRates(const Segments& g, const CameraSpec& c, size_t k, double dt, std::vector<LimitSeries>& tracks) {
+  const long i = static_cast<long>(k);
+  if (!g.Same(i - 1, i)) return;
+  const auto& q = g.samples[k - 1];
+  const auto& s = g.samples[k];
+  tracks[kYawRate].values[k] = std::fabs(AngleDiffDeg(q.drone_heading_deg, s.drone_heading_deg)) / dt;
+  tracks[kPitchRate].values[k] = std::fabs(s.gimbal_pitch_deg - q.gimbal_pitch_deg) / dt;
+  tracks[kFocalRate].values[k] = std::fabs(s.focal_length_mm - q.focal_length_mm) / dt;
+  // Focus moves beyond the hyperfocal distance change nothing visible: clamp both ends to it.
+  const double coc = c.coc_mm > 0 ? c.coc_mm : DefaultCocMm(c.sensor_width_mm, c.sensor_height_mm);
+  const double h = HyperfocalDistanceM(s.focal_length_mm, s.f_number, coc);
+  const double f0 = std::min(q.focus_distance_m, h), f1 = std::min(s.focus_distance_m, h);
+  tracks[kFocusRate].values[k] = std::fabs(f1 - f0) / dt;
+  tracks[kApertureRate].values[k] = std::fabs(StopsBetween(q.f_number, s.f_number)) / dt;
+}
+
+// The levels at sample k: gimbal pitch, altitude, nearest subject, the lens asked for, terrain clearance.
+void MeasureLevels(const Trajectory& plan, size_t k, const LensRequest& r, double takeoff_up_m, const Ground* ground,
+                   std::vector<LimitSeries>& tracks) {
+  const auto& s = plan.samples[k];
+  tracks[kPitchMin].values[k] = s.gimbal_pitch_deg;
+  tracks[kPitchMax].values[k] = s.gimbal_pitch_deg;
+  tracks[kAltMin].values[k] = s.position_enu_m.z() - takeoff_up_m;
+  tracks[kAltMax].values[k] = s.position_enu_m.z() - takeoff_up_m;
+  if (!plan.subjects.empty()) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& subj : plan.subjects) {
+      const Eigen::Vector3d& base = subj.positions_enu_m[k];
+      nearest =
+          std::min(nearest, DistanceToSegment(s.position_enu_m, base, base + Eigen::Vector3d(0, 0, subj.height_m)));
+    }
+    tracks[kSubject].values[k] = nearest;
+  }
+  tracks[kFocalMin].values[k] = r.focal_length_mm;
+  tracks[kFocalMax].values[k] = r.focal_length_mm;
+  tracks[kFocusMin].values[k] = r.focus_distance_m;
+  tracks[kFNumberMin].values[k] = r.f_number;
+  tracks[kFNumberMax].values[k] = r.f_number;
+  if (ground) {
+    // Above the highest surface under the camera; off the mesh there is nothing to clear.
+    const std::optional<double> ground_up = ground->SurfaceUpM(s.position_enu_m.x(), s.position_enu_m.y());
+    if (ground_up) tracks[kTerrain].values[k] = s.position_enu_m.z() - *ground_up;
+  }
+}
+
+}  // namespace
+
 std::vector<LimitSeries> MeasureLimits(const Trajectory& plan, const std::vector<bool>& cut_before,
                                        const std::vector<LensRequest>& requests, const Ground* ground) {
   const auto& S = plan.samples;
   const size_t n = S.size();
   CINEPATH_CHECK(cut_before.size() == n);
   CINEPATH_CHECK(requests.empty() || requests.size() == n);
-  const DroneProfile& d = plan.drone;
-  const CameraSpec& c = plan.camera;
   const double dt = 1.0 / plan.frame_rate_hz;
-
-  // Segment id per sample: a cut starts a new segment.
-  std::vector<size_t> seg(n, 0);
-  for (size_t i = 1; i < n; ++i) seg[i] = seg[i - 1] + (cut_before[i] ? 1 : 0);
-  auto same = [&](long a, long b) {
-    return a >= 0 && b >= 0 && static_cast<size_t>(a) < n && static_cast<size_t>(b) < n && seg[a] == seg[b];
-  };
-  auto p = [&](long i) -> const Eigen::Vector3d& { return S[i].position_enu_m; };
-
-  std::vector<LimitSeries> tracks;
-  enum {
-    kSpeed,
-    kClimb,
-    kDescent,
-    kAccel,
-    kJerk,
-    kYawRate,
-    kPitchMin,
-    kPitchMax,
-    kPitchRate,
-    kAltMin,
-    kAltMax,
-    kSubject,
-    kFocalMin,
-    kFocalMax,
-    kFocusMin,
-    kFNumberMin,
-    kFNumberMax,
-    kFocalRate,
-    kFocusRate,
-    kApertureRate,
-    kTerrain
-  };
-  tracks.push_back(
-      {"horizontal_speed", "m/s", d.max_horizontal_speed_m_s, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"climb_rate", "m/s", d.max_climb_rate_m_s, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"descent_rate", "m/s", d.max_descent_rate_m_s, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back(
-      {"horizontal_acceleration", "m/s^2", d.max_acceleration_m_s2, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"jerk", "m/s^3", d.max_jerk_m_s3, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"yaw_rate", "deg/s", d.max_yaw_rate_deg_s, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"gimbal_pitch_min", "deg", d.min_gimbal_pitch_deg, true, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"gimbal_pitch_max", "deg", d.max_gimbal_pitch_deg, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back(
-      {"gimbal_pitch_rate", "deg/s", d.max_gimbal_pitch_rate_deg_s, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"altitude_min", "m", d.min_altitude_m, true, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"altitude_max", "m", d.max_altitude_m, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"subject_distance", "m", d.min_subject_distance_m, true, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"focal_length_min", "mm", c.min_focal_length_mm, true, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"focal_length_max", "mm", c.max_focal_length_mm, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"focus_distance_min", "m", c.min_focus_distance_m, true, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"f_number_min", "", c.min_f_number, true, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"f_number_max", "", c.max_f_number, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"focal_length_rate", "mm/s", c.max_focal_rate_mm_s, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"focus_rate", "m/s", c.max_focus_rate_m_s, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back(
-      {"aperture_rate", "stops/s", c.max_aperture_rate_stops_s, false, std::vector<double>(n, kNotMeasured)});
-  tracks.push_back({"terrain_clearance", "m", d.min_terrain_clearance_m, true, std::vector<double>(n, kNotMeasured)});
-
-  // Altitude limits hold above the take-off point, as the autopilots apply them: ENU z = 0, or with
-  // the mesh, the ground under the first sample (the drone takes off below where the plan starts).
-  double takeoff_up_m = 0;
-  if (ground && n > 0) {
-    const Eigen::Vector3d& start = plan.samples[0].position_enu_m;
-    takeoff_up_m = ground->SurfaceUpM(start.x(), start.y()).value_or(0.0);
-  }
+  std::vector<LimitSeries> tracks = UnmeasuredTracks(plan.drone, plan.camera, n);
+  const Segments segments(S, cut_before);
+  const double takeoff_up_m = TakeoffUpM(plan, ground);
   for (size_t k = 0; k < n; ++k) {
-    const long i = static_cast<long>(k);
-    const auto& s = S[k];
-    // Velocity.
-    Eigen::Vector3d v = Eigen::Vector3d::Zero();
-    bool have_v = true;  // a sample alone in its segment has no velocity (nor any other rate)
-    if (same(i - 1, i + 1)) {
-      v = (p(i + 1) - p(i - 1)) / (2 * dt);
-    } else if (same(i, i + 1)) {
-      v = (p(i + 1) - p(i)) / dt;
-    } else if (same(i - 1, i)) {
-      v = (p(i) - p(i - 1)) / dt;
-    } else {
-      have_v = false;
-    }
-    if (have_v) {
-      tracks[kSpeed].values[k] = std::hypot(v.x(), v.y());
-      tracks[kClimb].values[k] = v.z();
-      tracks[kDescent].values[k] = -v.z();
-    }
-    if (same(i - 1, i + 1)) {
-      const Eigen::Vector3d a = (p(i + 1) - 2 * p(i) + p(i - 1)) / (dt * dt);
-      tracks[kAccel].values[k] = std::hypot(a.x(), a.y());
-    }
-    if (same(i - 1, i + 2)) {
-      const Eigen::Vector3d j = (p(i + 2) - 3 * p(i + 1) + 3 * p(i) - p(i - 1)) / (dt * dt * dt);
-      tracks[kJerk].values[k] = j.norm();
-    }
-    const bool back = same(i - 1, i);
-    if (back) {
-      const auto& q = S[k - 1];
-      tracks[kYawRate].values[k] = std::fabs(AngleDiffDeg(q.drone_heading_deg, s.drone_heading_deg)) / dt;
-      tracks[kPitchRate].values[k] = std::fabs(s.gimbal_pitch_deg - q.gimbal_pitch_deg) / dt;
-      tracks[kFocalRate].values[k] = std::fabs(s.focal_length_mm - q.focal_length_mm) / dt;
-      // Focus moves beyond the hyperfocal distance change nothing visible: clamp both ends to it.
-      const double coc = c.coc_mm > 0 ? c.coc_mm : DefaultCocMm(c.sensor_width_mm, c.sensor_height_mm);
-      const double h = HyperfocalDistanceM(s.focal_length_mm, s.f_number, coc);
-      const double f0 = std::min(q.focus_distance_m, h), f1 = std::min(s.focus_distance_m, h);
-      tracks[kFocusRate].values[k] = std::fabs(f1 - f0) / dt;
-      tracks[kApertureRate].values[k] = std::fabs(StopsBetween(q.f_number, s.f_number)) / dt;
-    }
-    tracks[kPitchMin].values[k] = s.gimbal_pitch_deg;
-    tracks[kPitchMax].values[k] = s.gimbal_pitch_deg;
-    tracks[kAltMin].values[k] = s.position_enu_m.z() - takeoff_up_m;
-    tracks[kAltMax].values[k] = s.position_enu_m.z() - takeoff_up_m;
-    if (!plan.subjects.empty()) {
-      double nearest = std::numeric_limits<double>::infinity();
-      for (const auto& subj : plan.subjects) {
-        const Eigen::Vector3d& base = subj.positions_enu_m[k];
-        nearest =
-            std::min(nearest, DistanceToSegment(s.position_enu_m, base, base + Eigen::Vector3d(0, 0, subj.height_m)));
-      }
-      tracks[kSubject].values[k] = nearest;
-    }
+    MeasureMotion(segments, k, dt, tracks);
+    MeasureRates(segments, plan.camera, k, dt, tracks);
     const LensRequest r =
-        requests.empty() ? LensRequest{s.focal_length_mm, s.focus_distance_m, s.f_number} : requests[k];
-    tracks[kFocalMin].values[k] = r.focal_length_mm;
-    tracks[kFocalMax].values[k] = r.focal_length_mm;
-    tracks[kFocusMin].values[k] = r.focus_distance_m;
-    tracks[kFNumberMin].values[k] = r.f_number;
-    tracks[kFNumberMax].values[k] = r.f_number;
-    if (ground) {
-      // Above the highest surface under the camera; off the mesh there is nothing to clear.
-      const std::optional<double> ground_up = ground->SurfaceUpM(s.position_enu_m.x(), s.position_enu_m.y());
-      if (ground_up) tracks[kTerrain].values[k] = s.position_enu_m.z() - *ground_up;
-    }
+        requests.empty() ? LensRequest{S[k].focal_length_mm, S[k].focus_distance_m, S[k].f_number} : requests[k];
+    MeasureLevels(plan, k, r, takeoff_up_m, ground, tracks);
   }
   return tracks;
 }

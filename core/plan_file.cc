@@ -381,16 +381,36 @@ namespace {
 
 // A flight's keys after the header (camera, drone, shots, samples, ...), into `plan` (origin and frame
 // rate already set).
-void ReadFlight(const JsonField& root, bool team_fields, Trajectory& plan) {
-  plan.camera = ReadCamera(root["camera"]);
-  if (auto d = root.Find("drone")) {
-    plan.drone = ReadDrone(*d, team_fields, &plan.notes);
-  } else {
-    plan.drone = DefaultDroneProfile();
-    const std::string where = Located(root.source(), root.path().empty() ? "drone" : root.path() + ".drone");
-    plan.notes.push_back(Located(where, "missing; the profile \"" + plan.drone.name + "\" is used"));
+// One element of "samples"; `previous` (null for the first) for the order of times.
+TrajectorySample ReadSample(const JsonField& f, const TrajectorySample* previous, bool geodetic) {
+  TrajectorySample s;
+  s.time_s = ReadTime(f["time_s"]);
+  if (previous && !(s.time_s - previous->time_s >= kMinTimeStepS)) {
+    f["time_s"].Fail("times must increase (by at least 1e-6 s)");
   }
+  s.position_enu_m = EnuPositionFromJson(f["position_enu_m"]);
+  if (geodetic) {
+    s.geodetic.lat_deg = f["lat_deg"].AsDoubleIn(-90, 90);
+    s.geodetic.lon_deg = f["lon_deg"].AsDoubleIn(-180, 180);
+    s.geodetic.height_m = EnuCoordinateFromJson(f["height_m"]);
+  }
+  s.world_from_camera = ReadQuat(f["world_from_camera"]);
+  s.drone_heading_deg = ReadAngle(f["drone_heading_deg"]);
+  s.gimbal_pitch_deg = ReadAngle(f["gimbal_pitch_deg"]);
+  if (auto a = f.Find("gimbal_roll_deg")) s.gimbal_roll_deg = ReadAngle(*a);
+  if (auto a = f.Find("gimbal_yaw_deg")) s.gimbal_yaw_deg = ReadAngle(*a);
+  s.focal_length_mm = ReadFocalLength(f["focal_length_mm"]);
+  s.focus_distance_m = ReadFocus(f, "focus_distance_m", s.focal_length_mm);
+  s.f_number = ReadFNumber(f["f_number"]);
+  s.shutter_s = f["shutter_s"].AsDoubleIn(kMinShutterS, kMaxShutterS);
+  s.shot = f.StringOr("shot", "");
+  if (auto subj = f.Find("subjects_in_frame")) {
+    for (const auto& e : subj->Elements()) s.subjects_in_frame.push_back(e.AsString());
+  }
+  return s;
+}
 
+void ReadShotSpans(const JsonField& root, Trajectory& plan) {
   for (const auto& f : root["shots"].Elements()) {
     ShotSpan s;
     s.name = f["name"].AsString();
@@ -403,39 +423,10 @@ void ReadFlight(const JsonField& root, bool team_fields, Trajectory& plan) {
     if (auto intent = f.Find("intent")) s.intent = ReadIntent(*intent);
     plan.shots.push_back(std::move(s));
   }
+}
 
-  const JsonField samples_field = root["samples"];
-  const auto samples = samples_field.Elements();
-  if (samples.empty()) samples_field.Fail("must hold at least one sample");
-  plan.samples.reserve(samples.size());
-  for (const auto& f : samples) {
-    TrajectorySample s;
-    s.time_s = ReadTime(f["time_s"]);
-    if (!plan.samples.empty() && !(s.time_s - plan.samples.back().time_s >= kMinTimeStepS)) {
-      f["time_s"].Fail("times must increase (by at least 1e-6 s)");
-    }
-    s.position_enu_m = EnuPositionFromJson(f["position_enu_m"]);
-    if (plan.origin) {
-      s.geodetic.lat_deg = f["lat_deg"].AsDoubleIn(-90, 90);
-      s.geodetic.lon_deg = f["lon_deg"].AsDoubleIn(-180, 180);
-      s.geodetic.height_m = EnuCoordinateFromJson(f["height_m"]);
-    }
-    s.world_from_camera = ReadQuat(f["world_from_camera"]);
-    s.drone_heading_deg = ReadAngle(f["drone_heading_deg"]);
-    s.gimbal_pitch_deg = ReadAngle(f["gimbal_pitch_deg"]);
-    if (auto a = f.Find("gimbal_roll_deg")) s.gimbal_roll_deg = ReadAngle(*a);
-    if (auto a = f.Find("gimbal_yaw_deg")) s.gimbal_yaw_deg = ReadAngle(*a);
-    s.focal_length_mm = ReadFocalLength(f["focal_length_mm"]);
-    s.focus_distance_m = ReadFocus(f, "focus_distance_m", s.focal_length_mm);
-    s.f_number = ReadFNumber(f["f_number"]);
-    s.shutter_s = f["shutter_s"].AsDoubleIn(kMinShutterS, kMaxShutterS);
-    s.shot = f.StringOr("shot", "");
-    if (auto subj = f.Find("subjects_in_frame")) {
-      for (const auto& e : subj->Elements()) s.subjects_in_frame.push_back(e.AsString());
-    }
-    plan.samples.push_back(std::move(s));
-  }
-
+// "subjects", "keyframes": each optional.
+void ReadSubjectsAndKeyframes(const JsonField& root, Trajectory& plan) {
   if (auto subjects = root.Find("subjects")) {
     for (const auto& f : subjects->Elements()) {
       SubjectTrack t;
@@ -463,7 +454,10 @@ void ReadFlight(const JsonField& root, bool team_fields, Trajectory& plan) {
       plan.keyframes.push_back(std::move(k));
     }
   }
+}
 
+// "feasibility" as the plan was written (the report of the stage that wrote it).
+void ReadFeasibility(const JsonField& root, Trajectory& plan) {
   if (auto report = root.Find("feasibility")) {
     for (const auto& f : (*report)["violations"].Elements()) {
       FeasibilityViolation v;
@@ -480,6 +474,28 @@ void ReadFlight(const JsonField& root, bool team_fields, Trajectory& plan) {
       for (const auto& e : skipped->Elements()) plan.feasibility.skipped.push_back(e.AsString());
     }
   }
+}
+
+void ReadFlight(const JsonField& root, bool team_fields, Trajectory& plan) {
+  plan.camera = ReadCamera(root["camera"]);
+  if (auto d = root.Find("drone")) {
+    plan.drone = ReadDrone(*d, team_fields, &plan.notes);
+  } else {
+    plan.drone = DefaultDroneProfile();
+    const std::string where = Located(root.source(), root.path().empty() ? "drone" : root.path() + ".drone");
+    plan.notes.push_back(Located(where, "missing; the profile \"" + plan.drone.name + "\" is used"));
+  }
+  ReadShotSpans(root, plan);
+  const JsonField samples_field = root["samples"];
+  const auto samples = samples_field.Elements();
+  if (samples.empty()) samples_field.Fail("must hold at least one sample");
+  plan.samples.reserve(samples.size());
+  for (const auto& f : samples) {
+    plan.samples.push_back(
+        ReadSample(f, plan.samples.empty() ? nullptr : &plan.samples.back(), plan.origin.has_value()));
+  }
+  ReadSubjectsAndKeyframes(root, plan);
+  ReadFeasibility(root, plan);
   if (auto optimized = root.Find("optimized")) {
     if (!optimized->IsObject() && !optimized->IsNull()) optimized->Fail("expected an object");
     plan.optimized = optimized->node();

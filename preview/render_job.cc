@@ -434,6 +434,51 @@ void WriteContactSheet(const TeamPlan& team, const std::vector<size_t>& frames, 
   summary->outputs.push_back(options.contact_sheet->string());
 }
 
+// One output size for every drone (the edit cuts between them): the first flight's camera's; InputError
+// naming the drone whose camera differs. Every frame's lens is checked as the camera will take it.
+std::pair<int, int> CheckedFrameSize(const TeamPlan& team, const std::vector<size_t>& frames,
+                                     const RenderOptions& options, const fs::path& plan_json) {
+  const std::pair<int, int> size = OutputSize(team.flights.front().plan.camera, options.width_px);
+  const int width = size.first, height = size.second;
+  for (const auto& flight : team.flights) {
+    const auto [w, h] = OutputSize(flight.plan.camera, options.width_px);
+    if (w != width || h != height) {
+      throw InputError(plan_json.string() + ": drone " + flight.name + "'s camera renders " + std::to_string(w) + "x" +
+                       std::to_string(h) + " px, drone " + team.flights.front().name + "'s " + std::to_string(width) +
+                       "x" + std::to_string(height) + ": the edit needs one frame size (give the cameras one aspect)");
+    }
+    for (size_t k : frames) {
+      if (k >= flight.plan.samples.size()) break;
+      const auto& s = flight.plan.samples[k];
+      ThinLensCamera(flight.plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
+    }
+  }
+  return size;
+}
+
+// Each flight's folder (OUTPUT itself for one drone, OUTPUT/<drone> for several) and the edit's, each
+// checked writable before anything renders.
+RenderedFlights OutputFolders(const TeamPlan& team, const RenderOptions& options) {
+  RenderedFlights rendered;
+  rendered.thumbs.resize(team.flights.size());
+  for (const auto& flight : team.flights) {
+    rendered.folders.push_back(team.single ? options.output_dir : options.output_dir / flight.name);
+    if (!team.single) CheckWritableFolder(rendered.folders.back());
+  }
+  if (!team.edit.empty()) CheckWritableFolder(options.output_dir / "edit");
+  return rendered;
+}
+
+// Frames to render in all: each flight's selected samples it has, and the edit's held frames.
+size_t FrameCount(const TeamPlan& team, const std::vector<size_t>& frames,
+                  const std::vector<std::pair<size_t, size_t>>& held) {
+  size_t total = held.size();
+  for (const auto& flight : team.flights) {
+    for (size_t k : frames) total += k < flight.plan.samples.size() ? 1 : 0;
+  }
+  return total;
+}
+
 }  // namespace
 
 // One drone's frames go into OUTPUT; a plan of several drones' (docs/render.md, "Several drones") into
@@ -471,23 +516,9 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   }
   const std::vector<size_t> frames = SelectFrames(team.SampleCount(), options.frames);
   if (options.width_px && *options.width_px <= 0) throw InputError("--width-px: must be at least 1");
-  // One output size for every drone (the edit cuts between them): the first flight's camera's. Plain
-  // variables, not a structured binding (clang 14, which the fuzz build uses, cannot capture those).
-  const std::pair<int, int> size = OutputSize(team.flights.front().plan.camera, options.width_px);
+  // Plain variables, not a structured binding (clang 14, which the fuzz build uses, cannot capture those).
+  const std::pair<int, int> size = CheckedFrameSize(team, frames, options, plan_json);
   const int width = size.first, height = size.second;
-  for (const auto& flight : team.flights) {
-    const auto [w, h] = OutputSize(flight.plan.camera, options.width_px);
-    if (w != width || h != height) {
-      throw InputError(plan_json.string() + ": drone " + flight.name + "'s camera renders " + std::to_string(w) + "x" +
-                       std::to_string(h) + " px, drone " + team.flights.front().name + "'s " + std::to_string(width) +
-                       "x" + std::to_string(height) + ": the edit needs one frame size (give the cameras one aspect)");
-    }
-    for (size_t k : frames) {  // the lens of every frame, as the camera will take it
-      if (k >= flight.plan.samples.size()) break;
-      const auto& s = flight.plan.samples[k];
-      ThinLensCamera(flight.plan.camera, width, height, s.focal_length_mm, s.f_number, s.focus_distance_m);
-    }
-  }
   summary.inputs.push_back(scene_json.string());
   const fs::path& glb = scene_file.RequireMesh();
   summary.inputs.push_back(glb.string());
@@ -499,13 +530,7 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   if (options.overlay || sheets) RequireLabelFont();
   const SunDirection sun = SunForOptions(options, team.flights.front().plan, scene_file);
   CheckWritableFolder(options.output_dir);
-  RenderedFlights rendered;
-  rendered.thumbs.resize(team.flights.size());
-  for (const auto& flight : team.flights) {
-    rendered.folders.push_back(single ? options.output_dir : options.output_dir / flight.name);
-    if (!single) CheckWritableFolder(rendered.folders.back());
-  }
-  if (has_edit) CheckWritableFolder(options.output_dir / "edit");
+  RenderedFlights rendered = OutputFolders(team, options);
   step("read plan.json and scene.json, check the options");
   loader.Wait(log);
   step("wait for the GLB and its textures");
@@ -521,10 +546,7 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   }
 
   const std::vector<std::pair<size_t, size_t>> extra = HeldEditFrames(team, frames);
-  size_t total = extra.size();
-  for (const auto& flight : team.flights) {
-    for (size_t k : frames) total += k < flight.plan.samples.size() ? 1 : 0;
-  }
+  const size_t total = FrameCount(team, frames, extra);
 
   size_t done = 0;
   for (size_t f = 0; f < team.flights.size(); ++f) {

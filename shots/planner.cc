@@ -49,6 +49,12 @@ class Planner {
  private:
   // The pose before the transition offset (position) and before the rotation offset.
   void Prepare();
+  // The steps of Run.
+  size_t SampleCount(const PlanOptions& options) const;
+  void AddShotSpans(Trajectory& plan) const;
+  void SampleShots(Trajectory& plan, std::vector<bool>& cut_before, std::vector<LensRequest>& requests);
+  void AddSubjectTracks(Trajectory& plan) const;
+  void AddKeyframes(Trajectory& plan);
   Evaluated Evaluate(size_t shot_index, double tau, double fallback_heading_deg,
                      bool apply_rotation_offset = true) const;
   // The steps of Evaluate.
@@ -421,7 +427,20 @@ Trajectory Planner::Run(const PlanOptions& options) {
   plan.frame_rate_hz = list_.frame_rate_hz;
   plan.camera = list_.camera;
   plan.drone = list_.drone;
+  const size_t n = SampleCount(options);
+  AddShotSpans(plan);
+  std::vector<bool> cut_before(n, false);
+  std::vector<LensRequest> requests(n);
+  plan.samples.resize(n);
+  SampleShots(plan, cut_before, requests);
+  AddSubjectTracks(plan);
+  AddKeyframes(plan);
+  plan.feasibility = CheckFeasibility(plan, cut_before, requests, list_.ground.get());
+  return plan;
+}
 
+// Samples at the frame rate over every shot's duration; InputError beyond the limit.
+size_t Planner::SampleCount(const PlanOptions& options) const {
   double total = 0;
   for (const auto& s : list_.shots) total += s.duration_s;
   const double frames = std::floor(total * list_.frame_rate_hz + 1e-9);
@@ -430,8 +449,10 @@ Trajectory Planner::Run(const PlanOptions& options) {
                      " samples (duration x frame_rate_hz) exceed the limit of " + std::to_string(options.max_samples) +
                      "; lower frame_rate_hz");
   }
-  const size_t n = static_cast<size_t>(frames) + 1;
+  return static_cast<size_t>(frames) + 1;
+}
 
+void Planner::AddShotSpans(Trajectory& plan) const {
   for (size_t i = 0; i < list_.shots.size(); ++i) {
     const ShotSpec& shot = list_.shots[i];
     ShotSpan span;
@@ -444,12 +465,13 @@ Trajectory Planner::Run(const PlanOptions& options) {
     span.intent = IntentOf(shot);
     plan.shots.push_back(span);
   }
+}
 
+// Every sample: its shot, pose and lens; a cut before it where the shots say so; the lens asked for.
+void Planner::SampleShots(Trajectory& plan, std::vector<bool>& cut_before, std::vector<LensRequest>& requests) {
   // Which shot owns sample k: the last shot with start <= t and (t < end or it is the last shot
   // with a positive duration).
-  std::vector<bool> cut_before(n, false);
-  std::vector<LensRequest> requests(n);
-  plan.samples.resize(n);
+  const size_t n = plan.samples.size();
   std::optional<EnuFrame> frame;
   if (plan.origin) frame.emplace(*plan.origin);
   double heading = 0;
@@ -475,19 +497,22 @@ Trajectory Planner::Run(const PlanOptions& options) {
     plan.samples[k] = std::move(e.sample);
     requests[k] = e.request;
   }
+}
 
-  // Subject tracks.
+void Planner::AddSubjectTracks(Trajectory& plan) const {
   for (const auto& a : list_.actors) {
     SubjectTrack track;
     track.name = a.name();
     track.height_m = a.height_m();
-    track.positions_enu_m.reserve(n);
+    track.positions_enu_m.reserve(plan.samples.size());
     for (const auto& s : plan.samples) track.positions_enu_m.push_back(a.PositionAt(s.time_s));
     plan.subjects.push_back(std::move(track));
   }
+}
 
-  // Keyframes: each shot's start and end (and every free key), final poses.
-  heading = 0;
+// Keyframes: each shot's start and end (and every free key), final poses.
+void Planner::AddKeyframes(Trajectory& plan) {
+  double heading = 0;
   for (size_t i = 0; i < list_.shots.size(); ++i) {
     const ShotSpec& shot_spec = list_.shots[i];
     std::vector<double> taus = {0.0};
@@ -511,9 +536,6 @@ Trajectory Planner::Run(const PlanOptions& options) {
       plan.keyframes.push_back(key);
     }
   }
-
-  plan.feasibility = CheckFeasibility(plan, cut_before, requests, list_.ground.get());
-  return plan;
 }
 
 }  // namespace

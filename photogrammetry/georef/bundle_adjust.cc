@@ -393,6 +393,107 @@ FocalProfile ProfileFocal(const State& state, const SolveResult& at,
   return profile;
 }
 
+// The problem's size and its reprojection error before adjusting.
+BundleAdjustReport InputReport(const State& state, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m) {
+  BundleAdjustReport report;
+  report.num_images = static_cast<int>(state.image_ids.size());
+  report.num_points = static_cast<int>(state.control_first);
+  report.num_control_points = static_cast<int>(state.control.size());
+  report.num_observations = static_cast<int>(state.observations.size());
+  for (uint32_t id : state.image_ids) report.num_gps_priors += gps_enu_m.contains(id) ? 1 : 0;
+  report.rms_reprojection_before_px = RmsReprojection(state);
+  return report;
+}
+
+bool EveryCameraHasFocalPrior(const State& state, const std::map<uint32_t, double>& focal_prior_px) {
+  if (focal_prior_px.empty()) return false;
+  for (uint32_t id : state.camera_ids)
+    if (!focal_prior_px.contains(id)) return false;
+  return true;
+}
+
+// The main solve, and what the images say of the focal length about it.
+struct FocalSolve {
+  SolveResult main;
+  FocalProfile profile;
+  bool measured = false;  // the focal length the images measure was kept
+};
+
+// 1. The focal length the photos measure: solved free from COLMAP's, the prior (EXIF 35 mm
+//    equivalents are rounded) a weak pull. Kept (into `state` and `solve`) when the profile confirms
+//    that the images determine it.
+template <typename Log>
+void SolveMeasuredFocal(State& state, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
+                        const std::map<uint32_t, double>& focal_prior_px, const BundleAdjustOptions& options,
+                        const Log& log, FocalSolve& solve) {
+  State trial = state;
+  const SolveResult r = Solve(trial, gps_enu_m, focal_prior_px, options, FocalMode::kMeasured, options.max_iterations);
+  log("focal measured by the images", r);
+  const FocalProfile p = ProfileFocal(trial, r, gps_enu_m, focal_prior_px, options, log);
+  if (p.sigma_ratio && *p.sigma_ratio <= options.resolvable_sigma_ratio) {
+    state = std::move(trial);
+    solve.main = r;
+    solve.profile = p;
+    solve.measured = true;
+  }
+}
+
+// 2. Start at the prior focal length with the points moved along the focal/depth valley, and solve
+//    with the focal length held there (without priors: free, with COLMAP's as the prior).
+// 3. Profile the images' own constraint on the focal length (all cameras scaled together).
+template <typename Log>
+void SolveAtPriorFocal(State& state, const std::map<uint32_t, Eigen::Vector3d>& gps_enu_m,
+                       const std::map<uint32_t, double>& focal_prior_px, const BundleAdjustOptions& options,
+                       bool all_priors, const Log& log, FocalSolve& solve) {
+  if (all_priors && options.refine_focal) {
+    for (size_t cam = 0; cam < state.camera_ids.size(); ++cam) {
+      ScaleFocal(state, cam, focal_prior_px.at(state.camera_ids[cam]) / MeanFocal(state, cam));
+    }
+  }
+  const FocalMode first_mode = all_priors ? FocalMode::kFixed : FocalMode::kPrior;
+  solve.main = Solve(state, gps_enu_m, focal_prior_px, options, first_mode, options.max_iterations);
+  log(all_priors ? "focal held at the prior" : "focal free", solve.main);
+  solve.profile = ProfileFocal(state, solve.main, gps_enu_m, focal_prior_px, options, log);
+}
+
+// What was decided about each camera's focal length, and why.
+struct FocalVerdict {
+  bool all_priors = false, resolve = false, conflict = false;
+};
+
+void AddFocalReports(const State& state, const std::vector<double>& focal_before,
+                     const std::map<uint32_t, double>& focal_prior_px, const BundleAdjustOptions& options,
+                     const FocalSolve& solve, const FocalVerdict& verdict, BundleAdjustReport& report) {
+  const std::optional<double>& sigma_ratio = solve.profile.sigma_ratio;
+  const std::optional<double>& preferred_ratio = solve.profile.preferred_ratio;
+  for (size_t cam = 0; cam < state.camera_ids.size(); ++cam) {
+    FocalReport f;
+    f.camera_id = state.camera_ids[cam];
+    f.before_px = focal_before[cam];
+    f.after_px = MeanFocal(state, cam);
+    const auto prior = focal_prior_px.find(f.camera_id);
+    if (prior != focal_prior_px.end()) f.prior_px = prior->second;
+    f.images_sigma_ratio = sigma_ratio;
+    if (preferred_ratio) f.images_preferred_px = f.after_px * *preferred_ratio;
+    f.images_resolve_focal = verdict.resolve;
+    f.images_conflict_with_prior = verdict.conflict;
+    f.held_at_prior = verdict.all_priors && !solve.measured &&
+                      !(verdict.resolve && !verdict.conflict && options.free_focal_when_resolved);
+    f.measured_by_images = solve.measured;
+    report.focal.push_back(f);
+  }
+}
+
+// The control points' adjusted positions (ENU m).
+std::vector<Eigen::Vector3d> ControlPointsEnu(const State& state) {
+  std::vector<Eigen::Vector3d> out;
+  for (size_t k = 0; k < state.control.size(); ++k) {
+    const auto& p = state.points[state.control_first + k];
+    out.push_back({p[0], p[1], p[2]});
+  }
+  return out;
+}
+
 }  // namespace
 
 double RmsReprojectionErrorPx(const ColmapModel& model) { return RmsReprojection(StateFromModel(model)); }
@@ -414,13 +515,7 @@ BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32
   if (state.observations.empty()) {
     throw InfeasibleError("bundle adjustment: no 3D point is seen by two images in front of them");
   }
-  BundleAdjustReport report;
-  report.num_images = static_cast<int>(state.image_ids.size());
-  report.num_points = static_cast<int>(state.control_first);
-  report.num_control_points = static_cast<int>(state.control.size());
-  report.num_observations = static_cast<int>(state.observations.size());
-  for (uint32_t id : state.image_ids) report.num_gps_priors += gps_enu_m.contains(id) ? 1 : 0;
-  report.rms_reprojection_before_px = RmsReprojection(state);
+  BundleAdjustReport report = InputReport(state, gps_enu_m);
   std::vector<double> focal_before;
   for (size_t cam = 0; cam < state.camera_ids.size(); ++cam) focal_before.push_back(MeanFocal(state, cam));
 
@@ -429,86 +524,34 @@ BundleAdjustReport BundleAdjustEnu(ColmapModel& model_enu, const std::map<uint32
   report.depth_relief_ratio = geometry.depth_relief_ratio;
   report.view_axis_spread_deg = geometry.view_axis_spread_deg;
   report.geometry_resolves_focal = geometry.resolves_focal;
-  const bool all_priors = !focal_prior_px.empty() && [&] {
-    for (uint32_t id : state.camera_ids)
-      if (!focal_prior_px.contains(id)) return false;
-    return true;
-  }();
+  FocalVerdict verdict;
+  verdict.all_priors = EveryCameraHasFocalPrior(state, focal_prior_px);
 
-  // 1. Where the geometry resolves it, the focal length the photos measure: solved free from COLMAP's, the
-  //    prior (EXIF 35 mm equivalents are rounded) a weak pull. Kept when the profile confirms that the
-  //    images determine it.
-  SolveResult main;
-  FocalProfile profile;
-  bool measured = false;
-  if (all_priors && options.refine_focal && options.keep_measured_focal && geometry.resolves_focal) {
-    State trial = state;
-    const SolveResult r =
-        Solve(trial, gps_enu_m, focal_prior_px, options, FocalMode::kMeasured, options.max_iterations);
-    log("focal measured by the images", r);
-    const FocalProfile p = ProfileFocal(trial, r, gps_enu_m, focal_prior_px, options, log);
-    if (p.sigma_ratio && *p.sigma_ratio <= options.resolvable_sigma_ratio) {
-      state = std::move(trial);
-      main = r;
-      profile = p;
-      measured = true;
-    }
+  // 1. Where the geometry resolves it, the focal length the photos measure; 2-3. otherwise held at the prior.
+  FocalSolve solve;
+  if (verdict.all_priors && options.refine_focal && options.keep_measured_focal && geometry.resolves_focal) {
+    SolveMeasuredFocal(state, gps_enu_m, focal_prior_px, options, log, solve);
   }
-
-  if (!measured) {
-    // 2. Otherwise start at the prior focal length with the points moved along the focal/depth valley,
-    //    and solve with the focal length held there.
-    if (all_priors && options.refine_focal) {
-      for (size_t cam = 0; cam < state.camera_ids.size(); ++cam) {
-        ScaleFocal(state, cam, focal_prior_px.at(state.camera_ids[cam]) / MeanFocal(state, cam));
-      }
-    }
-    const FocalMode first_mode = all_priors ? FocalMode::kFixed : FocalMode::kPrior;
-    main = Solve(state, gps_enu_m, focal_prior_px, options, first_mode, options.max_iterations);
-    log(all_priors ? "focal held at the prior" : "focal free", main);
-    // 3. Profile the images' own constraint on the focal length (all cameras scaled together).
-    profile = ProfileFocal(state, main, gps_enu_m, focal_prior_px, options, log);
-  }
+  if (!solve.measured) SolveAtPriorFocal(state, gps_enu_m, focal_prior_px, options, verdict.all_priors, log, solve);
 
   // 4. Free the focal length (with its prior) only when the images resolve it and agree with the prior.
-  bool resolve = measured || (geometry.resolves_focal && profile.sigma_ratio &&
-                              *profile.sigma_ratio <= options.resolvable_sigma_ratio);
-  bool conflict = false;
-  if (all_priors && profile.preferred_ratio && !measured) {
-    conflict = std::abs(*profile.preferred_ratio - 1) > options.max_focal_disagreement_ratio;
+  const FocalProfile& profile = solve.profile;
+  verdict.resolve = solve.measured || (geometry.resolves_focal && profile.sigma_ratio &&
+                                       *profile.sigma_ratio <= options.resolvable_sigma_ratio);
+  if (verdict.all_priors && profile.preferred_ratio && !solve.measured) {
+    verdict.conflict = std::abs(*profile.preferred_ratio - 1) > options.max_focal_disagreement_ratio;
   }
-  if (!measured && all_priors && resolve && !conflict && options.free_focal_when_resolved) {
-    main = Solve(state, gps_enu_m, focal_prior_px, options, FocalMode::kPrior, options.max_iterations);
-    log("focal free with its prior", main);
+  if (!solve.measured && verdict.all_priors && verdict.resolve && !verdict.conflict &&
+      options.free_focal_when_resolved) {
+    solve.main = Solve(state, gps_enu_m, focal_prior_px, options, FocalMode::kPrior, options.max_iterations);
+    log("focal free with its prior", solve.main);
   }
-  const std::optional<double>& sigma_ratio = profile.sigma_ratio;
-  const std::optional<double>& preferred_ratio = profile.preferred_ratio;
-  report.iterations = main.iterations;
-  report.converged = main.converged;
+  report.iterations = solve.main.iterations;
+  report.converged = solve.main.converged;
   report.rms_reprojection_after_px = RmsReprojection(state);
-  for (size_t cam = 0; cam < state.camera_ids.size(); ++cam) {
-    FocalReport f;
-    f.camera_id = state.camera_ids[cam];
-    f.before_px = focal_before[cam];
-    f.after_px = MeanFocal(state, cam);
-    const auto prior = focal_prior_px.find(f.camera_id);
-    if (prior != focal_prior_px.end()) f.prior_px = prior->second;
-    f.images_sigma_ratio = sigma_ratio;
-    if (preferred_ratio) f.images_preferred_px = f.after_px * *preferred_ratio;
-    f.images_resolve_focal = resolve;
-    f.images_conflict_with_prior = conflict;
-    f.held_at_prior = all_priors && !measured && !(resolve && !conflict && options.free_focal_when_resolved);
-    f.measured_by_images = measured;
-    report.focal.push_back(f);
-  }
+  AddFocalReports(state, focal_before, focal_prior_px, options, solve, verdict, report);
   StateToModel(state, model_enu);
-  if (control_points_enu_m) {
-    control_points_enu_m->clear();
-    for (size_t k = 0; k < state.control.size(); ++k) {
-      const auto& p = state.points[state.control_first + k];
-      control_points_enu_m->push_back({p[0], p[1], p[2]});
-    }
-  }
+  if (control_points_enu_m) *control_points_enu_m = ControlPointsEnu(state);
   report.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

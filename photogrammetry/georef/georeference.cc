@@ -91,64 +91,70 @@ PointSpread MeasureSpread(const std::vector<Eigen::Vector3d>& points) {
   return spread;
 }
 
-RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
-                              const RobustFitOptions& options, const std::string& what) {
-  CINEPATH_CHECK(source.size() == target.size());
-  const int n = static_cast<int>(source.size());
-  if (n < 3) {
-    throw InfeasibleError("georeferencing needs at least 3 usable " + what + ", found " + std::to_string(n));
+namespace {
+
+// Throws when `pts` are (near-)collinear: the rotation about their line would be undetermined.
+void CheckSpread(const std::vector<Eigen::Vector3d>& pts, const char* which, const RobustFitOptions& options,
+                 const std::string& what) {
+  const PointSpread s = MeasureSpread(pts);
+  const double needed = std::max(options.min_spread_ratio * s.along_m, options.min_spread_m);
+  if (s.across_m < needed) {
+    throw InfeasibleError("the " + what + " are (near-)collinear in " + which + ": they lie within " +
+                          FormatFixed(s.across_m, 2) + " m (RMS) of a line along which they spread " +
+                          FormatFixed(s.along_m, 2) + " m; the rotation about that line is undetermined (need " +
+                          FormatFixed(needed, 2) + " m across)");
   }
-  auto check_spread = [&](const std::vector<Eigen::Vector3d>& pts, const char* which) {
-    const PointSpread s = MeasureSpread(pts);
-    const double needed = std::max(options.min_spread_ratio * s.along_m, options.min_spread_m);
-    if (s.across_m < needed) {
-      throw InfeasibleError("the " + what + " are (near-)collinear in " + which + ": they lie within " +
-                            FormatFixed(s.across_m, 2) + " m (RMS) of a line along which they spread " +
-                            FormatFixed(s.along_m, 2) + " m; the rotation about that line is undetermined (need " +
-                            FormatFixed(needed, 2) + " m across)");
-    }
-  };
-  check_spread(target, "ENU");
+}
 
-  const double threshold2 = options.inlier_threshold_m * options.inlier_threshold_m;
-  auto evaluate = [&](const Similarity3& t, std::vector<bool>* inliers, double* sum2) {
-    int count = 0;
-    *sum2 = 0;
-    for (int i = 0; i < n; ++i) {
-      const double r2 = (t(source[i]) - target[i]).squaredNorm();
-      const bool in = r2 <= threshold2;
-      if (inliers) (*inliers)[i] = in;
-      if (in) {
-        ++count;
-        *sum2 += r2;
-      }
+// The pairs that `t` maps within the inlier threshold: their count, their flags and their summed squared residual.
+int CountInliers(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
+                 double threshold2, const Similarity3& t, std::vector<bool>* inliers, double* sum2) {
+  const int n = static_cast<int>(source.size());
+  int count = 0;
+  *sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    const double r2 = (t(source[i]) - target[i]).squaredNorm();
+    const bool in = r2 <= threshold2;
+    if (inliers) (*inliers)[i] = in;
+    if (in) {
+      ++count;
+      *sum2 += r2;
     }
-    return count;
-  };
+  }
+  return count;
+}
 
-  // 1. RANSAC over triples.
+// The best similarity fitted to a triple: most inliers, then least summed squared residual.
+struct RansacBest {
+  Similarity3 transform;
+  int count = -1;
+  double sum2 = std::numeric_limits<double>::infinity();
+  int trials = 0;
+};
+
+// RANSAC over triples: every triple up to 20 pairs, else `options.ransac_iterations` random ones.
+RansacBest RansacOverTriples(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
+                             const RobustFitOptions& options, double threshold2) {
+  const int n = static_cast<int>(source.size());
   double target_scale = MeasureSpread(target).along_m;
   double source_scale = MeasureSpread(source).along_m;
   const double min_area_target = 1e-6 * target_scale * target_scale;
   const double min_area_source = 1e-6 * source_scale * source_scale;
-  Similarity3 best;
-  int best_count = -1;
-  double best_sum2 = std::numeric_limits<double>::infinity();
-  int trials = 0;
+  RansacBest best;
   auto try_triple = [&](int a, int b, int c) {
     if (TriangleArea(target[a], target[b], target[c]) <= min_area_target ||
         TriangleArea(source[a], source[b], source[c]) <= min_area_source) {
       return;
     }
-    ++trials;
+    ++best.trials;
     const Similarity3 t = FitSubset(source, target, {a, b, c});
     if (!IsUsable(t)) return;
     double sum2;
-    const int count = evaluate(t, nullptr, &sum2);
-    if (count > best_count || (count == best_count && sum2 < best_sum2)) {
-      best = t;
-      best_count = count;
-      best_sum2 = sum2;
+    const int count = CountInliers(source, target, threshold2, t, nullptr, &sum2);
+    if (count > best.count || (count == best.count && sum2 < best.sum2)) {
+      best.transform = t;
+      best.count = count;
+      best.sum2 = sum2;
     }
   };
   constexpr int kExhaustiveMax = 20;
@@ -169,18 +175,16 @@ RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source, const 
       try_triple(a, b, c);
     }
   }
-  if (best_count < 3) {
-    throw InfeasibleError("georeferencing failed: no similarity fits 3 or more of the " + std::to_string(n) + " " +
-                          what + " within " + FormatFixed(options.inlier_threshold_m, 2) +
-                          " m (inlier threshold); the references may not belong to this model");
-  }
+  return best;
+}
 
-  // 2. Least squares on the inliers until the inlier set is stable.
-  RobustFit fit;
-  fit.ransac_trials = trials;
+// Least squares on the inliers of `best` until the inlier set is stable (at most 10 rounds).
+Similarity3 RefineOnInliers(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
+                            double threshold2, const Similarity3& best) {
+  const int n = static_cast<int>(source.size());
   std::vector<bool> inliers(n);
   double sum2;
-  evaluate(best, &inliers, &sum2);
+  CountInliers(source, target, threshold2, best, &inliers, &sum2);
   Similarity3 current = best;
   for (int round = 0; round < 10; ++round) {
     std::vector<int> idx;
@@ -190,13 +194,21 @@ RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source, const 
     const Similarity3 refined = FitSubset(source, target, idx);
     if (!IsUsable(refined)) break;
     std::vector<bool> next(n);
-    const int count = evaluate(refined, &next, &sum2);
+    const int count = CountInliers(source, target, threshold2, refined, &next, &sum2);
     if (count < 3) break;
     current = refined;
     if (next == inliers) break;
     inliers = next;
   }
-  fit.target_from_source = current;
+  return current;
+}
+
+// Fills the fit's residuals, inlier flags and RMSEs for `fit.target_from_source`; returns the inliers' targets.
+std::vector<Eigen::Vector3d> MeasureResiduals(const std::vector<Eigen::Vector3d>& source,
+                                              const std::vector<Eigen::Vector3d>& target,
+                                              const RobustFitOptions& options, RobustFit& fit) {
+  const int n = static_cast<int>(source.size());
+  const Similarity3& current = fit.target_from_source;
   fit.inliers.assign(n, false);
   fit.residuals_m.resize(n);
   double sum_in = 0, sum_all = 0;
@@ -214,12 +226,38 @@ RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source, const 
   }
   fit.rmse_all_m = std::sqrt(sum_all / n);
   fit.rmse_m = fit.num_inliers > 0 ? std::sqrt(sum_in / fit.num_inliers) : 0;
+  return inlier_targets;
+}
+
+}  // namespace
+
+RobustFit FitSimilarityRobust(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
+                              const RobustFitOptions& options, const std::string& what) {
+  CINEPATH_CHECK(source.size() == target.size());
+  const int n = static_cast<int>(source.size());
+  if (n < 3) {
+    throw InfeasibleError("georeferencing needs at least 3 usable " + what + ", found " + std::to_string(n));
+  }
+  CheckSpread(target, "ENU", options, what);
+
+  const double threshold2 = options.inlier_threshold_m * options.inlier_threshold_m;
+  const RansacBest best = RansacOverTriples(source, target, options, threshold2);
+  if (best.count < 3) {
+    throw InfeasibleError("georeferencing failed: no similarity fits 3 or more of the " + std::to_string(n) + " " +
+                          what + " within " + FormatFixed(options.inlier_threshold_m, 2) +
+                          " m (inlier threshold); the references may not belong to this model");
+  }
+
+  RobustFit fit;
+  fit.ransac_trials = best.trials;
+  fit.target_from_source = RefineOnInliers(source, target, threshold2, best.transform);
+  const std::vector<Eigen::Vector3d> inlier_targets = MeasureResiduals(source, target, options, fit);
   if (fit.num_inliers < 3) {
     throw InfeasibleError("georeferencing failed: only " + std::to_string(fit.num_inliers) + " of " +
                           std::to_string(n) + " " + what + " fit within " + FormatFixed(options.inlier_threshold_m, 2) +
                           " m");
   }
-  check_spread(inlier_targets, "ENU (inliers)");
+  CheckSpread(inlier_targets, "ENU (inliers)", options, what);
   if (fit.rmse_m > options.max_rmse_m) {
     throw InfeasibleError("georeferencing RMSE " + FormatFixed(fit.rmse_m, 3) + " m over " +
                           std::to_string(fit.num_inliers) + " inlier " + what + " exceeds the maximum " +

@@ -400,109 +400,123 @@ int64_t FillHoleLocally(const BoundaryCycle& cycle, const SoupTopology& topology
   return static_cast<int64_t>(new_faces.size());
 }
 
-// The fast path, for a soup that is already an oriented 2-manifold (a terrain from the height
-// field, Poisson's output, most given meshes): components, small-component removal and border
-// cycles come from the soup itself, and CGAL is called only around holes to fill.
-TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored, const MeshCleanOptions& options,
-                               std::vector<Eigen::Vector3d> points, std::vector<std::array<uint32_t, 3>> faces,
-                               const std::vector<size_t>& original_of_point, const SoupTopology& topology,
-                               MeshCleanReport& report) {
-  const size_t n = points.size();
-  // Components (vertex-connected = edge-connected on a manifold), with the lowest point as root.
+// The soup's components (vertex-connected = edge-connected on a manifold), with the lowest point
+// as root, and which components and faces are kept.
+struct SoupComponents {
+  std::vector<uint32_t> root;        // per point
+  std::vector<char> component_kept;  // per root point
+  std::vector<char> face_kept;       // per face
+};
+
+// Small components are removed, as the general path does (SmallComponentThreshold).
+SoupComponents KeepLargeSoupComponents(const std::vector<std::array<uint32_t, 3>>& faces, size_t n,
+                                       const MeshCleanOptions& options, MeshCleanReport& report) {
+  SoupComponents s;
   UnionFind components(n);
   for (const auto& f : faces) {
     components.Unite(f[0], f[1]);
     components.Unite(f[0], f[2]);
   }
-  std::vector<uint32_t> root(n);
-  for (size_t v = 0; v < n; ++v) root[v] = components.Find(static_cast<uint32_t>(v));
+  s.root.resize(n);
+  for (size_t v = 0; v < n; ++v) s.root[v] = components.Find(static_cast<uint32_t>(v));
   std::vector<int64_t> faces_per_root(n, 0);
-  for (const auto& f : faces) ++faces_per_root[root[f[0]]];
+  for (const auto& f : faces) ++faces_per_root[s.root[f[0]]];
   int64_t largest = 0;
   for (size_t v = 0; v < n; ++v) {
-    if (root[v] == v) largest = std::max(largest, faces_per_root[v]);
+    if (s.root[v] == v) largest = std::max(largest, faces_per_root[v]);
   }
   const int64_t threshold = SmallComponentThreshold(options, largest);
-  std::vector<char> component_kept(n, 0);
+  s.component_kept.assign(n, 0);
   for (size_t v = 0; v < n; ++v) {
-    if (root[v] != v || faces_per_root[v] == 0) continue;
+    if (s.root[v] != v || faces_per_root[v] == 0) continue;
     const bool small = IsSmallComponent(faces_per_root[v], threshold, largest);
     CountComponent(small, faces_per_root[v], report);
-    component_kept[v] = small ? 0 : 1;
+    s.component_kept[v] = small ? 0 : 1;
   }
-  std::vector<char> face_kept(faces.size(), 1);
+  s.face_kept.assign(faces.size(), 1);
   if (report.small_components_removed > 0) {
-    for (size_t i = 0; i < faces.size(); ++i) face_kept[i] = component_kept[root[faces[i][0]]];
+    for (size_t i = 0; i < faces.size(); ++i) s.face_kept[i] = s.component_kept[s.root[faces[i][0]]];
   }
+  return s;
+}
 
-  std::vector<Color> colors;
-  if (colored) {
-    colors.reserve(n);
-    for (size_t p = 0; p < n; ++p) colors.push_back(mesh.colors_rgb[original_of_point[p]]);
+// The closed border cycles of the kept components, each from its lowest point; a chain that does
+// not close is counted as a hole left open.
+std::vector<BoundaryCycle> SoupBorderCycles(const SoupTopology& topology, const std::vector<Eigen::Vector3d>& points,
+                                            const SoupComponents& components, MeshCleanReport& report) {
+  const size_t n = points.size();
+  std::vector<BoundaryCycle> cycles;
+  std::vector<char> visited(n, 0);
+  for (size_t v = 0; v < n; ++v) {
+    if (topology.boundary_next[v] == kNone || visited[v] || !components.component_kept[components.root[v]]) continue;
+    BoundaryCycle c;
+    c.component = components.root[v];
+    bool closed = false;
+    for (uint32_t p = static_cast<uint32_t>(v); c.points.size() <= n;) {
+      visited[p] = 1;
+      c.points.push_back(p);
+      const uint32_t q = topology.boundary_next[p];
+      if (q == kNone) break;
+      c.perimeter_m += (points[q] - points[p]).norm();
+      if (q == v) {
+        closed = true;
+        break;
+      }
+      p = q;
+    }
+    if (!closed) {  // cannot happen on an oriented manifold; never fill such a chain
+      ++report.holes_left_open;
+      continue;
+    }
+    cycles.push_back(std::move(c));
   }
+  return cycles;
+}
 
-  // Border cycles of the kept components; the longest of each component is its outer border.
-  if (options.max_hole_edges > 0 && options.max_hole_perimeter_m > 0) {
-    std::vector<BoundaryCycle> cycles;
-    std::vector<char> visited(n, 0);
-    for (size_t v = 0; v < n; ++v) {
-      if (topology.boundary_next[v] == kNone || visited[v] || !component_kept[root[v]]) continue;
-      BoundaryCycle c;
-      c.component = root[v];
-      bool closed = false;
-      for (uint32_t p = static_cast<uint32_t>(v); c.points.size() <= n;) {
-        visited[p] = 1;
-        c.points.push_back(p);
-        const uint32_t q = topology.boundary_next[p];
-        if (q == kNone) break;
-        c.perimeter_m += (points[q] - points[p]).norm();
-        if (q == v) {
-          closed = true;
-          break;
-        }
-        p = q;
-      }
-      if (!closed) {  // cannot happen on an oriented manifold; never fill such a chain
-        ++report.holes_left_open;
-        continue;
-      }
-      cycles.push_back(std::move(c));
-    }
-    std::vector<size_t> cycle_component;
-    std::vector<double> cycle_perimeter;
-    for (const BoundaryCycle& c : cycles) {
-      cycle_component.push_back(c.component);
-      cycle_perimeter.push_back(c.perimeter_m);
-    }
-    const std::vector<char> outer = OuterBorders(cycle_component, cycle_perimeter, n);
-    const size_t faces_before_filling = faces.size();
-    for (size_t i = 0; i < cycles.size(); ++i) {
-      const BoundaryCycle& c = cycles[i];
-      const int64_t edges = static_cast<int64_t>(c.points.size());
-      if (!FillableHole(outer[i], edges, c.perimeter_m, options)) {
-        ++report.holes_left_open;
-        continue;
-      }
-      std::array<double, 3> sum{0, 0, 0};
-      if (colored) {
-        for (uint32_t p : c.points) {
-          for (int k = 0; k < 3; ++k) sum[k] += colors[p][k];
-        }
-      }
-      const Color mean = MeanColor(sum, edges);
-      const int64_t added =
-          FillHoleLocally(c, topology, faces_before_filling, points, faces, colored ? &colors : nullptr, mean);
-      if (added == 0) {
-        ++report.holes_left_open;
-        continue;
-      }
-      ++report.holes_filled;
-      report.hole_faces_added += added;
-      face_kept.resize(faces.size(), 1);
-    }
+// Fills each fillable hole among `cycles` (the longest cycle of a component is its outer border)
+// in the colour of its border's mean; the new points, faces and colours are appended, all kept.
+void FillSoupHoles(const std::vector<BoundaryCycle>& cycles, const SoupTopology& topology, bool colored,
+                   const MeshCleanOptions& options, std::vector<Eigen::Vector3d>& points,
+                   std::vector<std::array<uint32_t, 3>>& faces, std::vector<Color>& colors,
+                   std::vector<char>& face_kept, MeshCleanReport& report) {
+  std::vector<size_t> cycle_component;
+  std::vector<double> cycle_perimeter;
+  for (const BoundaryCycle& c : cycles) {
+    cycle_component.push_back(c.component);
+    cycle_perimeter.push_back(c.perimeter_m);
   }
+  const std::vector<char> outer = OuterBorders(cycle_component, cycle_perimeter, points.size());
+  const size_t faces_before_filling = faces.size();
+  for (size_t i = 0; i < cycles.size(); ++i) {
+    const BoundaryCycle& c = cycles[i];
+    const int64_t edges = static_cast<int64_t>(c.points.size());
+    if (!FillableHole(outer[i], edges, c.perimeter_m, options)) {
+      ++report.holes_left_open;
+      continue;
+    }
+    std::array<double, 3> sum{0, 0, 0};
+    if (colored) {
+      for (uint32_t p : c.points) {
+        for (int k = 0; k < 3; ++k) sum[k] += colors[p][k];
+      }
+    }
+    const Color mean = MeanColor(sum, edges);
+    const int64_t added =
+        FillHoleLocally(c, topology, faces_before_filling, points, faces, colored ? &colors : nullptr, mean);
+    if (added == 0) {
+      ++report.holes_left_open;
+      continue;
+    }
+    ++report.holes_filled;
+    report.hole_faces_added += added;
+    face_kept.resize(faces.size(), 1);
+  }
+}
 
-  // Output: kept faces, the points they use (points of removed components go with them).
+// The kept faces and the points they use, numbered in point order (points of removed components
+// go with them).
+TriangleMesh KeptSoup(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<uint32_t, 3>>& faces,
+                      const std::vector<char>& face_kept, bool colored, const std::vector<Color>& colors) {
   std::vector<int64_t> compact(points.size(), -1);
   TriangleMesh out;
   out.faces.reserve(faces.size());
@@ -526,57 +540,81 @@ TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored, const Mes
   for (auto& f : out.faces) {
     for (uint32_t& i : f) i = static_cast<uint32_t>(compact[i]);
   }
+  return out;
+}
+
+// The fast path, for a soup that is already an oriented 2-manifold (a terrain from the height
+// field, Poisson's output, most given meshes): components, small-component removal and border
+// cycles come from the soup itself, and CGAL is called only around holes to fill.
+TriangleMesh CleanManifoldSoup(const TriangleMesh& mesh, bool colored, const MeshCleanOptions& options,
+                               std::vector<Eigen::Vector3d> points, std::vector<std::array<uint32_t, 3>> faces,
+                               const std::vector<size_t>& original_of_point, const SoupTopology& topology,
+                               MeshCleanReport& report) {
+  const size_t n = points.size();
+  SoupComponents components = KeepLargeSoupComponents(faces, n, options, report);
+  std::vector<Color> colors;
+  if (colored) {
+    colors.reserve(n);
+    for (size_t p = 0; p < n; ++p) colors.push_back(mesh.colors_rgb[original_of_point[p]]);
+  }
+  if (options.max_hole_edges > 0 && options.max_hole_perimeter_m > 0) {
+    const std::vector<BoundaryCycle> cycles = SoupBorderCycles(topology, points, components, report);
+    FillSoupHoles(cycles, topology, colored, options, points, faces, colors, components.face_kept, report);
+  }
+  TriangleMesh out = KeptSoup(points, faces, components.face_kept, colored, colors);
   report.vertices_out = static_cast<int64_t>(out.num_vertices());
   report.faces_out = static_cast<int64_t>(out.num_faces());
   return out;
 }
 
-// The general path, for soups that are not an oriented 2-manifold: CGAL orients the soup
-// (duplicating points where the surface is not a manifold), then Polygon_mesh_processing does
-// every repair on a Surface_mesh.
-TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const MeshCleanOptions& options,
-                                  std::vector<Point3> points, std::vector<std::array<size_t, 3>> polygons,
-                                  const std::vector<std::array<uint32_t, 3>>& faces,
-                                  std::vector<size_t> original_of_point, MeshCleanReport& report) {
-  // 4. Non-manifold edges and vertices: orient the soup; CGAL duplicates the points where the
-  //    surface is not a 2-manifold. Then keep each component in the orientation most of its input
-  //    faces had (orienting may flip a whole component).
-  {
-    const size_t points_before = points.size();
-    PMP::orient_polygon_soup(points, polygons);
-    report.non_manifold_vertices_split = static_cast<int64_t>(points.size() - points_before);
-    // Points added by CGAL are copies: find their originals by position.
-    std::map<std::tuple<double, double, double>, size_t> original_by_position;
-    for (size_t p = 0; p < points_before; ++p) {
-      original_by_position.emplace(std::make_tuple(points[p].x(), points[p].y(), points[p].z()), original_of_point[p]);
-    }
-    for (size_t p = points_before; p < points.size(); ++p) {
-      original_of_point.push_back(
-          original_by_position.at(std::make_tuple(points[p].x(), points[p].y(), points[p].z())));
-    }
-    UnionFind components(points.size());
-    for (const auto& polygon : polygons) {
-      components.Unite(static_cast<uint32_t>(polygon[0]), static_cast<uint32_t>(polygon[1]));
-      components.Unite(static_cast<uint32_t>(polygon[0]), static_cast<uint32_t>(polygon[2]));
-    }
-    std::map<uint32_t, std::pair<int64_t, int64_t>> flipped_and_total;
-    std::vector<char> flipped(polygons.size());
-    for (size_t i = 0; i < polygons.size(); ++i) {
-      flipped[i] = !SameCyclicOrder(polygons[i], faces[i], original_of_point);
-      auto& counts = flipped_and_total[components.Find(static_cast<uint32_t>(polygons[i][0]))];
-      counts.first += flipped[i];
-      counts.second += 1;
-    }
-    for (size_t i = 0; i < polygons.size(); ++i) {
-      const auto& counts = flipped_and_total[components.Find(static_cast<uint32_t>(polygons[i][0]))];
-      if (2 * counts.first > counts.second) {
-        std::reverse(polygons[i].begin(), polygons[i].end());
-        flipped[i] = !flipped[i];
-      }
-      report.faces_reoriented += flipped[i];
-    }
+// CGAL orients the soup, duplicating the points where the surface is not a 2-manifold (copies map
+// to their originals by position). Then each component keeps the orientation most of its input
+// faces had (orienting may flip a whole component).
+void OrientSoupByMajority(const std::vector<std::array<uint32_t, 3>>& faces, std::vector<Point3>& points,
+                          std::vector<std::array<size_t, 3>>& polygons, std::vector<size_t>& original_of_point,
+                          MeshCleanReport& report) {
+  const size_t points_before = points.size();
+  PMP::orient_polygon_soup(points, polygons);
+  report.non_manifold_vertices_split = static_cast<int64_t>(points.size() - points_before);
+  // Points added by CGAL are copies: find their originals by position.
+  std::map<std::tuple<double, double, double>, size_t> original_by_position;
+  for (size_t p = 0; p < points_before; ++p) {
+    original_by_position.emplace(std::make_tuple(points[p].x(), points[p].y(), points[p].z()), original_of_point[p]);
   }
-  SurfaceMesh sm;
+  for (size_t p = points_before; p < points.size(); ++p) {
+    original_of_point.push_back(original_by_position.at(std::make_tuple(points[p].x(), points[p].y(), points[p].z())));
+  }
+  UnionFind components(points.size());
+  for (const auto& polygon : polygons) {
+    components.Unite(static_cast<uint32_t>(polygon[0]), static_cast<uint32_t>(polygon[1]));
+    components.Unite(static_cast<uint32_t>(polygon[0]), static_cast<uint32_t>(polygon[2]));
+  }
+  std::map<uint32_t, std::pair<int64_t, int64_t>> flipped_and_total;
+  std::vector<char> flipped(polygons.size());
+  for (size_t i = 0; i < polygons.size(); ++i) {
+    flipped[i] = !SameCyclicOrder(polygons[i], faces[i], original_of_point);
+    auto& counts = flipped_and_total[components.Find(static_cast<uint32_t>(polygons[i][0]))];
+    counts.first += flipped[i];
+    counts.second += 1;
+  }
+  for (size_t i = 0; i < polygons.size(); ++i) {
+    const auto& counts = flipped_and_total[components.Find(static_cast<uint32_t>(polygons[i][0]))];
+    if (2 * counts.first > counts.second) {
+      std::reverse(polygons[i].begin(), polygons[i].end());
+      flipped[i] = !flipped[i];
+    }
+    report.faces_reoriented += flipped[i];
+  }
+}
+
+using ColorMap = SurfaceMesh::Property_map<VertexIndex, Color>;
+
+// The Surface_mesh of the oriented soup with its vertex colours ("v:color"); the non-manifold
+// vertices left are split.
+ColorMap BuildColoredSurfaceMesh(const TriangleMesh& mesh, bool colored, const std::vector<Point3>& points,
+                                 const std::vector<std::array<size_t, 3>>& polygons,
+                                 const std::vector<size_t>& original_of_point, SurfaceMesh& sm,
+                                 MeshCleanReport& report) {
   PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
   auto color_map = sm.add_property_map<VertexIndex, Color>("v:color", Color{0, 0, 0}).first;
   {
@@ -588,87 +626,107 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const 
       ++p;
     }
   }
-  {
-    std::vector<HalfedgeIndex> non_manifold;
-    PMP::non_manifold_vertices(sm, std::back_inserter(non_manifold));
-    if (!non_manifold.empty()) {
-      report.non_manifold_vertices_split += static_cast<int64_t>(PMP::duplicate_non_manifold_vertices(sm));
-    }
+  std::vector<HalfedgeIndex> non_manifold;
+  PMP::non_manifold_vertices(sm, std::back_inserter(non_manifold));
+  if (!non_manifold.empty()) {
+    report.non_manifold_vertices_split += static_cast<int64_t>(PMP::duplicate_non_manifold_vertices(sm));
   }
+  return color_map;
+}
 
-  // 5. Small components and floating blobs.
-  {
-    auto cc_map = sm.add_property_map<FaceIndex, std::size_t>("f:cc", 0).first;
-    const std::size_t num_components = PMP::connected_components(sm, cc_map);
-    std::vector<int64_t> faces_per_component(num_components, 0);
-    for (FaceIndex f : sm.faces()) ++faces_per_component[cc_map[f]];
-    const int64_t largest = *std::max_element(faces_per_component.begin(), faces_per_component.end());
-    const int64_t threshold = SmallComponentThreshold(options, largest);
-    for (int64_t count : faces_per_component)
-      CountComponent(IsSmallComponent(count, threshold, largest), count, report);
-    if (report.small_components_removed > 0) {
-      const int64_t keep_threshold = std::min(threshold, largest);
-      PMP::keep_large_connected_components(sm, static_cast<std::size_t>(keep_threshold));
-    }
-    sm.remove_property_map(cc_map);
+// Small components and floating blobs (SmallComponentThreshold) are removed.
+void RemoveSmallMeshComponents(SurfaceMesh& sm, const MeshCleanOptions& options, MeshCleanReport& report) {
+  auto cc_map = sm.add_property_map<FaceIndex, std::size_t>("f:cc", 0).first;
+  const std::size_t num_components = PMP::connected_components(sm, cc_map);
+  std::vector<int64_t> faces_per_component(num_components, 0);
+  for (FaceIndex f : sm.faces()) ++faces_per_component[cc_map[f]];
+  const int64_t largest = *std::max_element(faces_per_component.begin(), faces_per_component.end());
+  const int64_t threshold = SmallComponentThreshold(options, largest);
+  for (int64_t count : faces_per_component) CountComponent(IsSmallComponent(count, threshold, largest), count, report);
+  if (report.small_components_removed > 0) {
+    const int64_t keep_threshold = std::min(threshold, largest);
+    PMP::keep_large_connected_components(sm, static_cast<std::size_t>(keep_threshold));
   }
+  sm.remove_property_map(cc_map);
+}
+
+// A border cycle of a Surface_mesh: one of its halfedges, its size and its component.
+struct MeshBorderCycle {
+  HalfedgeIndex h;
+  int64_t edges = 0;
+  double perimeter_m = 0;
+  std::size_t component = 0;
+  bool outer = false;  // the longest cycle of its component
+};
+
+std::vector<MeshBorderCycle> MeshBorderCycles(SurfaceMesh& sm) {
+  auto cc_map = sm.add_property_map<FaceIndex, std::size_t>("f:cc", 0).first;
+  const std::size_t num_components = PMP::connected_components(sm, cc_map);
+  std::vector<HalfedgeIndex> cycles;
+  PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));
+  std::vector<MeshBorderCycle> info;
+  std::vector<size_t> cycle_component;
+  std::vector<double> cycle_perimeter;
+  for (HalfedgeIndex h : cycles) {
+    MeshBorderCycle c;
+    c.h = h;
+    for (HalfedgeIndex e : CGAL::halfedges_around_face(h, sm)) {
+      ++c.edges;
+      c.perimeter_m += std::sqrt(CGAL::squared_distance(sm.point(sm.source(e)), sm.point(sm.target(e))));
+    }
+    c.component = cc_map[sm.face(sm.opposite(h))];
+    cycle_component.push_back(c.component);
+    cycle_perimeter.push_back(c.perimeter_m);
+    info.push_back(c);
+  }
+  const std::vector<char> outer = OuterBorders(cycle_component, cycle_perimeter, num_components);
+  for (size_t i = 0; i < info.size(); ++i) info[i].outer = outer[i];
+  sm.remove_property_map(cc_map);
+  return info;
+}
+
+// Holes up to a size are filled, their new vertices in the mean colour of the hole's border.
+void FillMeshHoles(SurfaceMesh& sm, ColorMap color_map, const MeshCleanOptions& options, MeshCleanReport& report) {
+  for (const MeshBorderCycle& c : MeshBorderCycles(sm)) {
+    if (!FillableHole(c.outer, c.edges, c.perimeter_m, options)) {
+      ++report.holes_left_open;
+      continue;
+    }
+    std::array<double, 3> sum{0, 0, 0};
+    for (HalfedgeIndex e : CGAL::halfedges_around_face(c.h, sm)) {
+      for (int k = 0; k < 3; ++k) sum[k] += color_map[sm.target(e)][k];
+    }
+    std::vector<FaceIndex> new_faces;
+    std::vector<VertexIndex> new_vertices;
+    PMP::triangulate_and_refine_hole(sm, c.h, std::back_inserter(new_faces), std::back_inserter(new_vertices));
+    if (new_faces.empty()) {
+      ++report.holes_left_open;
+      continue;
+    }
+    ++report.holes_filled;
+    report.hole_faces_added += static_cast<int64_t>(new_faces.size());
+    const Color mean = MeanColor(sum, c.edges);
+    for (VertexIndex v : new_vertices) color_map[v] = mean;
+  }
+}
+
+// The general path, for soups that are not an oriented 2-manifold: CGAL orients the soup
+// (duplicating points where the surface is not a manifold), then Polygon_mesh_processing does
+// every repair on a Surface_mesh.
+TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const MeshCleanOptions& options,
+                                  std::vector<Point3> points, std::vector<std::array<size_t, 3>> polygons,
+                                  const std::vector<std::array<uint32_t, 3>>& faces,
+                                  std::vector<size_t> original_of_point, MeshCleanReport& report) {
+  // 4. Non-manifold edges and vertices.
+  OrientSoupByMajority(faces, points, polygons, original_of_point, report);
+  SurfaceMesh sm;
+  ColorMap color_map = BuildColoredSurfaceMesh(mesh, colored, points, polygons, original_of_point, sm, report);
+  // 5. Small components and floating blobs.
+  RemoveSmallMeshComponents(sm, options, report);
   // Non-manifold edges were cut open by orienting; once the extra sheets are gone, zip the slits.
   report.borders_stitched = static_cast<int64_t>(PMP::stitch_borders(sm));
-
   // 6. Holes up to a size; the longest boundary of each component is its outer border.
-  if (options.max_hole_edges > 0 && options.max_hole_perimeter_m > 0) {
-    auto cc_map = sm.add_property_map<FaceIndex, std::size_t>("f:cc", 0).first;
-    const std::size_t num_components = PMP::connected_components(sm, cc_map);
-    std::vector<HalfedgeIndex> cycles;
-    PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));
-    struct Cycle {
-      HalfedgeIndex h;
-      int64_t edges = 0;
-      double perimeter_m = 0;
-      std::size_t component = 0;
-    };
-    std::vector<Cycle> info;
-    std::vector<size_t> cycle_component;
-    std::vector<double> cycle_perimeter;
-    for (HalfedgeIndex h : cycles) {
-      Cycle c;
-      c.h = h;
-      for (HalfedgeIndex e : CGAL::halfedges_around_face(h, sm)) {
-        ++c.edges;
-        c.perimeter_m += std::sqrt(CGAL::squared_distance(sm.point(sm.source(e)), sm.point(sm.target(e))));
-      }
-      c.component = cc_map[sm.face(sm.opposite(h))];
-      cycle_component.push_back(c.component);
-      cycle_perimeter.push_back(c.perimeter_m);
-      info.push_back(c);
-    }
-    const std::vector<char> outer = OuterBorders(cycle_component, cycle_perimeter, num_components);
-    sm.remove_property_map(cc_map);
-    for (size_t i = 0; i < info.size(); ++i) {
-      const Cycle& c = info[i];
-      if (!FillableHole(outer[i], c.edges, c.perimeter_m, options)) {
-        ++report.holes_left_open;
-        continue;
-      }
-      // Border colour: the mean over the hole's vertices.
-      std::array<double, 3> sum{0, 0, 0};
-      for (HalfedgeIndex e : CGAL::halfedges_around_face(c.h, sm)) {
-        for (int k = 0; k < 3; ++k) sum[k] += color_map[sm.target(e)][k];
-      }
-      std::vector<FaceIndex> new_faces;
-      std::vector<VertexIndex> new_vertices;
-      PMP::triangulate_and_refine_hole(sm, c.h, std::back_inserter(new_faces), std::back_inserter(new_vertices));
-      if (new_faces.empty()) {
-        ++report.holes_left_open;
-        continue;
-      }
-      ++report.holes_filled;
-      report.hole_faces_added += static_cast<int64_t>(new_faces.size());
-      const Color mean = MeanColor(sum, c.edges);
-      for (VertexIndex v : new_vertices) color_map[v] = mean;
-    }
-  }
-
+  if (options.max_hole_edges > 0 && options.max_hole_perimeter_m > 0) FillMeshHoles(sm, color_map, options, report);
   // 7. Isolated vertices left by the steps above.
   report.isolated_vertices_removed += static_cast<int64_t>(PMP::remove_isolated_vertices(sm));
   sm.collect_garbage();
@@ -681,6 +739,155 @@ TriangleMesh CleanWithSurfaceMesh(const TriangleMesh& mesh, bool colored, const 
   report.vertices_out = static_cast<int64_t>(out.num_vertices());
   report.faces_out = static_cast<int64_t>(out.num_faces());
   return out;
+}
+
+// 1. Merge vertices with exactly equal positions (the lowest index represents the group): one
+//    pass in index order over a hash table of positions. Returns each vertex's representative.
+std::vector<uint32_t> MergeEqualPositions(const TriangleMesh& mesh, MeshCleanReport& report) {
+  const size_t n = mesh.num_vertices();
+  std::vector<uint32_t> representative(n);
+  IdTable table(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& v = mesh.vertices_m[i];
+    if (!v.allFinite()) {  // NaN equals nothing; such vertices invalidate their faces below
+      representative[i] = static_cast<uint32_t>(i);
+      continue;
+    }
+    representative[i] = table.FindOrInsert(PositionHash(v), static_cast<uint32_t>(i),
+                                           [&](uint32_t j) { return mesh.vertices_m[j] == v; });
+    if (representative[i] != i) ++report.duplicate_vertices_merged;
+  }
+  return representative;
+}
+
+enum FaceVerdict : char { kKeep = 0, kInvalid = 1, kDegenerate = 2 };
+
+// 2a. Invalid and degenerate faces, classified in parallel (fixed chunks).
+std::vector<char> ClassifyFaces(const TriangleMesh& mesh, const std::vector<uint32_t>& representative,
+                                const MeshCleanOptions& options) {
+  const size_t n = mesh.num_vertices();
+  std::vector<char> verdict(mesh.num_faces(), kKeep);
+  tbb::parallel_for(size_t{0}, (mesh.num_faces() + kChunk - 1) / kChunk, [&](size_t c) {
+    const size_t end = std::min(mesh.num_faces(), (c + 1) * kChunk);
+    for (size_t i = c * kChunk; i < end; ++i) {
+      const auto& f = mesh.faces[i];
+      bool valid = true;
+      for (uint32_t v : f) valid = valid && v < n && mesh.vertices_m[v].allFinite();
+      if (!valid || f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
+        verdict[i] = kInvalid;
+        continue;
+      }
+      const std::array<uint32_t, 3> r{representative[f[0]], representative[f[1]], representative[f[2]]};
+      const Eigen::Vector3d& a = mesh.vertices_m[r[0]];
+      const Eigen::Vector3d& b = mesh.vertices_m[r[1]];
+      const Eigen::Vector3d& cc = mesh.vertices_m[r[2]];
+      const double area = 0.5 * (b - a).cross(cc - a).norm();
+      if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2] || area < options.min_face_area_m2 ||
+          CGAL::collinear(Point3(a.x(), a.y(), a.z()), Point3(b.x(), b.y(), b.z()), Point3(cc.x(), cc.y(), cc.z()))) {
+        verdict[i] = kDegenerate;
+      }
+    }
+  });
+  return verdict;
+}
+
+// 2b. The kept faces, in representative (input) vertex indices: no invalid, degenerate or duplicate
+//     faces (same three vertices in either orientation; the first one stays).
+std::vector<std::array<uint32_t, 3>> DistinctValidFaces(const TriangleMesh& mesh,
+                                                        const std::vector<uint32_t>& representative,
+                                                        const std::vector<char>& verdict, MeshCleanReport& report) {
+  std::vector<std::array<uint32_t, 3>> faces;
+  faces.reserve(mesh.num_faces());
+  IdTable seen(mesh.num_faces());
+  auto sorted = [](std::array<uint32_t, 3> f) {
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  for (size_t i = 0; i < mesh.num_faces(); ++i) {
+    if (verdict[i] == kInvalid) {
+      ++report.invalid_faces_removed;
+      continue;
+    }
+    if (verdict[i] == kDegenerate) {
+      ++report.degenerate_faces_removed;
+      continue;
+    }
+    const auto& f = mesh.faces[i];
+    const std::array<uint32_t, 3> r{representative[f[0]], representative[f[1]], representative[f[2]]};
+    const std::array<uint32_t, 3> key = sorted(r);
+    const uint32_t id = static_cast<uint32_t>(faces.size());
+    if (seen.FindOrInsert(FaceHash(key), id, [&](uint32_t j) { return sorted(faces[j]) == key; }) != id) {
+      ++report.duplicate_faces_removed;
+      continue;
+    }
+    faces.push_back(r);
+  }
+  return faces;
+}
+
+// 3. Compact: the faces in the numbering of the points they use (`original_of_point` maps back);
+//    vertices no face uses are isolated (merged duplicates are counted above).
+std::vector<std::array<uint32_t, 3>> CompactSoup(const std::vector<std::array<uint32_t, 3>>& faces,
+                                                 const std::vector<uint32_t>& representative,
+                                                 std::vector<size_t>& original_of_point, MeshCleanReport& report) {
+  const size_t n = representative.size();
+  std::vector<int64_t> compact(n, -1);
+  for (const auto& f : faces) {
+    for (uint32_t i : f) compact[i] = 0;
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (compact[i] == 0) {
+      compact[i] = static_cast<int64_t>(original_of_point.size());
+      original_of_point.push_back(i);
+    } else if (representative[i] == i) {
+      ++report.isolated_vertices_removed;
+    }
+  }
+  std::vector<std::array<uint32_t, 3>> soup(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) {
+    soup[i] = {static_cast<uint32_t>(compact[faces[i][0]]), static_cast<uint32_t>(compact[faces[i][1]]),
+               static_cast<uint32_t>(compact[faces[i][2]])};
+  }
+  return soup;
+}
+
+// When bowties alone may keep the soup from being an oriented 2-manifold, splits them and looks
+// again; keeps the split soup only if it is one. (The analysis stops early on a repeated directed
+// edge, leaving `pinched` unset for the rest.)
+void SplitBowtiesWhenAlone(std::vector<std::array<uint32_t, 3>>& soup, std::vector<size_t>& original_of_point,
+                           SoupTopology& topology, MeshCleanReport& report) {
+  if (topology.oriented_manifold ||
+      std::none_of(topology.pinched.begin(), topology.pinched.end(), [](char p) { return p; })) {
+    return;
+  }
+  std::vector<std::array<uint32_t, 3>> split = soup;
+  std::vector<size_t> split_original = original_of_point;
+  const int64_t copies = SplitPinchedPoints(topology, split, split_original);
+  SoupTopology again = AnalyzeSoup(split, split_original.size());
+  if (again.oriented_manifold) {
+    report.non_manifold_vertices_split += copies;
+    soup = std::move(split);
+    original_of_point = std::move(split_original);
+    topology = std::move(again);
+  }
+}
+
+// The general path's input: the soup's points and polygons in CGAL's types.
+TriangleMesh CleanGeneralSoup(const TriangleMesh& mesh, bool colored, const MeshCleanOptions& options,
+                              const std::vector<std::array<uint32_t, 3>>& soup,
+                              const std::vector<std::array<uint32_t, 3>>& faces, std::vector<size_t> original_of_point,
+                              MeshCleanReport& report) {
+  std::vector<Point3> points;
+  points.reserve(original_of_point.size());
+  for (size_t p : original_of_point) {
+    const auto& v = mesh.vertices_m[p];
+    points.emplace_back(v.x(), v.y(), v.z());
+  }
+  report.general_path = true;
+  std::vector<std::array<size_t, 3>> polygons(soup.size());
+  for (size_t i = 0; i < soup.size(); ++i) polygons[i] = {soup[i][0], soup[i][1], soup[i][2]};
+  return CleanWithSurfaceMesh(mesh, colored, options, std::move(points), std::move(polygons), faces,
+                              std::move(original_of_point), report);
 }
 
 }  // namespace
@@ -713,122 +920,22 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
   MeshCleanReport report;
   report.vertices_in = static_cast<int64_t>(mesh.num_vertices());
   report.faces_in = static_cast<int64_t>(mesh.num_faces());
-  const size_t n = mesh.num_vertices();
-  const bool colored = mesh.has_colors() && mesh.colors_rgb.size() == n;
+  const bool colored = mesh.has_colors() && mesh.colors_rgb.size() == mesh.num_vertices();
 
-  // 1. Merge vertices with exactly equal positions (the lowest index represents the group): one
-  //    pass in index order over a hash table of positions.
-  std::vector<uint32_t> representative(n);
-  {
-    IdTable table(n);
-    for (size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3d& v = mesh.vertices_m[i];
-      if (!v.allFinite()) {  // NaN equals nothing; such vertices invalidate their faces below
-        representative[i] = static_cast<uint32_t>(i);
-        continue;
-      }
-      representative[i] = table.FindOrInsert(PositionHash(v), static_cast<uint32_t>(i),
-                                             [&](uint32_t j) { return mesh.vertices_m[j] == v; });
-      if (representative[i] != i) ++report.duplicate_vertices_merged;
-    }
-  }
-
-  // 2. Invalid and degenerate faces (classified in parallel, fixed chunks), then duplicate faces
-  //    (same three vertices in either orientation; the first one stays).
-  enum : char { kKeep = 0, kInvalid = 1, kDegenerate = 2 };
-  std::vector<char> verdict(mesh.num_faces(), kKeep);
-  tbb::parallel_for(size_t{0}, (mesh.num_faces() + kChunk - 1) / kChunk, [&](size_t c) {
-    const size_t end = std::min(mesh.num_faces(), (c + 1) * kChunk);
-    for (size_t i = c * kChunk; i < end; ++i) {
-      const auto& f = mesh.faces[i];
-      bool valid = true;
-      for (uint32_t v : f) valid = valid && v < n && mesh.vertices_m[v].allFinite();
-      if (!valid || f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
-        verdict[i] = kInvalid;
-        continue;
-      }
-      const std::array<uint32_t, 3> r{representative[f[0]], representative[f[1]], representative[f[2]]};
-      const Eigen::Vector3d& a = mesh.vertices_m[r[0]];
-      const Eigen::Vector3d& b = mesh.vertices_m[r[1]];
-      const Eigen::Vector3d& cc = mesh.vertices_m[r[2]];
-      const double area = 0.5 * (b - a).cross(cc - a).norm();
-      if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2] || area < options.min_face_area_m2 ||
-          CGAL::collinear(Point3(a.x(), a.y(), a.z()), Point3(b.x(), b.y(), b.z()), Point3(cc.x(), cc.y(), cc.z()))) {
-        verdict[i] = kDegenerate;
-      }
-    }
-  });
-  std::vector<std::array<uint32_t, 3>> faces;  // in representative (input) vertex indices
-  faces.reserve(mesh.num_faces());
-  {
-    IdTable seen(mesh.num_faces());
-    auto sorted = [](std::array<uint32_t, 3> f) {
-      std::sort(f.begin(), f.end());
-      return f;
-    };
-    for (size_t i = 0; i < mesh.num_faces(); ++i) {
-      if (verdict[i] == kInvalid) {
-        ++report.invalid_faces_removed;
-        continue;
-      }
-      if (verdict[i] == kDegenerate) {
-        ++report.degenerate_faces_removed;
-        continue;
-      }
-      const auto& f = mesh.faces[i];
-      const std::array<uint32_t, 3> r{representative[f[0]], representative[f[1]], representative[f[2]]};
-      const std::array<uint32_t, 3> key = sorted(r);
-      const uint32_t id = static_cast<uint32_t>(faces.size());
-      if (seen.FindOrInsert(FaceHash(key), id, [&](uint32_t j) { return sorted(faces[j]) == key; }) != id) {
-        ++report.duplicate_faces_removed;
-        continue;
-      }
-      faces.push_back(r);
-    }
-  }
-
-  // 3. Compact: vertices no face uses are isolated (merged duplicates are counted above).
-  std::vector<int64_t> compact(n, -1);
+  const std::vector<uint32_t> representative = MergeEqualPositions(mesh, report);
+  const std::vector<char> verdict = ClassifyFaces(mesh, representative, options);
+  const std::vector<std::array<uint32_t, 3>> faces = DistinctValidFaces(mesh, representative, verdict, report);
   std::vector<size_t> original_of_point;
-  for (const auto& f : faces) {
-    for (uint32_t i : f) compact[i] = 0;
-  }
-  for (size_t i = 0; i < n; ++i) {
-    if (compact[i] == 0) {
-      compact[i] = static_cast<int64_t>(original_of_point.size());
-      original_of_point.push_back(i);
-    } else if (representative[i] == i) {
-      ++report.isolated_vertices_removed;
-    }
-  }
+  std::vector<std::array<uint32_t, 3>> soup = CompactSoup(faces, representative, original_of_point, report);
   if (faces.empty()) {
     if (report_out) *report_out = report;
     return TriangleMesh{};
-  }
-  std::vector<std::array<uint32_t, 3>> soup(faces.size());
-  for (size_t i = 0; i < faces.size(); ++i) {
-    soup[i] = {static_cast<uint32_t>(compact[faces[i][0]]), static_cast<uint32_t>(compact[faces[i][1]]),
-               static_cast<uint32_t>(compact[faces[i][2]])};
   }
 
   // 4. An oriented 2-manifold soup (the common case) is cleaned without building a Surface_mesh;
   //    anything else goes through CGAL's soup orientation and Surface_mesh repairs.
   SoupTopology topology = AnalyzeSoup(soup, original_of_point.size());
-  if (!topology.oriented_manifold &&
-      std::any_of(topology.pinched.begin(), topology.pinched.end(), [](char p) { return p; })) {
-    // Bowties alone (the analysis stops early on a repeated directed edge, leaving pinched unset
-    // for the rest): split them and look again.
-    std::vector<std::array<uint32_t, 3>> split = soup;
-    std::vector<size_t> split_original = original_of_point;
-    const int64_t copies = SplitPinchedPoints(topology, split, split_original);
-    SoupTopology again = AnalyzeSoup(split, split_original.size());
-    if (again.oriented_manifold) {
-      report.non_manifold_vertices_split += copies;
-      soup = std::move(split);
-      original_of_point = std::move(split_original);
-      topology = std::move(again);
-    }
-  }
+  SplitBowtiesWhenAlone(soup, original_of_point, topology, report);
   TriangleMesh out;
   if (topology.oriented_manifold) {
     std::vector<Eigen::Vector3d> points;
@@ -837,17 +944,7 @@ TriangleMesh CleanMesh(const TriangleMesh& mesh, const MeshCleanOptions& options
     out = CleanManifoldSoup(mesh, colored, options, std::move(points), std::move(soup), original_of_point, topology,
                             report);
   } else {
-    std::vector<Point3> points;
-    points.reserve(original_of_point.size());
-    for (size_t p : original_of_point) {
-      const auto& v = mesh.vertices_m[p];
-      points.emplace_back(v.x(), v.y(), v.z());
-    }
-    report.general_path = true;
-    std::vector<std::array<size_t, 3>> polygons(soup.size());
-    for (size_t i = 0; i < soup.size(); ++i) polygons[i] = {soup[i][0], soup[i][1], soup[i][2]};
-    out = CleanWithSurfaceMesh(mesh, colored, options, std::move(points), std::move(polygons), faces,
-                               std::move(original_of_point), report);
+    out = CleanGeneralSoup(mesh, colored, options, soup, faces, std::move(original_of_point), report);
   }
   if (report_out) *report_out = report;
   return out;

@@ -85,62 +85,30 @@ Placed BestOnSegment(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Ve
   return {point, q.Error(point)};
 }
 
-// Where an edge (a, b) collapses to. The quadric's minimum is solved in the eigenbasis of its 3×3
-// part, and the directions the quadric does not pin down (eigenvalue at most rcond × the largest) are
-// held at the edge's midpoint, as in Lindstrom's out-of-core simplification (P. Lindstrom, "Out-of-Core
-// Simplification of Large Polygonal Models", SIGGRAPH 2000). On a near-flat patch the quadric fixes
-// only the height; a plain inverse slides the point far along the plane on rounding noise. The point
-// is used when it lies within `reach` edge lengths of the midpoint and beats the best point on the
-// edge; otherwise the best point on the edge.
-Placed Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double reach, double rcond) {
-  Eigen::Matrix3d m;
-  m << q.q[0], q.q[1], q.q[2], q.q[1], q.q[4], q.q[5], q.q[2], q.q[5], q.q[7];
-  const Eigen::Vector3d rhs(-q.q[3], -q.q[6], -q.q[8]);
-  const Eigen::Vector3d mid = 0.5 * (a + b);
-  const Eigen::Vector3d residual = rhs - m * mid;
-  // Every eigenvalue is above rcond × the largest when det / m2 > rcond × trace, since the smallest
-  // is at least det / m2 (m2: the sum of the principal 2 × 2 minors, λ1λ2 + λ1λ3 + λ2λ3) and the
-  // largest at most the trace. Then nothing is truncated and the plain inverse (the adjugate) gives
-  // the same point without the eigenvalues: most of a curved surface's edges.
-  const Eigen::Matrix3d adjugate = (Eigen::Matrix3d() << m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1),
-                                    m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2), m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1),
-                                    m(1, 2) * m(2, 0) - m(1, 0) * m(2, 2), m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0),
-                                    m(0, 2) * m(1, 0) - m(0, 0) * m(1, 2), m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0),
-                                    m(0, 1) * m(2, 0) - m(0, 0) * m(2, 1), m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0))
-                                       .finished();
-  const double trace = m.trace();
-  const double minors = adjugate(0, 0) + adjugate(1, 1) + adjugate(2, 2);
-  const double det = m(0, 0) * adjugate(0, 0) + m(0, 1) * adjugate(1, 0) + m(0, 2) * adjugate(2, 0);
-  const double reach2 = reach * reach * (b - a).squaredNorm();
-  const auto full_rank = [&] {
-    // The quadric's minimum over all space, so no point of the edge does better when it is in reach.
-    const Eigen::Vector3d p = mid + adjugate * residual / det;
-    return p.allFinite() && (p - mid).squaredNorm() <= reach2 ? Placed{p, q.Error(p)} : BestOnSegment(q, a, b);
-  };
-  // Newton's first step down from the trace towards the largest eigenvalue (below), when it is taken.
-  double first_step = 0;
-  // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
-  if (minors > 1e-9 * trace * trace) {
-    if (det > rcond * trace * minors) return full_rank();
-    // Tighter bounds, from Newton's method on the characteristic polynomial p(x) = x³ − trace x² +
-    // minors x − det: from 0, where p is concave and rising up to the smallest root, two steps stay
-    // below it (the first is det / minors); from the trace, where p is convex and rising, one step
-    // stays above the largest. On the bench terrain at 80 % this settles 0.95 M of the 1.08 M
-    // quadrics that the first test leaves and that truncate nothing.
-    const auto p = [&](double x) { return ((x - trace) * x + minors) * x - det; };
-    const auto slope = [&](double x) { return (3 * x - 2 * trace) * x + minors; };
-    const double below = det / minors, smallest_at_least = below - p(below) / slope(below);
-    const double value = p(trace), rise = slope(trace);
-    const double largest_at_most = trace - value / rise;
-    if (smallest_at_least > rcond * largest_at_most) return full_rank();
-    if (value > 0 && rise > 0) first_step = value / rise;
-  }
-  // The eigenvalues, ascending: the largest by Newton's method on the characteristic polynomial
-  // x³ − trace x² + minors x − det from x = trace, above it, where the cubic is convex and rising, so
-  // the steps fall monotonically onto it (two or three steps when it stands apart, as on a surface);
-  // the other two from the quadratic left. Eigen's closed form (acos, cos, sin) where Newton does not
-  // settle in 16 steps (a repeated largest eigenvalue, met slowly). On the bench terrain's truncated
-  // quadrics: 48 ns per solve against 61 ns with the closed form alone.
+// The adjugate (transposed cofactor matrix) of m: m · adj(m) = det(m) · I.
+Eigen::Matrix3d Adjugate(const Eigen::Matrix3d& m) {
+  return (Eigen::Matrix3d() << m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1), m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2),
+          m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1), m(1, 2) * m(2, 0) - m(1, 0) * m(2, 2),
+          m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0), m(0, 2) * m(1, 0) - m(0, 0) * m(1, 2),
+          m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0), m(0, 1) * m(2, 0) - m(0, 0) * m(2, 1),
+          m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0))
+      .finished();
+}
+
+// The eigenvalues of a symmetric 3 × 3 matrix, ascending.
+struct Eigenvalues3 {
+  double l1, l2, l3;
+};
+
+// The eigenvalues, ascending: the largest by Newton's method on the characteristic polynomial
+// x³ − trace x² + minors x − det from x = trace, above it, where the cubic is convex and rising, so
+// the steps fall monotonically onto it (two or three steps when it stands apart, as on a surface);
+// the other two from the quadratic left. Eigen's closed form (acos, cos, sin) where Newton does not
+// settle in 16 steps (a repeated largest eigenvalue, met slowly). On the bench terrain's truncated
+// quadrics: 48 ns per solve against 61 ns with the closed form alone.
+// `first_step`: Newton's first step when Placement took it already, else 0.
+Eigenvalues3 EigenvaluesAscending(const Eigen::Matrix3d& m, double trace, double minors, double det,
+                                  double first_step) {
   double l3 = trace;
   bool settled = false;
   int step = 0;
@@ -168,17 +136,21 @@ Placed Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector
     eigen.computeDirect(m, Eigen::EigenvaluesOnly);
     l1 = eigen.eigenvalues()(0), l2 = eigen.eigenvalues()(1), l3 = eigen.eigenvalues()(2);
   }
-  if (!(l3 > 0)) return BestOnSegment(q, a, b);
-  const double cut = rcond * l3;
-  if (l1 > cut) return full_rank();
-  // The truncated solve Σ v_k (v_k · r) / λ_k over the kept eigenpairs, written as a polynomial in m
-  // that is 1/λ on the kept eigenvalues and 0 on the dropped ones (Lagrange interpolation), so that
-  // no eigenvector is needed: two products with m instead. The coefficients are symmetric in the
-  // eigenvalues kept together, so a repeated eigenvalue (λ2 = λ3 on a right-angled crease, λ1 = λ2
-  // on a plane) costs nothing in accuracy; they divide only by the gap between a kept and a dropped
-  // eigenvalue. One dropped (λ1): f(m) = (m − λ1)(β − α m) / (λ2 λ3 (λ2 − λ1)(λ3 − λ1)) with
-  // α = λ2 + λ3 − λ1 and β = (λ2 + λ3)² − λ2 λ3 − λ1 (λ2 + λ3). Two dropped: f(m) = (m − λ1)(m − λ2)
-  // / (λ3 (λ3 − λ1)(λ3 − λ2)).
+  return {l1, l2, l3};
+}
+
+// The truncated solve Σ v_k (v_k · r) / λ_k over the kept eigenpairs, written as a polynomial in m
+// that is 1/λ on the kept eigenvalues and 0 on the dropped ones (Lagrange interpolation), so that
+// no eigenvector is needed: two products with m instead. The coefficients are symmetric in the
+// eigenvalues kept together, so a repeated eigenvalue (λ2 = λ3 on a right-angled crease, λ1 = λ2
+// on a plane) costs nothing in accuracy; they divide only by the gap between a kept and a dropped
+// eigenvalue. One dropped (λ1): f(m) = (m − λ1)(β − α m) / (λ2 λ3 (λ2 − λ1)(λ3 − λ1)) with
+// α = λ2 + λ3 − λ1 and β = (λ2 + λ3)² − λ2 λ3 − λ1 (λ2 + λ3). Two dropped: f(m) = (m − λ1)(m − λ2)
+// / (λ3 (λ3 − λ1)(λ3 − λ2)).
+// Returns mid plus that solve for the residual r = rhs − m · mid; `cut` = rcond × λ3, above λ1.
+Eigen::Vector3d TruncatedSolve(const Eigen::Matrix3d& m, const Eigen::Vector3d& residual, const Eigen::Vector3d& mid,
+                               const Eigenvalues3& eigen, double cut) {
+  const double l1 = eigen.l1, l2 = eigen.l2, l3 = eigen.l3;
   const Eigen::Vector3d u = m * residual - l1 * residual;
   Eigen::Vector3d p = mid;
   if (l2 > cut) {
@@ -187,6 +159,60 @@ Placed Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector
   } else {
     p += (m * u - l2 * u) / (l3 * (l3 - l1) * (l3 - l2));
   }
+  return p;
+}
+
+// Where an edge (a, b) collapses to. The quadric's minimum is solved in the eigenbasis of its 3×3
+// part, and the directions the quadric does not pin down (eigenvalue at most rcond × the largest) are
+// held at the edge's midpoint, as in Lindstrom's out-of-core simplification (P. Lindstrom, "Out-of-Core
+// Simplification of Large Polygonal Models", SIGGRAPH 2000). On a near-flat patch the quadric fixes
+// only the height; a plain inverse slides the point far along the plane on rounding noise. The point
+// is used when it lies within `reach` edge lengths of the midpoint and beats the best point on the
+// edge; otherwise the best point on the edge.
+Placed Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double reach, double rcond) {
+  Eigen::Matrix3d m;
+  m << q.q[0], q.q[1], q.q[2], q.q[1], q.q[4], q.q[5], q.q[2], q.q[5], q.q[7];
+  const Eigen::Vector3d rhs(-q.q[3], -q.q[6], -q.q[8]);
+  const Eigen::Vector3d mid = 0.5 * (a + b);
+  const Eigen::Vector3d residual = rhs - m * mid;
+  // Every eigenvalue is above rcond × the largest when det / m2 > rcond × trace, since the smallest
+  // is at least det / m2 (m2: the sum of the principal 2 × 2 minors, λ1λ2 + λ1λ3 + λ2λ3) and the
+  // largest at most the trace. Then nothing is truncated and the plain inverse (the adjugate) gives
+  // the same point without the eigenvalues: most of a curved surface's edges.
+  const Eigen::Matrix3d adjugate = Adjugate(m);
+  const double trace = m.trace();
+  const double minors = adjugate(0, 0) + adjugate(1, 1) + adjugate(2, 2);
+  const double det = m(0, 0) * adjugate(0, 0) + m(0, 1) * adjugate(1, 0) + m(0, 2) * adjugate(2, 0);
+  const double reach2 = reach * reach * (b - a).squaredNorm();
+  const auto full_rank = [&] {
+    // The quadric's minimum over all space, so no point of the edge does better when it is in reach.
+    const Eigen::Vector3d p = mid + adjugate * residual / det;
+    return p.allFinite() && (p - mid).squaredNorm() <= reach2 ? Placed{p, q.Error(p)} : BestOnSegment(q, a, b);
+  };
+  // Newton's first step down from the trace towards the largest eigenvalue (below), when it is taken.
+  double first_step = 0;
+  // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
+  if (minors > 1e-9 * trace * trace) {
+    if (det > rcond * trace * minors) return full_rank();
+    // Tighter bounds, from Newton's method on the characteristic polynomial p(x) = x³ − trace x² +
+    // minors x − det: from 0, where p is concave and rising up to the smallest root, two steps stay
+    // below it (the first is det / minors); from the trace, where p is convex and rising, one step
+    // stays above the largest. On the bench terrain at 80 % this settles 0.95 M of the 1.08 M
+    // quadrics that the first test leaves and that truncate nothing.
+    const auto p = [&](double x) { return ((x - trace) * x + minors) * x - det; };
+    const auto slope = [&](double x) { return (3 * x - 2 * trace) * x + minors; };
+    const double below = det / minors, smallest_at_least = below - p(below) / slope(below);
+    const double value = p(trace), rise = slope(trace);
+    const double largest_at_most = trace - value / rise;
+    if (smallest_at_least > rcond * largest_at_most) return full_rank();
+    if (value > 0 && rise > 0) first_step = value / rise;
+  }
+  const Eigenvalues3 eigen = EigenvaluesAscending(m, trace, minors, det, first_step);
+  const double l1 = eigen.l1, l3 = eigen.l3;
+  if (!(l3 > 0)) return BestOnSegment(q, a, b);
+  const double cut = rcond * l3;
+  if (l1 > cut) return full_rank();
+  const Eigen::Vector3d p = TruncatedSolve(m, residual, mid, eigen, cut);
   // Truncated: p holds some directions at the midpoint, so a point of the edge may do better.
   const Placed on_edge = BestOnSegment(q, a, b);
   if (p.allFinite() && (p - mid).squaredNorm() <= reach2) {
@@ -1058,6 +1084,174 @@ TriangleMesh CompactMesh(const TriangleMesh& mesh, const std::vector<std::array<
   return out;
 }
 
+// Each vertex's squared error goal (a goal at most 0 becomes 0: never touched).
+std::vector<double> SquaredGoals(const std::vector<double>& goal_error_m, size_t n) {
+  std::vector<double> goals2(n);
+  for (size_t i = 0; i < n; ++i) goals2[i] = goal_error_m[i] > 0 ? goal_error_m[i] * goal_error_m[i] : 0.0;
+  return goals2;
+}
+
+// The vertices relative to `center` (better conditioned quadrics).
+std::vector<Eigen::Vector3d> CenteredPositions(const std::vector<Eigen::Vector3d>& vertices,
+                                               const Eigen::Vector3d& center) {
+  const size_t n = vertices.size();
+  std::vector<Eigen::Vector3d> positions(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i != range.end(); ++i) positions[i] = vertices[i] - center;
+  });
+  return positions;
+}
+
+// The tiles: grid × grid cells over the xy bounding box of the valid faces' centroids (fixed by the
+// geometry).
+struct TileGrid {
+  int grid = 1;
+  Eigen::Vector2d lo, extent;
+  size_t valid_faces = 0;
+};
+
+TileGrid MakeTileGrid(const std::vector<Eigen::Vector3d>& positions, const std::vector<std::array<uint32_t, 3>>& faces,
+                      int partitions) {
+  TileGrid tiles;
+  tiles.grid = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, partitions)))));
+  const CentroidBox centroids = FaceCentroidBox(positions, faces);
+  tiles.lo = centroids.lo;
+  tiles.valid_faces = centroids.faces;
+  tiles.extent = (centroids.hi - tiles.lo).cwiseMax(Eigen::Vector2d(1e-9, 1e-9));
+  return tiles;
+}
+
+// The faces of each tile, in the faces' order; faces with a repeated corner are dropped.
+std::vector<std::vector<std::array<uint32_t, 3>>> FacesByTile(const TileGrid& tiles,
+                                                              const std::vector<Eigen::Vector3d>& positions,
+                                                              const std::vector<std::array<uint32_t, 3>>& faces) {
+  const int grid = tiles.grid;
+  const Eigen::Vector2d& clo = tiles.lo;
+  const Eigen::Vector2d& extent = tiles.extent;
+  return ScatterInOrder(faces, static_cast<size_t>(grid) * grid, [&](const std::array<uint32_t, 3>& f) {
+    if (!IsValidFace(f)) return kUnmapped;
+    const Eigen::Vector2d c = CentroidXy(positions, f);
+    const int ix = std::min(grid - 1, static_cast<int>((c.x() - clo.x()) / extent.x() * grid));
+    const int iy = std::min(grid - 1, static_cast<int>((c.y() - clo.y()) / extent.y() * grid));
+    return static_cast<uint32_t>(iy * grid + ix);
+  });
+}
+
+// Merge: the survivors' positions (and goals) back into the mesh's. Returns the faces the tiles kept.
+size_t MergeTilePieces(const std::vector<Piece>& pieces, std::vector<Eigen::Vector3d>& positions,
+                       std::vector<double>& goals2) {
+  size_t tile_faces = 0;
+  for (const Piece& piece : pieces) {
+    for (size_t k = 0; k < piece.vertices.size(); ++k) {
+      positions[piece.vertices[k]] = piece.positions[k];
+      // A cut vertex is in several tiles: the smallest goal of what merged into it in any of them.
+      if (!goals2.empty()) goals2[piece.vertices[k]] = std::min(goals2[piece.vertices[k]], piece.goals2[k]);
+    }
+    tile_faces += piece.faces.size();
+  }
+  return tile_faces;
+}
+
+// The last pass's faces: the band around the cuts, where the tiles kept every face, when it can meet
+// the target (`target_faces` then loses the faces outside it, which are already at the tiles' ratio and
+// stay as they are: `outside`); else every face the tiles kept.
+std::vector<std::array<uint32_t, 3>> LastPassFaces(const std::vector<Piece>& pieces, size_t n, int rings,
+                                                   const QemOptions& options, bool with_goals, int64_t& target_faces,
+                                                   std::vector<std::array<uint32_t, 3>>& outside) {
+  if (options.final_band_rings > 0) {
+    std::vector<std::array<uint32_t, 3>> band;
+    SplitCutBand(pieces, n, rings, &band, &outside);
+    if (with_goals) return band;  // the faces outside met their goals in the tiles
+    if (target_faces > static_cast<int64_t>(outside.size())) {
+      target_faces -= static_cast<int64_t>(outside.size());
+      return band;
+    }
+    outside.clear();  // the band alone cannot meet the target
+  }
+  std::vector<std::array<uint32_t, 3>> merged;
+  for (const Piece& piece : pieces) merged.insert(merged.end(), piece.faces.begin(), piece.faces.end());
+  return merged;
+}
+
+// The last pass runs in parallel on the cells of a grid shifted by half a tile, k tiles wide: each
+// cell holds crossings of the tiles' cuts, and its own cuts (locked, as the tiles' were) cross the
+// band where the tiles had already thinned it. Cells are made large enough to keep about
+// band_cell_faces faces each (of `band_out` in all), since a small cell, walled in by its locked cuts,
+// is forced into costly collapses to meet its share; a band too small for four such cells is one
+// piece. Returns the faces of each cell, in the faces' order.
+std::vector<std::vector<std::array<uint32_t, 3>>> BandCells(const TileGrid& tiles,
+                                                            const std::vector<Eigen::Vector3d>& positions,
+                                                            const std::vector<std::array<uint32_t, 3>>& merged,
+                                                            double band_out, const QemOptions& options) {
+  const int grid = tiles.grid;
+  const double wanted_cells = options.band_cell_faces > 0 ? band_out / options.band_cell_faces : 0.0;
+  const int k = wanted_cells < 4 ? 2 * grid : std::max(1, static_cast<int>(std::ceil(grid / std::sqrt(wanted_cells))));
+  // Cell boundaries at 0.5 + j·k tiles along each axis.
+  const int per_axis = k >= 2 * grid ? 1 : static_cast<int>(std::floor((grid - 0.5) / k)) + 2;
+  return ScatterInOrder(merged, static_cast<size_t>(per_axis) * per_axis, [&](const std::array<uint32_t, 3>& t) {
+    const Eigen::Vector2d c = CentroidXy(positions, t);
+    const auto cell = [&](int axis) {
+      const double u = (c[axis] - tiles.lo[axis]) / tiles.extent[axis] * grid;  // in tiles
+      return std::clamp(static_cast<int>(std::floor((u - 0.5) / k)) + 1, 0, per_axis - 1);
+    };
+    return static_cast<uint32_t>(cell(1) * per_axis + cell(0));
+  });
+}
+
+// Each cell simplified in parallel, its cuts locked and with its halo, to its share of `target_faces`
+// (with error goals: as far as they allow).
+std::vector<Piece> SimplifyCells(const std::vector<std::vector<std::array<uint32_t, 3>>>& cells, size_t n,
+                                 const std::vector<Eigen::Vector3d>& positions, const QuadricStore& quadrics,
+                                 const std::vector<double>& goals2, const QemOptions& options, int64_t target_faces,
+                                 Scratches& scratches) {
+  const std::vector<std::vector<std::array<uint32_t, 3>>> halos = Halos(cells, n);
+  std::vector<PieceJob> jobs(cells.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<uint32_t>& cell_scratch = scratches.local();
+    for (size_t c = range.begin(); c != range.end(); ++c) {
+      if (cells[c].empty()) continue;
+      jobs[c] = PreparePiece(positions, &quadrics, cells[c], halos[c], goals2, options, cell_scratch);
+      if (goals2.empty()) jobs[c].simplifier->BuildHeap();
+    }
+  });
+  std::vector<int64_t> cell_targets(cells.size(), 0);  // with error goals: as far as they allow
+  if (goals2.empty())
+    cell_targets = cells.size() == 1 ? std::vector<int64_t>{target_faces} : CellTargets(jobs, target_faces);
+  std::vector<Piece> band_pieces(cells.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t c = range.begin(); c != range.end(); ++c) {
+      if (jobs[c].simplifier) band_pieces[c] = FinishPiece(jobs[c], cell_targets[c]);
+    }
+  });
+  return band_pieces;
+}
+
+// The last pass over the band's cells (and, when the cells' cuts kept too many faces, around those
+// cuts); appends the faces kept to `kept`.
+void SimplifyBand(const TileGrid& tiles, const std::vector<std::array<uint32_t, 3>>& merged, size_t n, int rings,
+                  double keep_ratio, int64_t target_faces, const std::vector<double>& goals2, const QemOptions& options,
+                  std::vector<Eigen::Vector3d>& positions, QuadricStore& quadrics, Scratches& scratches,
+                  std::vector<uint32_t>& scratch, std::vector<std::array<uint32_t, 3>>& kept) {
+  const double band_out =
+      goals2.empty() ? static_cast<double>(target_faces) : keep_ratio * static_cast<double>(merged.size());
+  const std::vector<std::vector<std::array<uint32_t, 3>>> cells =
+      BandCells(tiles, positions, merged, band_out, options);
+  std::vector<Piece> band_pieces =
+      SimplifyCells(cells, n, positions, quadrics, goals2, options, target_faces, scratches);
+  int64_t band_kept = 0;
+  for (const Piece& piece : band_pieces) {
+    for (size_t k = 0; k < piece.vertices.size(); ++k) positions[piece.vertices[k]] = piece.positions[k];
+    band_kept += static_cast<int64_t>(piece.faces.size());
+  }
+  if (goals2.empty() && band_kept > target_faces && band_pieces.size() > 1) {
+    PassAroundCellCuts(n, rings, target_faces, goals2, options, positions, quadrics, scratch, band_pieces);
+  }
+  size_t kept_faces = kept.size();
+  for (const Piece& piece : band_pieces) kept_faces += piece.faces.size();
+  kept.reserve(kept_faces);  // one allocation, not a doubling and a copy
+  for (const Piece& piece : band_pieces) kept.insert(kept.end(), piece.faces.begin(), piece.faces.end());
+}
+
 }  // namespace
 
 TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions, const QemOptions& options,
@@ -1065,79 +1259,33 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   const size_t n = mesh.num_vertices();
   std::vector<double> goals2;  // squared, per vertex (empty: a face budget only)
   if (goal_error_m) {
-    goals2.resize(n);
-    for (size_t i = 0; i < n; ++i) goals2[i] = (*goal_error_m)[i] > 0 ? (*goal_error_m)[i] * (*goal_error_m)[i] : 0.0;
+    goals2 = SquaredGoals(*goal_error_m, n);
     target_faces = 0;
   }
   // Work relative to the bounding-box centre (better conditioned quadrics).
   const Eigen::Vector3d center = BoundingBoxCenter(mesh.vertices_m);
-  std::vector<Eigen::Vector3d> positions(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t i = range.begin(); i != range.end(); ++i) positions[i] = mesh.vertices_m[i] - center;
-  });
-  // Tiles on a grid over the xy bounding box of the face centroids (fixed by the geometry), in the
-  // faces' order; faces with a repeated corner are dropped.
-  const auto centroid_xy = [&](const std::array<uint32_t, 3>& t) { return CentroidXy(positions, t); };
-  const int grid = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, partitions)))));
-  const CentroidBox centroids = FaceCentroidBox(positions, mesh.faces);
-  const Eigen::Vector2d clo = centroids.lo;
-  const size_t valid_faces = centroids.faces;
-  const Eigen::Vector2d extent = (centroids.hi - clo).cwiseMax(Eigen::Vector2d(1e-9, 1e-9));
-  std::vector<std::vector<std::array<uint32_t, 3>>> tiles =
-      ScatterInOrder(mesh.faces, static_cast<size_t>(grid) * grid, [&](const std::array<uint32_t, 3>& f) {
-        if (!IsValidFace(f)) return kUnmapped;
-        const Eigen::Vector2d c = centroid_xy(f);
-        const int ix = std::min(grid - 1, static_cast<int>((c.x() - clo.x()) / extent.x() * grid));
-        const int iy = std::min(grid - 1, static_cast<int>((c.y() - clo.y()) / extent.y() * grid));
-        return static_cast<uint32_t>(iy * grid + ix);
-      });
-  double keep_ratio = static_cast<double>(target_faces) / std::max<size_t>(1, valid_faces);
+  std::vector<Eigen::Vector3d> positions = CenteredPositions(mesh.vertices_m, center);
+  const TileGrid grid = MakeTileGrid(positions, mesh.faces, partitions);
+  std::vector<std::vector<std::array<uint32_t, 3>>> tiles = FacesByTile(grid, positions, mesh.faces);
+  double keep_ratio = static_cast<double>(target_faces) / std::max<size_t>(1, grid.valid_faces);
   // PreparePiece's scratch, one per thread (kUnmapped between calls).
-  tbb::enumerable_thread_specific<std::vector<uint32_t>> scratches(n, kUnmapped);
+  Scratches scratches(n, kUnmapped);
   std::vector<Piece> pieces(tiles.size());
-  if (tiles.size() > 1) pieces = SimplifyTiles(positions, tiles, goals2, options, keep_ratio, scratches);
-  // Merge: the survivors' positions (and goals).
   std::vector<std::array<uint32_t, 3>> merged;  // the faces of the last pass
   if (tiles.size() > 1) {
-    size_t tile_faces = 0;
-    for (const Piece& piece : pieces) {
-      for (size_t k = 0; k < piece.vertices.size(); ++k) {
-        positions[piece.vertices[k]] = piece.positions[k];
-        // A cut vertex is in several tiles: the smallest goal of what merged into it in any of them.
-        if (!goals2.empty()) goals2[piece.vertices[k]] = std::min(goals2[piece.vertices[k]], piece.goals2[k]);
-      }
-      tile_faces += piece.faces.size();
-    }
+    pieces = SimplifyTiles(positions, tiles, goals2, options, keep_ratio, scratches);
+    const size_t tile_faces = MergeTilePieces(pieces, positions, goals2);
     // With error goals the band's width follows the share of the faces the tiles kept.
-    if (!goals2.empty()) keep_ratio = static_cast<double>(tile_faces) / std::max<size_t>(1, valid_faces);
+    if (!goals2.empty()) keep_ratio = static_cast<double>(tile_faces) / std::max<size_t>(1, grid.valid_faces);
   } else {
     merged = std::move(tiles[0]);
   }
-  // The last pass: over the band around the cuts, where the tiles kept every face; the faces outside it
-  // are already at the tiles' ratio and stay as they are.
   std::vector<std::array<uint32_t, 3>> outside;
   const int rings =
       static_cast<int>(std::ceil(std::max(1.0, options.final_band_rings) / std::sqrt(std::max(keep_ratio, 1e-4))));
   QuadricStore quadrics;  // those of the last pass's vertices
   if (tiles.size() > 1) {
-    bool every_face = true;  // takes part in the last pass
-    if (options.final_band_rings > 0) {
-      std::vector<std::array<uint32_t, 3>> band;
-      SplitCutBand(pieces, n, rings, &band, &outside);
-      if (!goals2.empty()) {
-        merged = std::move(band);  // the faces outside met their goals in the tiles
-        every_face = false;
-      } else if (target_faces > static_cast<int64_t>(outside.size())) {
-        merged = std::move(band);
-        target_faces -= static_cast<int64_t>(outside.size());
-        every_face = false;
-      } else {
-        outside.clear();  // the band alone cannot meet the target
-      }
-    }
-    if (every_face) {
-      for (const Piece& piece : pieces) merged.insert(merged.end(), piece.faces.begin(), piece.faces.end());
-    }
+    merged = LastPassFaces(pieces, n, rings, options, !goals2.empty(), target_faces, outside);
     quadrics = SumQuadrics(pieces, merged, n);
   }
   std::vector<std::array<uint32_t, 3>> kept = std::move(outside);
@@ -1148,58 +1296,8 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     for (size_t k = 0; k < whole.vertices.size(); ++k) positions[whole.vertices[k]] = whole.positions[k];
     kept = std::move(whole.faces);
   } else {
-    // The pass runs in parallel on the cells of a grid shifted by half a tile, k tiles wide: each
-    // cell holds crossings of the tiles' cuts, and its own cuts (locked, as the tiles' were) cross
-    // the band where the tiles had already thinned it. Cells are made large enough to keep about
-    // band_cell_faces faces each, since a small cell, walled in by its locked cuts, is forced into
-    // costly collapses to meet its share; a band too small for four such cells is one piece.
-    const double band_out =
-        goals2.empty() ? static_cast<double>(target_faces) : keep_ratio * static_cast<double>(merged.size());
-    const double wanted_cells = options.band_cell_faces > 0 ? band_out / options.band_cell_faces : 0.0;
-    const int k =
-        wanted_cells < 4 ? 2 * grid : std::max(1, static_cast<int>(std::ceil(grid / std::sqrt(wanted_cells))));
-    // Cell boundaries at 0.5 + j·k tiles along each axis.
-    const int per_axis = k >= 2 * grid ? 1 : static_cast<int>(std::floor((grid - 0.5) / k)) + 2;
-    const std::vector<std::vector<std::array<uint32_t, 3>>> cells =
-        ScatterInOrder(merged, static_cast<size_t>(per_axis) * per_axis, [&](const std::array<uint32_t, 3>& t) {
-          const Eigen::Vector2d c = centroid_xy(t);
-          const auto cell = [&](int axis) {
-            const double u = (c[axis] - clo[axis]) / extent[axis] * grid;  // in tiles
-            return std::clamp(static_cast<int>(std::floor((u - 0.5) / k)) + 1, 0, per_axis - 1);
-          };
-          return static_cast<uint32_t>(cell(1) * per_axis + cell(0));
-        });
-    const std::vector<std::vector<std::array<uint32_t, 3>>> halos = Halos(cells, n);
-    std::vector<PieceJob> jobs(cells.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      std::vector<uint32_t>& cell_scratch = scratches.local();
-      for (size_t c = range.begin(); c != range.end(); ++c) {
-        if (cells[c].empty()) continue;
-        jobs[c] = PreparePiece(positions, &quadrics, cells[c], halos[c], goals2, options, cell_scratch);
-        if (goals2.empty()) jobs[c].simplifier->BuildHeap();
-      }
-    });
-    std::vector<int64_t> cell_targets(cells.size(), 0);  // with error goals: as far as they allow
-    if (goals2.empty())
-      cell_targets = cells.size() == 1 ? std::vector<int64_t>{target_faces} : CellTargets(jobs, target_faces);
-    std::vector<Piece> band_pieces(cells.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t c = range.begin(); c != range.end(); ++c) {
-        if (jobs[c].simplifier) band_pieces[c] = FinishPiece(jobs[c], cell_targets[c]);
-      }
-    });
-    int64_t band_kept = 0;
-    for (const Piece& piece : band_pieces) {
-      for (size_t k = 0; k < piece.vertices.size(); ++k) positions[piece.vertices[k]] = piece.positions[k];
-      band_kept += static_cast<int64_t>(piece.faces.size());
-    }
-    if (goals2.empty() && band_kept > target_faces && band_pieces.size() > 1) {
-      PassAroundCellCuts(n, rings, target_faces, goals2, options, positions, quadrics, scratch, band_pieces);
-    }
-    size_t kept_faces = kept.size();
-    for (const Piece& piece : band_pieces) kept_faces += piece.faces.size();
-    kept.reserve(kept_faces);  // one allocation, not a doubling and a copy
-    for (const Piece& piece : band_pieces) kept.insert(kept.end(), piece.faces.begin(), piece.faces.end());
+    SimplifyBand(grid, merged, n, rings, keep_ratio, target_faces, goals2, options, positions, quadrics, scratches,
+                 scratch, kept);
   }
 
   // The surviving vertices in their input order, then the faces.

@@ -343,22 +343,13 @@ double CoverRadius(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
   return std::sqrt(0.5 * e[2]);
 }
 
-}  // namespace
-
-HausdorffInterval MeshDistanceIndex::BoundDistanceTo(const MeshDistanceIndex& other, double known_lower_m,
-                                                     const HausdorffBoundOptions& options) const {
-  const Impl& from = *impl_;
-  const Impl& to = *other.impl_;
+// The exact nearest face of B (the mesh of `to`) and distance for every vertex of A (the mesh of
+// `from`), warm-started along the Z curve. Returns the largest of those distances and `known_lower_m`.
+double NearestFacesOfVertices(const MeshDistanceIndex::Impl& from, const MeshDistanceIndex::Impl& to,
+                              double known_lower_m, std::vector<double>& vertex_d, std::vector<uint32_t>& vertex_face) {
   const TriangleMesh& a = *from.mesh;
-  const TriangleMesh& b = *to.mesh;
-  auto closest_on = [&](uint32_t face, const Eigen::Vector3d& p) {
-    const auto& t = b.faces[face];
-    return ClosestOnTriangle(p, b.vertices_m[t[0]], b.vertices_m[t[1]], b.vertices_m[t[2]]);
-  };
-  auto face_distance = [&](uint32_t face, const Eigen::Vector3d& p) { return (closest_on(face, p) - p).norm(); };
-  // The exact nearest face of B (and distance) for every vertex of A, warm-started along the Z curve.
-  std::vector<double> vertex_d(a.num_vertices(), 0.0);
-  std::vector<uint32_t> vertex_face(a.num_vertices(), 0);
+  vertex_d.assign(a.num_vertices(), 0.0);
+  vertex_face.assign(a.num_vertices(), 0);
   const size_t vertex_chunks = NumChunks(from.vertices.size());
   std::vector<double> vertex_chunk_max(vertex_chunks, 0.0);
   tbb::parallel_for(size_t{0}, vertex_chunks, [&](size_t c) {
@@ -379,91 +370,144 @@ HausdorffInterval MeshDistanceIndex::BoundDistanceTo(const MeshDistanceIndex& ot
   });
   double lower0 = std::max(0.0, known_lower_m);
   for (double d : vertex_chunk_max) lower0 = std::max(lower0, d);
+  return lower0;
+}
 
-  struct Piece {
-    Eigen::Vector3d p[3];
-    double d[3];
-    uint32_t face[3];
-    int depth;
-  };
-  struct ChunkResult {
-    double lower = 0, upper = 0;
-    int64_t points = 0, unresolved = 0;
-  };
+// A piece of a triangle of A: its corners, their exact distances to B and their nearest faces of B.
+struct BoundPiece {
+  Eigen::Vector3d p[3];
+  double d[3];
+  uint32_t face[3];
+  int depth;
+};
+
+// What the pieces of one chunk of A's faces showed.
+struct ChunkBound {
+  double lower = 0, upper = 0;
+  int64_t points = 0, unresolved = 0;
+};
+
+// Bounds the distance from the triangles of A to B (the mesh of `to`), cutting them into pieces.
+class TriangleBounder {
+ public:
+  TriangleBounder(const MeshDistanceIndex::Impl& to, const HausdorffBoundOptions& options)
+      : to_(to), b_(*to.mesh), options_(options) {}
+
+  // Refines `root` until every piece's upper bound is within the threshold above the lower bound, or
+  // at the maximum depth. `stack`: scratch.
+  void Bound(const BoundPiece& root, ChunkBound& r, std::vector<BoundPiece>& stack) const {
+    stack.push_back(root);
+    while (!stack.empty()) {
+      const BoundPiece s = stack.back();
+      stack.pop_back();
+      const double threshold = r.lower + std::max(options_.tolerance_m, options_.relative_tolerance * r.lower);
+      const double best = UpperBound(s, threshold);
+      if (best <= threshold || s.depth >= options_.max_depth) {
+        r.upper = std::max(r.upper, best);
+        if (best > threshold) ++r.unresolved;
+        continue;
+      }
+      Split(s, r, stack);
+    }
+  }
+
+ private:
+  Eigen::Vector3d ClosestOn(uint32_t face, const Eigen::Vector3d& p) const {
+    const auto& t = b_.faces[face];
+    return ClosestOnTriangle(p, b_.vertices_m[t[0]], b_.vertices_m[t[1]], b_.vertices_m[t[2]]);
+  }
+  double FaceDistance(uint32_t face, const Eigen::Vector3d& p) const { return (ClosestOn(face, p) - p).norm(); }
+
+  // The corners' largest distance plus the piece's cover radius, lowered while above `threshold` by
+  // the max over the corners of the distance to one triangle of B (which bounds the whole piece): the
+  // corners' nearest faces, then the faces around them.
+  double UpperBound(const BoundPiece& s, double threshold) const {
+    double best = std::max({s.d[0], s.d[1], s.d[2]}) + CoverRadius(s.p[0], s.p[1], s.p[2]);
+    auto try_face = [&](uint32_t face) {
+      double m = 0;
+      for (int k = 0; k < 3 && m < best; ++k) m = std::max(m, FaceDistance(face, s.p[k]));
+      best = std::min(best, m);
+    };
+    if (best > threshold) {
+      for (int k = 0; k < 3; ++k) try_face(s.face[k]);
+    }
+    if (best > threshold) {  // the faces around the corners' nearest faces
+      for (int k = 0; k < 3 && best > threshold; ++k) {
+        for (uint32_t w : b_.faces[s.face[k]]) {
+          for (uint32_t j = to_.incident_start[w]; j < to_.incident_start[w + 1] && best > threshold; ++j) {
+            try_face(to_.incident[j]);
+          }
+        }
+      }
+    }
+    return best;
+  }
+
+  // Cuts the piece in four at the edge midpoints, each measured exactly (raising the lower bound).
+  void Split(const BoundPiece& s, ChunkBound& r, std::vector<BoundPiece>& stack) const {
+    Eigen::Vector3d mp[3];
+    double md[3];
+    uint32_t mf[3];
+    for (int k = 0; k < 3; ++k) {
+      const int k1 = (k + 1) % 3;
+      mp[k] = 0.5 * (s.p[k] + s.p[k1]);
+      const Point3 q = ToPoint(mp[k]);
+      const Tree::Point_and_primitive_id hint(ToPoint(ClosestOn(s.face[k], mp[k])), s.face[k]);
+      const Tree::Point_and_primitive_id near = to_.tree.closest_point_and_primitive(q, hint);
+      md[k] = std::sqrt(CGAL::squared_distance(near.first, q));
+      mf[k] = near.second;
+      r.lower = std::max(r.lower, md[k]);
+      ++r.points;
+    }
+    const int depth = s.depth + 1;
+    // Corners 0,1,2 and midpoints m0 (of 0-1), m1 (of 1-2), m2 (of 2-0).
+    stack.push_back({{s.p[0], mp[0], mp[2]}, {s.d[0], md[0], md[2]}, {s.face[0], mf[0], mf[2]}, depth});
+    stack.push_back({{mp[0], s.p[1], mp[1]}, {md[0], s.d[1], md[1]}, {mf[0], s.face[1], mf[1]}, depth});
+    stack.push_back({{mp[2], mp[1], s.p[2]}, {md[2], md[1], s.d[2]}, {mf[2], mf[1], s.face[2]}, depth});
+    stack.push_back({{mp[0], mp[1], mp[2]}, {md[0], md[1], md[2]}, {mf[0], mf[1], mf[2]}, depth});
+  }
+
+  const MeshDistanceIndex::Impl& to_;
+  const TriangleMesh& b_;
+  const HausdorffBoundOptions& options_;
+};
+
+}  // namespace
+
+HausdorffInterval MeshDistanceIndex::BoundDistanceTo(const MeshDistanceIndex& other, double known_lower_m,
+                                                     const HausdorffBoundOptions& options) const {
+  const Impl& from = *impl_;
+  const Impl& to = *other.impl_;
+  const TriangleMesh& a = *from.mesh;
+  std::vector<double> vertex_d;
+  std::vector<uint32_t> vertex_face;
+  const double lower0 = NearestFacesOfVertices(from, to, known_lower_m, vertex_d, vertex_face);
+
+  const TriangleBounder bounder(to, options);
   const size_t face_chunks = NumChunks(from.faces.size());
-  std::vector<ChunkResult> results(face_chunks);
+  std::vector<ChunkBound> results(face_chunks);
   tbb::parallel_for(size_t{0}, face_chunks, [&](size_t c) {
-    ChunkResult r;
+    ChunkBound r;
     r.lower = lower0;
-    std::vector<Piece> stack;
+    std::vector<BoundPiece> stack;
     const size_t end = std::min(from.faces.size(), (c + 1) * kChunk);
     for (size_t i = c * kChunk; i < end; ++i) {
       const auto& t = a.faces[from.faces[i]];
-      Piece root;
+      BoundPiece root;
       for (int k = 0; k < 3; ++k) {
         root.p[k] = a.vertices_m[t[k]];
         root.d[k] = vertex_d[t[k]];
         root.face[k] = vertex_face[t[k]];
       }
       root.depth = 0;
-      stack.push_back(root);
-      while (!stack.empty()) {
-        const Piece s = stack.back();
-        stack.pop_back();
-        const double threshold = r.lower + std::max(options.tolerance_m, options.relative_tolerance * r.lower);
-        double best = std::max({s.d[0], s.d[1], s.d[2]}) + CoverRadius(s.p[0], s.p[1], s.p[2]);
-        // Max over the corners of the distance to one triangle of B bounds the whole piece.
-        auto try_face = [&](uint32_t face) {
-          double m = 0;
-          for (int k = 0; k < 3 && m < best; ++k) m = std::max(m, face_distance(face, s.p[k]));
-          best = std::min(best, m);
-        };
-        if (best > threshold) {
-          for (int k = 0; k < 3; ++k) try_face(s.face[k]);
-        }
-        if (best > threshold) {  // the faces around the corners' nearest faces
-          for (int k = 0; k < 3 && best > threshold; ++k) {
-            for (uint32_t w : b.faces[s.face[k]]) {
-              for (uint32_t j = to.incident_start[w]; j < to.incident_start[w + 1] && best > threshold; ++j) {
-                try_face(to.incident[j]);
-              }
-            }
-          }
-        }
-        if (best <= threshold || s.depth >= options.max_depth) {
-          r.upper = std::max(r.upper, best);
-          if (best > threshold) ++r.unresolved;
-          continue;
-        }
-        // Cut in four at the edge midpoints, each measured exactly.
-        Eigen::Vector3d mp[3];
-        double md[3];
-        uint32_t mf[3];
-        for (int k = 0; k < 3; ++k) {
-          const int k1 = (k + 1) % 3;
-          mp[k] = 0.5 * (s.p[k] + s.p[k1]);
-          const Point3 q = ToPoint(mp[k]);
-          const Tree::Point_and_primitive_id hint(ToPoint(closest_on(s.face[k], mp[k])), s.face[k]);
-          const Tree::Point_and_primitive_id near = to.tree.closest_point_and_primitive(q, hint);
-          md[k] = std::sqrt(CGAL::squared_distance(near.first, q));
-          mf[k] = near.second;
-          r.lower = std::max(r.lower, md[k]);
-          ++r.points;
-        }
-        const int depth = s.depth + 1;
-        // Corners 0,1,2 and midpoints m0 (of 0-1), m1 (of 1-2), m2 (of 2-0).
-        stack.push_back({{s.p[0], mp[0], mp[2]}, {s.d[0], md[0], md[2]}, {s.face[0], mf[0], mf[2]}, depth});
-        stack.push_back({{mp[0], s.p[1], mp[1]}, {md[0], s.d[1], md[1]}, {mf[0], s.face[1], mf[1]}, depth});
-        stack.push_back({{mp[2], mp[1], s.p[2]}, {md[2], md[1], s.d[2]}, {mf[2], mf[1], s.face[2]}, depth});
-        stack.push_back({{mp[0], mp[1], mp[2]}, {md[0], md[1], md[2]}, {mf[0], mf[1], mf[2]}, depth});
-      }
+      bounder.Bound(root, r, stack);
     }
     results[c] = r;
   });
   HausdorffInterval out;
   out.lower_m = lower0;
   out.points_measured = static_cast<int64_t>(from.vertices.size());
-  for (const ChunkResult& r : results) {
+  for (const ChunkBound& r : results) {
     out.lower_m = std::max(out.lower_m, r.lower);
     out.upper_m = std::max(out.upper_m, r.upper);
     out.points_measured += r.points;
