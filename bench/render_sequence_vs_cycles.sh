@@ -11,9 +11,12 @@
 #             EXR writing), wall and user + sys CPU (/usr/bin/time);
 #   Cycles    render time only, with persistent data (the sum of its 30 `render_seconds`: scene sync and
 #             BVH once, then sampling): Blender's start-up and the glTF import not counted.
-# Prints a markdown table per N and the first N at which every frame reaches 40 dB.
+# Then cinepath's presets as they are (PRESETS, default "draft standard": `--quality Q`, no --spp), timed
+# and compared the same way (Cycles has no such rows).
+# Prints a markdown table, one row per N and per preset.
 #   bench/render_sequence_vs_cycles.sh BUILD_DIR [OUT_DIR]
-# Environment: WIDTH (320), FIRST (840), REF_SPP (512), SPPS ("1 2 4 8 16 32 64"), THREADS (2, Cycles).
+# Environment: WIDTH (320), FIRST (840), REF_SPP (512), CYCLES_REF_SPP (REF_SPP: Cycles' converged frames),
+# SPPS ("1 2 4 8 16 32 64"), PRESETS ("draft standard"), THREADS (2, Cycles).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 CINEPATH=$(cd "${1:?usage: $0 BUILD_DIR [OUT_DIR]}" && pwd)/cli/cinepath
@@ -22,7 +25,9 @@ WIDTH=${WIDTH:-320}
 FIRST=${FIRST:-840}
 LAST=$((FIRST + 29))
 REF_SPP=${REF_SPP:-512}
+CYCLES_REF_SPP=${CYCLES_REF_SPP:-$REF_SPP}
 SPPS=${SPPS:-1 2 4 8 16 32 64}
+PRESETS=${PRESETS-draft standard}
 THREADS=${THREADS:-2}
 S=$ROOT/data/brighton_beach
 mkdir -p "$OUT/logs"
@@ -46,13 +51,13 @@ json.dump(plan, open(out + "/plan_seq.json", "w"))
 PY
 HEIGHT=$(python3 -c "import json, sys; c = json.load(open(sys.argv[1]))['camera']; print(round($WIDTH * c['height_px'] / c['width_px']))" "$OUT/plan.json")
 
-cinepath_run() {  # cinepath_run NAME ARGS... -> "wall cpu"
-  local name=$1
-  shift
+cinepath_run() {  # cinepath_run NAME QUALITY ARGS... -> "wall cpu"
+  local name=$1 quality=$2
+  shift 2
   rm -rf "${OUT:?}/$name"
   /usr/bin/time -f "%e %U %S" -o "$OUT/logs/$name.time" "$CINEPATH" render "$OUT/plan_seq.json" \
     --scene "$OUT/scene/scene.json" --frames "$FIRST-$LAST" --width-px "$WIDTH" --format exr --backdrop none \
-    --quality final "$@" --progress never -o "$OUT/$name" 2> "$OUT/logs/$name.log"
+    --quality "$quality" "$@" --progress never -o "$OUT/$name" 2> "$OUT/logs/$name.log"
   awk '{printf "%.2f %.2f\n", $1, $2 + $3}' "$OUT/logs/$name.time"
 }
 cycles_run() {  # cycles_run SPP NAME -> "render_seconds_sum"
@@ -74,15 +79,20 @@ psnrs() {  # psnrs DIR REF_DIR -> "min mean" PSNR over the 30 frames
   done | awk '{if (NR == 1 || $1 < m) m = $1; s += $1} END {printf "%.2f %.2f\n", m, s / NR}'
 }
 
-[[ -d $OUT/cp_ref ]] || cinepath_run cp_ref --spp "$REF_SPP" --min-spp "$REF_SPP" > /dev/null
-[[ -d $OUT/cy_ref ]] || cycles_run "$REF_SPP" cy_ref > /dev/null
+[[ -d $OUT/cp_ref ]] || cinepath_run cp_ref final --spp "$REF_SPP" --min-spp "$REF_SPP" > /dev/null
+[[ -d $OUT/cy_ref ]] || cycles_run "$CYCLES_REF_SPP" cy_ref > /dev/null
 echo "| N rays/px | cinepath wall s | cinepath CPU s | cinepath PSNR min / mean dB | Cycles render s | Cycles PSNR min / mean dB | load |"
 echo "|---|---|---|---|---|---|---|"
 for n in $SPPS; do
-  read -r wall cpu <<< "$(cinepath_run cp_$n --spp "$n")"
+  read -r wall cpu <<< "$(cinepath_run cp_$n final --spp "$n")"
   cp_psnr=$(psnrs "$OUT/cp_$n" "$OUT/cp_ref")
   cy_render=$(cycles_run "$n" cy_$n)
   cy_psnr=$(psnrs "$OUT/cy_$n" "$OUT/cy_ref")
   echo "| $n | $wall | $cpu | ${cp_psnr/ / \/ } | $cy_render | ${cy_psnr/ / \/ } | $(cut -d' ' -f1 /proc/loadavg) |"
 done | tee "$OUT/results.md"
+for q in $PRESETS; do
+  read -r wall cpu <<< "$(cinepath_run cp_$q "$q")"
+  cp_psnr=$(psnrs "$OUT/cp_$q" "$OUT/cp_ref")
+  echo "| \`--quality $q\` | $wall | $cpu | ${cp_psnr/ / \/ } | | | $(cut -d' ' -f1 /proc/loadavg) |"
+done | tee -a "$OUT/results.md"
 echo "load at the end: $(cut -d' ' -f1-3 /proc/loadavg)"

