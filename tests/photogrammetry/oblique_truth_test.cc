@@ -1,5 +1,5 @@
 // Rule 1 of the mesh, "as true as the points", on oblique data with exact truth: `cinepath mesh` on the
-// COLMAP reconstruction of the rendered oblique house scene of tests/data/photogrammetry/oblique
+// COLMAP reconstructions of the rendered oblique house and cliff scenes of tests/data/photogrammetry/oblique
 // (make_oblique.py; PROVENANCE.md there), with the default options, measured against the rendered
 // geometry itself (oblique_truth.h). What it asserts (figures in bench/RESULTS.md, "Oblique scenes with
 // exact truth"):
@@ -35,6 +35,18 @@ using cinepath::testing::ShellQuote;
 
 class ObliqueTruth : public ::testing::TestWithParam<const char*> {};
 
+// What each scene must meet. The house: rule 1 itself. The cliff (an 8 m vertical face over a 12 %
+// slope): rule 1 is not met yet (measured 2026-11-28: 92.4 % within 0.3 m, p99 0.793 m; bench/RESULTS.md,
+// "Oblique scenes with exact truth"), so its bounds hold what it reaches against a regression.
+struct Bounds {
+  double min_share_within_0_3_m;
+  double max_p99_m;
+};
+const Bounds& BoundsOf(const std::string& scene) {
+  static const Bounds kRule1{0.95, 0.6}, kCliffToday{0.90, 1.0};
+  return scene == "cliff" ? kCliffToday : kRule1;
+}
+
 TEST_P(ObliqueTruth, MeshIsAsTrueAsItsPoints) {
   const fs::path data = fs::path(CINEPATH_TEST_DATA_DIR) / "photogrammetry" / "oblique" / GetParam();
   ASSERT_TRUE(fs::is_directory(data / "sparse")) << data;
@@ -59,10 +71,11 @@ TEST_P(ObliqueTruth, MeshIsAsTrueAsItsPoints) {
   }
   std::printf("  within 45 m of the centre: %zu vertices, median %.3f m, p99 %.3f m, within 0.3 m %.1f %%\n",
               d.CountIn(0, 45), d.Quantile(0.5, 0, 45), d.Quantile(0.99, 0, 45), 100 * d.ShareWithin(0.3, 0, 45));
-  EXPECT_GE(d.ShareWithin(0.3, 0, 45), 0.95);
-  EXPECT_LE(d.Quantile(0.99, 0, 45), 0.6);
-  EXPECT_GE(d.ShareWithin(0.3), 0.95);
-  EXPECT_LE(d.Quantile(0.99), 0.6);
+  const Bounds& b = BoundsOf(GetParam());
+  EXPECT_GE(d.ShareWithin(0.3, 0, 45), b.min_share_within_0_3_m);
+  EXPECT_LE(d.Quantile(0.99, 0, 45), b.max_p99_m);
+  EXPECT_GE(d.ShareWithin(0.3), b.min_share_within_0_3_m);
+  EXPECT_LE(d.Quantile(0.99), b.max_p99_m);
 
   // The trim's border fit: how far a border vertex moved out, against the points' own spacing.
   const cinepath::Json scene = cinepath::Json::parse(ReadText(out / "scene.json"));
@@ -75,6 +88,6 @@ TEST_P(ObliqueTruth, MeshIsAsTrueAsItsPoints) {
   fs::remove_all(tmp);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, ObliqueTruth, ::testing::Values("house"));
+INSTANTIATE_TEST_SUITE_P(Scenes, ObliqueTruth, ::testing::Values("house", "cliff"));
 
 }  // namespace

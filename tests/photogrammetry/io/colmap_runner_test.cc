@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "core/json.h"
+#include "tests/support/command_line.h"
 
 namespace {
 
@@ -68,8 +69,10 @@ TEST(ColmapRunner, PhotosOnlyMeshIsGeoreferencedWhereTheDataSaysTheGroundIs) {
          "notices a missing COLMAP.";
   const fs::path photos = fs::path(CINEPATH_TEST_DATA_DIR) / "photogrammetry" / "brighton9_photos";
   ASSERT_TRUE(fs::is_directory(photos)) << photos;
-  const fs::path out = fs::temp_directory_path() / "cinepath_colmap_runner_test";
-  fs::remove_all(out);
+  // A folder of its own: runs from other checkouts at the same time must not share COLMAP's workspace.
+  const fs::path tmp = cinepath::testing::MakeTempDir("cinepath_colmap_runner");
+  ASSERT_FALSE(tmp.empty());
+  const fs::path out = tmp / "scene";
   const std::string command = Quote(CINEPATH_BINARY) + " mesh --images " + Quote(photos.string()) + " -o " +
                               Quote(out.string()) + " --no-timestamp 2> " + Quote((out.string() + ".stderr"));
   const auto start = std::chrono::steady_clock::now();
@@ -104,8 +107,7 @@ TEST(ColmapRunner, PhotosOnlyMeshIsGeoreferencedWhereTheDataSaysTheGroundIs) {
   // guards against are far larger: the focal-length / flying-height ambiguity left unresolved, AMSL
   // read as ellipsoidal (28.7 m here), or no georeferencing at all.
   EXPECT_NEAR(ground_h, 162.8, 3.0);
-  fs::remove_all(out);
-  fs::remove(out.string() + ".stderr");
+  fs::remove_all(tmp);
 }
 
 }  // namespace
