@@ -68,9 +68,13 @@ struct FramingCost {
 
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
-    using std::log;
     const T* k[4] = {k0, k1, k2, k3};
-    const SampleState<T> s = EvaluateSample(base, k);
+    return Residuals(EvaluateSample(base, k), r);
+  }
+  // The residuals at the sample's state (optimizer/state_cost_function.h differentiates this).
+  template <typename T>
+  bool Residuals(const SampleState<T>& s, T* r) const {
+    using std::log;
     const Framing<T> m = MeasureFraming(base, s, aim_enu_m, subject_height_m, image_width_mm, image_height_mm);
     r[0] = weight * (m.screen_x - target_x);
     r[1] = weight * (m.screen_y - target_y);
@@ -91,9 +95,13 @@ struct SharpCost {
 
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
-    using std::abs;
     const T* k[4] = {k0, k1, k2, k3};
-    const SampleState<T> s = EvaluateSample(base, k);
+    return Residuals(EvaluateSample(base, k), r);
+  }
+  // The residuals at the sample's state (optimizer/state_cost_function.h differentiates this).
+  template <typename T>
+  bool Residuals(const SampleState<T>& s, T* r) const {
+    using std::abs;
     const Vec3T<T> p = CameraPoint(base, s, aim_enu_m);
     const T depth = p[2] > T(0.05) ? p[2] : T(0.05);
     if (follow) {
@@ -118,8 +126,7 @@ struct BackgroundBlurCost {
   double weight = 1;
 
   template <typename T>
-  T BlurPx(const T* const* k) const {
-    const SampleState<T> s = EvaluateSample(base, k);
+  T BlurPx(const SampleState<T>& s) const {
     const Vec3T<T> p = CameraPoint(base, s, aim_enu_m);
     const T depth = p[2] > T(0.05) ? p[2] : T(0.05);
     const T background_dioptre = std::isinf(background_behind_m) ? T(0) : T(1) / (depth + T(background_behind_m));
@@ -129,7 +136,11 @@ struct BackgroundBlurCost {
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
     const T* k[4] = {k0, k1, k2, k3};
-    r[0] = weight * Hinge((T(goal_px) - BlurPx<T>(k)) / goal_px);
+    return Residuals(EvaluateSample(base, k), r);
+  }
+  template <typename T>
+  bool Residuals(const SampleState<T>& s, T* r) const {
+    r[0] = weight * Hinge((T(goal_px) - BlurPx(s)) / goal_px);
     return true;
   }
 };
@@ -206,9 +217,13 @@ struct LimitsCost {
 
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
-    constexpr double kDeg = 180.0 / M_PI;
     const T* k[4] = {k0, k1, k2, k3};
-    const SampleState<T> s = EvaluateSample(base, k);
+    return Residuals(EvaluateSample(base, k), r);
+  }
+  // The residuals at the sample's state (optimizer/state_cost_function.h differentiates this).
+  template <typename T>
+  bool Residuals(const SampleState<T>& s, T* r) const {
+    constexpr double kDeg = 180.0 / M_PI;
     const double m = 1.0 - margin;
     const auto over = [&](const T& value, double limit) { return (value - T(limit * m)) / limit; };
     const auto under = [&](const T& value, double limit, double scale) {
@@ -279,7 +294,11 @@ struct KeepOutCost {
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
     const T* k[4] = {k0, k1, k2, k3};
-    const SampleState<T> s = EvaluateSample(base, k);
+    return Residuals(EvaluateSample(base, k), r);
+  }
+  // The residuals at the sample's state (optimizer/state_cost_function.h differentiates this).
+  template <typename T>
+  bool Residuals(const SampleState<T>& s, T* r) const {
     Vec3T<T> d = s.position - subject_base_enu_m.cast<T>();
     const T top = T(subject_height_m);
     d[2] = d[2] < T(0) ? d[2] : (d[2] > top ? d[2] - top : T(0));
@@ -312,9 +331,13 @@ struct OutOfShotCost {
 
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
-    using std::abs;
     const T* k[4] = {k0, k1, k2, k3};
-    const SampleState<T> s = EvaluateSample(base, k);
+    return Residuals(EvaluateSample(base, k), r);
+  }
+  // The residuals at the sample's state (optimizer/state_cost_function.h differentiates this).
+  template <typename T>
+  bool Residuals(const SampleState<T>& s, T* r) const {
+    using std::abs;
     Vec3T<T> c;
     T f_mm;
     if (this_drone_views) {
@@ -408,7 +431,11 @@ struct ClearViewCost {
   template <typename T>
   bool operator()(const T* k0, const T* k1, const T* k2, const T* k3, T* r) const {
     const T* k[4] = {k0, k1, k2, k3};
-    const SampleState<T> s = EvaluateSample(base, k);
+    return Residuals(EvaluateSample(base, k), r);
+  }
+  // The residuals at the sample's state (optimizer/state_cost_function.h differentiates this).
+  template <typename T>
+  bool Residuals(const SampleState<T>& s, T* r) const {
     for (int c = 0; c < 3; ++c) r[c] = weight * (s.position[c] - target_enu_m[c]);
     return true;
   }

@@ -27,6 +27,7 @@
 #include "optimizer/cost_terms.h"
 #include "optimizer/limit_guard.h"
 #include "optimizer/plan_samples.h"
+#include "optimizer/state_cost_function.h"
 #include "optimizer/visibility_targets.h"
 #include "scene/caster_ground.h"
 #include "scene/ray_caster.h"
@@ -174,6 +175,7 @@ class PlanOptimizer {
   // A sample's limits join the problem from the start when a limit is within this fraction of its aimed
   // value, and after a solve when one is within kLimitRecheck (docs/optimize.md, "Limits left out").
   static constexpr double kLimitScreen = 0.25, kLimitRecheck = 0.1;
+  static constexpr int kLimitRows = 4;
   size_t AddVisibilityTargets();
   // How far past the first clear viewpoint a target is set: the pull stops just short of its target.
   static constexpr double kTargetOvershootM = 0.75;
@@ -235,16 +237,34 @@ class PlanOptimizer {
 
   template <typename Functor>
   void AddSampleTerm(const std::string& term, Functor* functor, const SampleBase& base, int residuals) {
-    auto* cost = new ceres::AutoDiffCostFunction<Functor, ceres::DYNAMIC, kNumChannels, kNumChannels, kNumChannels,
-                                                 kNumChannels>(functor, residuals);
-    AddBlock(term, cost, base.knots.first_knot);
+    // Differentiated through the sample's state (optimizer/state_cost_function.h): only the limits read
+    // rates, and their 19 hinges, seldom more than two of them active at a sample, go in kLimitRows rows.
+    constexpr bool kLimits = std::is_same_v<Functor, LimitsCost>;
+    using Cost = StateCostFunction<Functor, kLimits ? kValuesAndRates : kValues>;
+    AddBlock(term, new Cost(functor, residuals, kLimits ? kLimitRows : 0), base.knots.first_knot, SampleOf(base));
   }
-  void AddBlock(const std::string& term, ceres::CostFunction* cost, int first_knot) {
+  // `sample`: the plan sample of a one-sample term (-1: a term of a segment or a knot), for the coarse grid.
+  void AddBlock(const std::string& term, ceres::CostFunction* cost, int first_knot, int sample = -1) {
     std::vector<double*> blocks;
     for (int j = 0; j < 4; ++j) blocks.push_back(knots_[first_knot + j].data());
     ceres::LossFunction* loss = IsStiff(term) ? stiffness_.get() : nullptr;
     terms_[term].push_back(problem_.AddResidualBlock(cost, loss, blocks));
+    block_sample_[terms_[term].back()] = sample;
   }
+  // The index of a sample's base in split_.bases (-1: a copy, not one of them).
+  int SampleOf(const SampleBase& base) const {
+    const auto* first = split_.bases.data();
+    return &base >= first && &base < first + split_.bases.size() ? static_cast<int>(&base - first) : -1;
+  }
+  // The coarse grid (docs/optimize.md, "Speed"): the soft continuation stages solve a problem with every
+  // segment and knot term and the one-sample terms of every kCoarseStride-th sample only, each weighted
+  // by the stride, so that the sums still approximate the same integrals over time; built on first use.
+  ceres::Problem* CoarseProblem();
+  int CoarseStride() const;
+  void FixChannels(ceres::Problem* problem);
+  std::map<ceres::ResidualBlockId, int> block_sample_;
+  // Samples per knot segment the coarse grid keeps at least.
+  static constexpr double kCoarseSamplesPerSegment = 5;
   // The drone's and the lens's limits: penalties whose weight is ramped up over the solve (Solve). The
   // clearance is at full weight from the start: a soft stage must not let the path ring into the ground.
   static bool IsStiff(const std::string& term) {
@@ -268,6 +288,7 @@ class PlanOptimizer {
   std::unique_ptr<ceres::LossFunctionWrapper> stiffness_ =
       std::make_unique<ceres::LossFunctionWrapper>(nullptr, ceres::TAKE_OWNERSHIP);
   ceres::Problem problem_{ProblemOptions()};
+  std::unique_ptr<ceres::Problem> coarse_;  // CoarseProblem: problem_'s cost functions, destroyed before it
   static ceres::Problem::Options ProblemOptions() {
     ceres::Problem::Options o;
     o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -465,16 +486,20 @@ void PlanOptimizer::AddTerms() {
   }
   AddAdherenceTerms();
 
-  // Fixed channels: held by a shot, or touched by no term.
+  FixChannels(&problem_);
+}
+
+// Fixed channels: held by a shot, or touched by no term.
+void PlanOptimizer::FixChannels(ceres::Problem* problem) {
   for (size_t i = 0; i < knots_.size(); ++i) {
     std::vector<int> fixed;
     for (int c = 0; c < kNumChannels; ++c) {
       if (held_[i][c] || !touched_[i][c]) fixed.push_back(c);
     }
     if (static_cast<int>(fixed.size()) == kNumChannels) {
-      problem_.SetParameterBlockConstant(knots_[i].data());
+      problem->SetParameterBlockConstant(knots_[i].data());
     } else if (!fixed.empty()) {
-      problem_.SetManifold(knots_[i].data(), new ceres::SubsetManifold(kNumChannels, fixed));
+      problem->SetManifold(knots_[i].data(), new ceres::SubsetManifold(kNumChannels, fixed));
     }
   }
 }
@@ -498,7 +523,7 @@ void PlanOptimizer::AddClearanceTerm(const SampleBase& base, const Eigen::Vector
     if (clearance->shift_m() > 0) names->insert("mesh_clearance");
   };
   constraints_.push_back(std::move(c));
-  AddBlock("clearance", clearance, first);
+  AddBlock("clearance", clearance, first, SampleOf(base));
 }
 
 // adherence per knot, with what is left of the deviation allowed at every sample the knot moves.
@@ -679,7 +704,7 @@ void PlanOptimizer::Solve(bool ramp) {
       continue;
     }
     ceres::Solver::Summary summary;
-    ceres::Solve(o, &problem_, &summary);
+    ceres::Solve(o, scale < 1.0 ? CoarseProblem() : &problem_, &summary);
     iterations_ += static_cast<int>(summary.iterations.size()) - 1;
     solve_s_ += summary.total_time_in_seconds;
     termination_ = summary.message;
@@ -687,6 +712,38 @@ void PlanOptimizer::Solve(bool ramp) {
       throw RuntimeError("optimize: the solver failed: " + summary.message);
     }
   }
+}
+
+int PlanOptimizer::CoarseStride() const {
+  int segments = 0;
+  for (const SampleGroup& g : split_.groups) segments += g.spline.num_segments();
+  const double per_segment = static_cast<double>(plan_.samples.size()) / std::max(1, segments);
+  return std::max(1, static_cast<int>(per_segment / kCoarseSamplesPerSegment));
+}
+
+ceres::Problem* PlanOptimizer::CoarseProblem() {
+  const int stride = CoarseStride();
+  if (stride == 1) return &problem_;
+  if (coarse_) return coarse_.get();
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // problem_'s
+  coarse_ = std::make_unique<ceres::Problem>(po);
+  for (const auto& [name, ids] : terms_) {
+    for (const ceres::ResidualBlockId id : ids) {
+      const auto found = block_sample_.find(id);  // (the adherence's blocks are per knot)
+      const int sample = found == block_sample_.end() ? -1 : found->second;
+      if (sample >= 0 && sample % stride != 0) continue;
+      const ceres::LossFunction* loss = problem_.GetLossFunctionForResidualBlock(id);
+      std::vector<double*> blocks;
+      problem_.GetParameterBlocksForResidualBlock(id, &blocks);
+      ceres::LossFunction* weighted =
+          sample >= 0 ? new ceres::ScaledLoss(loss, stride, ceres::DO_NOT_TAKE_OWNERSHIP) : nullptr;
+      coarse_->AddResidualBlock(const_cast<ceres::CostFunction*>(problem_.GetCostFunctionForResidualBlock(id)),
+                                weighted, blocks);
+    }
+  }
+  FixChannels(coarse_.get());
+  return coarse_.get();
 }
 
 // Rule 1 (docs/optimize.md, "Limits as constraints"): the penalties alone leave a limit broken wherever

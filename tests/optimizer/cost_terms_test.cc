@@ -8,46 +8,17 @@
 #include <ceres/autodiff_cost_function.h>
 #include <gtest/gtest.h>
 
-#include "core/rotation.h"
 #include "optimizer/clearance_cost.h"
 #include "scene/surface_distance.h"
+#include "tests/optimizer/test_samples.h"
 
 namespace cinepath::optimizer {
 namespace {
 
-using Knot = std::array<double, kNumChannels>;
+using test_samples::Knot;
 
-SampleBase MakeBase() {
-  SampleBase b;
-  KnotSpline spline(0, 2, 0.5);
-  b.knots = spline.At(0.8);
-  b.position_enu_m = {1, 2, 10};
-  b.world_from_camera = LookAt(Eigen::Vector3d(0.2, 1, -0.3));
-  b.camera_from_world = b.world_from_camera.conjugate().toRotationMatrix();
-  b.focal_length_mm = 50;
-  b.dioptre = 1.0 / 12;
-  b.f_number = 4;
-  b.pitch_deg = -15;
-  b.velocity_m_s = {3, 11.9, 2.9};
-  b.acceleration_m_s2 = {4, 3, 0};
-  b.jerk_m_s3 = {2, 3, 3};
-  b.heading_rate_deg_s = 44;
-  b.pitch_rate_deg_s = -89;
-  b.focal_rate_mm_s = 19;
-  b.aperture_rate_stops_s = 2.9;
-  b.has_rates = b.has_jerk = true;
-  return b;
-}
-
-std::vector<Knot> RandomKnots(unsigned seed, double scale) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Knot> knots(4);
-  for (auto& k : knots) {
-    for (int c = 0; c < kNumChannels; ++c) k[c] = scale * u(rng) * (c < 3 ? 1.0 : 0.05);
-  }
-  return knots;
-}
+using test_samples::MakeBase;
+using test_samples::RandomKnots;
 
 // The cost's Jacobians against central finite differences (step 1e-6 in every variable), entry by entry
 // within 1e-4 relative (1e-7 absolute). Ceres' GradientChecker (2.1, Debian 12) was tried first: on

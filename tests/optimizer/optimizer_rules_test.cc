@@ -188,11 +188,12 @@ TEST(OptimizerRules, ObstaclesBetweenShotsAndSubjectsWithEveryProfile) {
 
 // Rule 1: the limits are constraints of the solve (the augmented Lagrangian's multipliers), not weights the
 // goals may outbid. On the chase over a pillar (the camera must climb over it and brake behind the runner)
-// the penalties alone leave the acceleration or the jerk over its limit at draft, and the guard keeps only
-// part of the change (alpha 0.98); with the multipliers the solve meets them itself and keeps all of it.
-// The ardupilot-copter profile's chase and the orbit and flyby cases are still cut back by the guard
+// the penalties alone leave the acceleration or the jerk over its limit at draft with some profiles, and the
+// guard keeps only part of the change (alpha 0.98); with the multipliers the solve meets them itself and keeps all of
+// it. The ardupilot-copter profile's chase and the orbit and flyby cases are still cut back by the guard
 // (docs/optimize.md, "Known limits").
 TEST(OptimizerRules, TheSolveItselfKeepsTheLimitsOnTheChaseOverAPillar) {
+  int cut_without_multipliers = 0;
   for (const std::string profile : {"px4-multirotor", "dji-m30", "dji-mini4pro"}) {
     const Case c = std::move(BlockedCases(profile)[1]);
     ASSERT_EQ(c.name, "chase/" + profile);
@@ -206,14 +207,16 @@ TEST(OptimizerRules, TheSolveItselfKeepsTheLimitsOnTheChaseOverAPillar) {
       options.multiplier_rounds = rounds;
       const Json guard = OptimizePlan(in, options).report["guard"];
       if (rounds == 0) {  // the penalties alone: the guard cuts the change back
-        EXPECT_LT(guard["alpha"].get<double>(), 1.0) << c.name;
-        EXPECT_FALSE(guard["raw_broke"].empty()) << c.name;
+        if (guard["alpha"].get<double>() < 1.0 && !guard["raw_broke"].empty()) ++cut_without_multipliers;
       } else {
         EXPECT_EQ(guard["alpha"].get<double>(), 1.0) << c.name << ": " << guard["raw_broke"].dump();
         EXPECT_TRUE(guard["raw_broke"].empty()) << c.name;
       }
     }
   }
+  // The penalties alone break a limit somewhere (the px4 chase, since the coarse grid's soft stages,
+  // keeps its whole change even without them; docs/optimize.md, "Speed").
+  EXPECT_GE(cut_without_multipliers, 1);
 }
 
 // The orbit: feasible, a wall between it and its subject, flat ground with both windings, the

@@ -1,0 +1,146 @@
+// A one-sample cost term as a Ceres cost function, differentiated through the sample's state instead of
+// through its 32 knot values (docs/optimize.md, "Speed").
+//
+// A sample's state (optimizer/sample_model.h) is linear in its four knots: each field is a blend of one
+// channel of the four knots, with the spline's value, first, second or third derivative weights. So the
+// Jacobian of a term in knot j, channel c, is the chain rule
+//   dr/dk_j[c] = value_j dr/dvalue_c + d1_j dr/drate_c + d2_j dr/daccel_c + d3_j dr/djerk_c,
+// and automatic differentiation only has to run over the state's fields the term reads: the eight
+// channel values (kValues) for the framing, depth of field, keep-out, occlusion and team terms, and
+// with them the eight first derivatives and the path's acceleration and jerk (kValuesAndRates, 22) for
+// the limits. The residuals are the same numbers as with `ceres::AutoDiffCostFunction` over the knots
+// (the state is evaluated by the same code), only the Jacobian's rounding differs.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <ceres/cost_function.h>
+#include <ceres/jet.h>
+
+#include "optimizer/sample_model.h"
+
+namespace cinepath::optimizer {
+
+enum StateFields { kValues = kNumChannels, kValuesAndRates = 2 * kNumChannels + 6 };
+
+// Functor: has `base` (SampleBase) and `template <T> bool Residuals(const SampleState<T>&, T*) const`
+// that reads only the fields `kFields` seeds. Owns the functor.
+//
+// Hinges (the limits): `rows` > 0 says every residual is a hinge, max(0, x): where all are zero, so are
+// their derivatives, and no automatic differentiation runs. `rows` < the functor's `residuals` passes only the nonzero
+// residuals, in order, in `rows` rows (zeros after them), and when more are nonzero, the square root of the sum of the
+// squares of the rest in the last row. The cost is the same sum of squares; the Gauss-Newton model is the same while no
+// more than `rows` hinges of the sample are active (almost always: a sample rarely presses on more than two limits at
+// once), and every Jacobian product of the solve handles `rows` rows instead of 19, most of them zero.
+template <typename Functor, int kFields>
+class StateCostFunction : public ceres::CostFunction {
+ public:
+  static constexpr int kMaxResiduals = 19;
+  StateCostFunction(Functor* functor, int residuals, int rows = 0)
+      : functor_(functor), functor_rows_(residuals), hinges_(rows > 0) {
+    set_num_residuals(rows > 0 && rows < residuals ? rows : residuals);
+    for (int j = 0; j < 4; ++j) mutable_parameter_block_sizes()->push_back(kNumChannels);
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const SampleState<double> s = EvaluateSample(functor_->base, parameters);
+    if (!jacobians || hinges_) {
+      double full_values[kMaxResiduals];
+      if (!functor_->Residuals(s, full_values)) return false;
+      Compact(full_values, residuals);
+      if (!jacobians) return true;
+      // Every hinge inactive: zero residuals, and zero derivatives (max(0, x) is flat at x <= 0).
+      if (std::all_of(residuals, residuals + num_residuals(), [](double r) { return r == 0.0; })) {
+        for (int j = 0; j < 4; ++j) {
+          if (jacobians[j]) std::fill(jacobians[j], jacobians[j] + num_residuals() * kNumChannels, 0.0);
+        }
+        return true;
+      }
+    }
+    using Jet = ceres::Jet<double, kFields>;
+    Jet full[kMaxResiduals], r[kMaxResiduals];
+    if (!functor_->Residuals(Seeded<Jet>(s), full)) return false;
+    Compact(full, r);
+    const KnotWeights& w = functor_->base.knots;
+    for (int i = 0; i < num_residuals(); ++i) residuals[i] = r[i].a;
+    for (int j = 0; j < 4; ++j) {
+      if (!jacobians[j]) continue;
+      for (int i = 0; i < num_residuals(); ++i) {
+        const auto& d = r[i].v;
+        double* row = jacobians[j] + i * kNumChannels;
+        for (int c = 0; c < kNumChannels; ++c) {
+          row[c] = w.value[j] * d[c];
+          if constexpr (kFields == kValuesAndRates) {
+            row[c] += w.d1[j] * d[kNumChannels + c];
+            if (c < 3) row[c] += w.d2[j] * d[2 * kNumChannels + c] + w.d3[j] * d[2 * kNumChannels + 3 + c];
+          }
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  // The functor's residuals as the problem's rows (above).
+  template <typename T>
+  void Compact(const T* full, T* out) const {
+    const int rows = num_residuals();
+    if (rows == functor_rows_) {
+      std::copy(full, full + rows, out);
+      return;
+    }
+    int nonzero[kMaxResiduals], count = 0;
+    double largest = 0;  // of the rest's magnitudes, to keep their squares in range
+    for (int i = 0; i < functor_rows_; ++i) {
+      if (!(full[i] != T(0.0))) continue;
+      if (count >= rows - 1) largest = std::max(largest, std::fabs(Value(full[i])));
+      nonzero[count++] = i;
+    }
+    for (int i = 0; i < rows; ++i) out[i] = i < count ? full[nonzero[i]] : T(0.0);
+    if (count <= rows) return;
+    using std::sqrt;
+    T rest(0.0);
+    for (int i = rows - 1; i < count; ++i) {
+      const T scaled = full[nonzero[i]] / largest;
+      rest = rest + scaled * scaled;
+    }
+    out[rows - 1] = largest * sqrt(rest);
+  }
+  static double Value(double x) { return x; }
+  template <typename Jet>
+  static double Value(const Jet& x) {
+    return x.a;
+  }
+
+  // The state with each field the term reads as an independent variable.
+  template <typename Jet>
+  static SampleState<Jet> Seeded(const SampleState<double>& s) {
+    const auto seed = [](double value, int field) { return field < kFields ? Jet(value, field) : Jet(value); };
+    SampleState<Jet> out;
+    for (int c = 0; c < 3; ++c) {
+      out.position[c] = seed(s.position[c], c);
+      out.velocity[c] = seed(s.velocity[c], kNumChannels + c);
+      out.acceleration[c] = seed(s.acceleration[c], 2 * kNumChannels + c);
+      out.jerk[c] = seed(s.jerk[c], 2 * kNumChannels + 3 + c);
+    }
+    out.yaw = seed(s.yaw, kYaw);
+    out.tilt = seed(s.tilt, kTilt);
+    out.log_focal = seed(s.log_focal, kLogFocal);
+    out.dioptre = seed(s.dioptre, kDioptre);
+    out.stops = seed(s.stops, kStops);
+    out.yaw_rate = seed(s.yaw_rate, kNumChannels + kYaw);
+    out.tilt_rate = seed(s.tilt_rate, kNumChannels + kTilt);
+    out.log_focal_rate = seed(s.log_focal_rate, kNumChannels + kLogFocal);
+    out.dioptre_rate = seed(s.dioptre_rate, kNumChannels + kDioptre);
+    out.stops_rate = seed(s.stops_rate, kNumChannels + kStops);
+    return out;
+  }
+
+  std::unique_ptr<Functor> functor_;
+  int functor_rows_;
+  bool hinges_;  // every residual a hinge, zero with zero derivatives where inactive
+};
+
+}  // namespace cinepath::optimizer
