@@ -8,7 +8,6 @@ namespace cinepath::viewer {
 
 std::string_view PrevisHtml();       // viewer/previs.html: the page template with @NAME@ placeholders
 std::string_view PrevisJs();         // viewer/previs.js: the page's code (an ES module)
-std::string_view PrevisTeamJs();     // viewer/previs_team.js: appended to it for a plan of several drones
 std::string_view ThreeModuleJs();    // third_party/three/three.module.min.js
 std::string_view OrbitControlsJs();  // third_party/three/OrbitControls.js (imports 'three')
 

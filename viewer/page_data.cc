@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
 #include "core/three_frame.h"
 
 namespace cinepath::viewer {
@@ -44,7 +45,10 @@ std::vector<double> SampleSpeedsMps(const Trajectory& plan) {
   return speeds;
 }
 
-Json PageDataJson(const Trajectory& plan, const std::string& plan_name, const std::optional<Geodetic>& origin) {
+namespace {
+
+// The primary flight in detail: what the lens graphs, the timeline, the readout and the feasibility box show.
+Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, const std::optional<Geodetic>& origin) {
   Json data = Json::object();
   data["format"] = "cinepath.previs/1";
   data["plan"] = plan_name;
@@ -133,50 +137,55 @@ Json PageDataJson(const Trajectory& plan, const std::string& plan_name, const st
   return data;
 }
 
-Json TeamPageDataJson(const TeamPlan& plan, size_t primary, const std::string& plan_name,
-                      const std::optional<Geodetic>& origin) {
+// One flight's track as every flight is drawn (its path, its camera at each sample, its home): the primary
+// flight's samples are already in the page's "samples" (FlightDetailJson), so only the others carry theirs.
+Json FlightJson(const DroneFlight& flight, const char* colour, bool with_samples) {
+  const Trajectory& t = flight.plan;
+  Json cuts = Json::array();
+  const std::vector<bool> cut_before = CutBeforeSamples(t);
+  for (size_t k = 0; k < cut_before.size(); ++k) {
+    if (cut_before[k]) cuts.push_back(k);
+  }
+  Json home = nullptr;
+  if (flight.home_enu_m) {
+    home = Json::array();
+    AppendVector(&home, ThreeFromEnu(*flight.home_enu_m), 3);
+  }
+  Json shots = Json::array();
+  for (const ShotSpan& shot : t.shots) shots.push_back(shot.name);
+  Json json = {{"name", flight.name},
+               {"colour", colour},
+               {"drone", t.drone.name},
+               {"aspect", double(t.camera.width_px) / double(std::max(1, t.camera.height_px))},
+               {"home_m", home},
+               {"shots", shots},
+               {"cuts_before_sample", cuts}};
+  if (!with_samples) return json;
+  Json time = Json::array(), position = Json::array(), quaternion = Json::array(), vfov = Json::array();
+  Json focus = Json::array();
+  for (const TrajectorySample& s : t.samples) {
+    time.push_back(RoundToDecimals(s.time_s, 6));
+    AppendVector(&position, ThreeFromEnu(s.position_enu_m), 3);
+    const Eigen::Quaterniond q = ThreeCameraFromWorldFromCamera(s.world_from_camera);
+    for (double c : {q.x(), q.y(), q.z(), q.w()}) quaternion.push_back(RoundToDecimals(c, 6));
+    vfov.push_back(RoundToDecimals(VerticalFieldOfViewDeg(t.camera, s.focal_length_mm), 4));
+    focus.push_back(FiniteOrNull(s.focus_distance_m, 3));
+  }
+  json["time_s"] = time;
+  json["position_m"] = position;
+  json["quaternion"] = quaternion;
+  json["vertical_fov_deg"] = vfov;
+  json["focus_distance_m"] = focus;
+  return json;
+}
+
+// The edit and the team report's conflicts (both empty for one drone).
+Json TeamJson(const TeamPlan& plan, size_t primary) {
   static const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                          "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
-  Json data = PageDataJson(plan.flights.at(primary).plan, plan_name, origin);
   Json flights = Json::array();
-  for (size_t f = 0; f < plan.flights.size(); ++f) {
-    const DroneFlight& flight = plan.flights[f];
-    const Trajectory& t = flight.plan;
-    Json time = Json::array(), position = Json::array(), quaternion = Json::array(), vfov = Json::array();
-    Json focus = Json::array();
-    for (const TrajectorySample& s : t.samples) {
-      time.push_back(RoundToDecimals(s.time_s, 6));
-      AppendVector(&position, ThreeFromEnu(s.position_enu_m), 3);
-      const Eigen::Quaterniond q = ThreeCameraFromWorldFromCamera(s.world_from_camera);
-      for (double c : {q.x(), q.y(), q.z(), q.w()}) quaternion.push_back(RoundToDecimals(c, 6));
-      vfov.push_back(RoundToDecimals(VerticalFieldOfViewDeg(t.camera, s.focal_length_mm), 4));
-      focus.push_back(FiniteOrNull(s.focus_distance_m, 3));
-    }
-    Json cuts = Json::array();
-    const std::vector<bool> cut_before = CutBeforeSamples(t);
-    for (size_t k = 0; k < cut_before.size(); ++k) {
-      if (cut_before[k]) cuts.push_back(k);
-    }
-    Json home = nullptr;
-    if (flight.home_enu_m) {
-      home = Json::array();
-      AppendVector(&home, ThreeFromEnu(*flight.home_enu_m), 3);
-    }
-    Json shots = Json::array();
-    for (const ShotSpan& shot : t.shots) shots.push_back(shot.name);
-    flights.push_back({{"name", flight.name},
-                       {"colour", kPalette[f % 10]},
-                       {"drone", t.drone.name},
-                       {"aspect", double(t.camera.width_px) / double(std::max(1, t.camera.height_px))},
-                       {"home_m", home},
-                       {"shots", shots},
-                       {"cuts_before_sample", cuts},
-                       {"time_s", time},
-                       {"position_m", position},
-                       {"quaternion", quaternion},
-                       {"vertical_fov_deg", vfov},
-                       {"focus_distance_m", focus}});
-  }
+  for (size_t f = 0; f < plan.flights.size(); ++f)
+    flights.push_back(FlightJson(plan.flights[f], kPalette[f % 10], f != primary));
   Json edit = Json::array();
   for (const EditCut& cut : plan.edit) {
     edit.push_back({{"at_s", RoundToDecimals(cut.at_s, 6)}, {"drone", cut.drone}, {"match_focus", cut.match_focus}});
@@ -192,11 +201,20 @@ Json TeamPageDataJson(const TeamPlan& plan, size_t primary, const std::string& p
                          {"limit_value", RoundToDecimals(c.limit_value, 6)},
                          {"unit", c.unit}});
   }
-  data["team"] = {{"primary", primary},
-                  {"flights", flights},
-                  {"edit", edit},
-                  {"conflicts", conflicts},
-                  {"min_separation_m", RoundToDecimals(plan.team.min_separation_m, 6)}};
+  return {{"primary", primary},
+          {"flights", flights},
+          {"edit", edit},
+          {"conflicts", conflicts},
+          {"min_separation_m", RoundToDecimals(plan.team.min_separation_m, 6)}};
+}
+
+}  // namespace
+
+Json PageDataJson(const TeamPlan& plan, size_t primary, const std::string& plan_name,
+                  const std::optional<Geodetic>& origin) {
+  CINEPATH_CHECK(primary < plan.flights.size());
+  Json data = FlightDetailJson(plan.flights[primary].plan, plan_name, origin);
+  data["team"] = TeamJson(plan, primary);
   return data;
 }
 

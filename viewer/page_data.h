@@ -24,15 +24,14 @@ std::vector<bool> CutBeforeSamples(const Trajectory& plan);
 // 0 for a sample alone between two cuts.
 std::vector<double> SampleSpeedsMps(const Trajectory& plan);
 
-// `origin`: the WGS84 origin the page shows (the scene's or the plan's), none = local metres.
-Json PageDataJson(const Trajectory& plan, const std::string& plan_name, const std::optional<Geodetic>& origin);
-
-// A plan of several drones (docs/view.md, "Several drones"): the page data of `plan.flights[primary]`
-// (PageDataJson: its lens graphs, shots and readout) plus a "team" block the page's team code
-// (viewer/previs_team.js) reads: every flight's name, colour (the palette of `plan --plot`), samples
-// (time, position, camera orientation, vertical angle of view, focus), its own cuts and home; the edit;
-// and the team report's conflicts and minimum separation.
-Json TeamPageDataJson(const TeamPlan& plan, size_t primary, const std::string& plan_name,
-                      const std::optional<Geodetic>& origin);
+// The page data of a plan, one drone or several alike (a one-drone plan is a team of one; docs/view.md):
+// the detail of `plan.flights[primary]` (its samples with the lens and speed, shots, keyframes, subjects,
+// feasibility violations: what the lens graphs, the timeline and the readout show) and a "team" block:
+// every flight's name, colour (the palette of `plan --plot`), cuts, home and, for the flights other than
+// the primary, samples (time, position, camera orientation, vertical angle of view, focus); the edit; the
+// team report's conflicts and minimum separation. `origin`: the WGS84 origin the page shows (the scene's
+// or the plan's), none = local metres.
+Json PageDataJson(const TeamPlan& plan, size_t primary, const std::string& plan_name,
+                  const std::optional<Geodetic>& origin);
 
 }  // namespace cinepath::viewer

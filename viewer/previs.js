@@ -1,5 +1,12 @@
-// The previs page's code (docs/view.md): the scene, the flight and the lens of one plan, drawn with three.js.
+// The previs page's code (docs/view.md): the scene, the flights and the lens of one plan, drawn with three.js.
 // Written into the page by `cinepath view` (viewer/previs_page.h); everything it reads is in the page.
+// A plan is a team of drones, one drone a team of one: every flight is drawn by the same code (its path,
+// its camera and position now, its home), and the page shows one flight in detail (data.team.primary:
+// the lens graphs, shots, keyframes and feasibility). With several drones each flight has its colour (the
+// palette of `cinepath plan --plot`), a selector picks the drone the camera view looks through or "edit"
+// (the drone live in the edit at that time), and the timeline shows the edit's cuts and the team's
+// conflicts. Every flight is sampled on one clock: sample k is at k / frame rate; a flight that has ended
+// holds its last sample.
 // Coordinates are three.js's: x east, y up, z south (the plan's ENU (e, n, u) is (e, u, -n) here).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -12,6 +19,8 @@ const meshInfo = JSON.parse(document.getElementById('previs-mesh-info').textCont
 const frames = JSON.parse(document.getElementById('previs-frames').textContent);
 const S = data.samples;
 const N = S.time_s.length;
+const team = data.team;
+const several = team.flights.length > 1;
 const FPS = data.frame_rate_hz;
 const FRUSTUM_INFINITY_M = 60;  // far plane drawn for focus at infinity
 const FRUSTUM_MAX_M = 200;      // and the farthest one drawn
@@ -38,9 +47,13 @@ const sun = new THREE.DirectionalLight(0xffffff, 1.2);
 sun.position.set(0.5, 1, 0.3);
 scene.add(sun);
 
-// The extent everything is sized by: the mesh's bounds, else the flight's.
+// The extent everything is sized by: the mesh's bounds, else the flights'.
 const bounds = new THREE.Box3();
 for (let k = 0; k < N; ++k) bounds.expandByPoint(pos(k));
+for (const f of team.flights) {
+  const p = f.position_m || [];  // the primary's are the page's samples
+  for (let j = 0; j + 2 < p.length; j += 3) bounds.expandByPoint(new THREE.Vector3(p[j], p[j + 1], p[j + 2]));
+}
 if (meshInfo) {
   bounds.expandByPoint(new THREE.Vector3(...meshInfo.min_m));
   bounds.expandByPoint(new THREE.Vector3(...meshInfo.max_m));
@@ -338,19 +351,36 @@ function speedColor(v) {
 }
 $('speed-min').textContent = '0';
 $('speed-max').textContent = `${fmt(maxSpeed, 1)} m/s`;
-{
+// Every flight: its samples (the primary's are the page's own), the colour of its path at sample j (one
+// drone: by speed; several: the flight's colour) and of its camera (one drone: orange).
+const flights = team.flights.map((f, i) => {
+  const s = i === team.primary ? S : f;
+  const n = s.time_s.length;
+  const color = new THREE.Color(several ? f.colour : 0xff9d2e);
+  const pathColor = several ? () => color.toArray() : (j) => speedColor(speeds[j]);
+  return {
+    f, s, n, color, pathColor,
+    pos: (j) => new THREE.Vector3(s.position_m[3 * j], s.position_m[3 * j + 1], s.position_m[3 * j + 2]),
+    quat: (j) => new THREE.Quaternion(s.quaternion[4 * j], s.quaternion[4 * j + 1], s.quaternion[4 * j + 2],
+                                      s.quaternion[4 * j + 3]),
+  };
+});
+let flightPaths = 0;
+for (const flight of flights) {
   // Segments between consecutive samples, none across a cut (the drone does not fly there).
-  const cuts = new Set(data.cuts_before_sample);
+  const cuts = new Set(flight.f.cuts_before_sample);
   const p = [], c = [];
-  for (let k = 0; k + 1 < N; ++k) {
-    if (cuts.has(k + 1)) continue;
-    p.push(...pos(k).toArray(), ...pos(k + 1).toArray());
-    c.push(...speedColor(speeds[k]), ...speedColor(speeds[k + 1]));
+  for (let j = 0; j + 1 < flight.n; ++j) {
+    if (cuts.has(j + 1)) continue;
+    p.push(...flight.pos(j).toArray(), ...flight.pos(j + 1).toArray());
+    c.push(...flight.pathColor(j), ...flight.pathColor(j + 1));
   }
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
   g.setAttribute('color', new THREE.Float32BufferAttribute(c, 3));
-  overlay(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true })));
+  overlay(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }))).name =
+    `flight ${flight.f.name}`;
+  if (flight.n > 1) ++flightPaths;
 }
 const badSamples = [];
 for (let k = 0; k < N; ++k) {
@@ -374,7 +404,7 @@ if (badSamples.length) {
   }
 }
 // Frustum lines of a camera at `o` turned by `q` (looking along its -z) to the far plane at the focus:
-// every flight's camera (several drones too, viewer/previs_team.js) is drawn by this one function.
+// every flight's camera is drawn by this one function.
 function cameraFrustumPoints(o, q, verticalFovDeg, aspect, focus, out) {
   const far = focus === null ? FRUSTUM_INFINITY_M : Math.min(focus, FRUSTUM_MAX_M);
   const tanV = Math.tan(THREE.MathUtils.degToRad(verticalFovDeg / 2));
@@ -410,14 +440,35 @@ if (data.photos && data.photos.length) {
   g.setAttribute('position', new THREE.Float32BufferAttribute(data.photos.flatMap((p) => p.position_m), 3));
   overlay(new THREE.Points(g, new THREE.PointsMaterial({ color: 0x4db8ff, size: 6, sizeAttenuation: false })));
 }
-const current = new THREE.Group();
-const currentFrustum = new THREE.LineSegments(new THREE.BufferGeometry(),
-                                              new THREE.LineBasicMaterial({ color: 0xff9d2e }));
-current.add(currentFrustum);
-const drone = new THREE.Mesh(new THREE.SphereGeometry(unit * 1.5, 16, 12),
-                             new THREE.MeshBasicMaterial({ color: 0xff9d2e }));
-current.add(drone);
-overlay(current);
+// Each flight's camera and position now (placed by setSample), its name with several drones, its home.
+for (const flight of flights) {
+  const { color } = flight;
+  flight.frustum = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color }));
+  flight.marker = new THREE.Mesh(new THREE.SphereGeometry(unit * 1.5, 16, 12), new THREE.MeshBasicMaterial({ color }));
+  if (several) {
+    const tag = label(flight.f.name, 0.026, flight.f.colour);
+    tag.center.set(0.5, -0.6);
+    flight.marker.add(tag);
+  }
+  const group = new THREE.Group();
+  group.add(flight.frustum);
+  group.add(flight.marker);
+  overlay(group);
+  if (flight.f.home_m) {
+    const home = new THREE.Mesh(new THREE.BoxGeometry(unit * 2, unit * 0.6, unit * 2),
+                                new THREE.MeshBasicMaterial({ color }));
+    home.position.set(...flight.f.home_m);
+    overlay(home);
+  }
+}
+const flightIndex = (name) => team.flights.findIndex((f) => f.name === name);
+// Which flight is live in the edit at time t, or -1 without an edit.
+function liveFlightAt(t) {
+  if (!team.edit.length) return -1;
+  let live = flightIndex(team.edit[0].drone);
+  for (const cut of team.edit) if (cut.at_s <= t + 1e-9) live = flightIndex(cut.drone);
+  return live;
+}
 
 // ---- subjects: paths and where they are now (seen by the camera view too) ----
 // The colours `cinepath render` gives subject i (its palette, sRGB-encoded), so that the live camera view
@@ -505,6 +556,82 @@ slider.max = String(Math.max(0, N - 1));
   }
 }
 
+// ---- several drones: the selector, the edit's cuts and the team's conflicts ----
+// The drone the camera view looks through: "edit" (the live drone, when the plan has an edit) or a flight.
+let selected = team.edit.length ? 'edit' : team.primary;
+if (several) {
+  const box = document.createElement('div');
+  box.id = 'drones';
+  box.className = 'line';
+  box.appendChild(document.createTextNode('camera view: '));
+  const buttons = [];
+  const add = (value, text, colour) => {
+    const b = document.createElement('button');
+    b.dataset.drone = String(value);
+    if (colour) {
+      const chip = document.createElement('span');
+      chip.className = 'chip';
+      chip.style.background = colour;
+      b.appendChild(chip);
+    }
+    b.appendChild(document.createTextNode(text));
+    b.addEventListener('click', () => {
+      selected = value;
+      for (const other of buttons) other.classList.toggle('on', other === b);
+      setSample(k);
+    });
+    b.classList.toggle('on', value === selected);
+    buttons.push(b);
+    box.appendChild(b);
+  };
+  if (team.edit.length) add('edit', 'edit (live drone)', null);
+  team.flights.forEach((f, i) => add(i, f.name, f.colour));
+  $('hud').appendChild(box);
+  $('hud-plan').textContent += ` · ${team.flights.length} drones: ` +
+    team.flights.map((f, i) => `${f.name} (${f.drone}, ${flights[i].n} samples)`).join(', ');
+  $('legend').style.display = 'none';  // the paths are in the drones' colours, not by speed
+}
+{
+  // The edit's cuts (bars in the live drone's colour above the track) and the conflicts (separation red, a
+  // drone in another's shot orange); none for one drone.
+  const track = $('track');
+  for (let c = 0; c < team.edit.length; ++c) {
+    const cut = team.edit[c];
+    const end = c + 1 < team.edit.length ? team.edit[c + 1].at_s : t1;
+    const d = document.createElement('div');
+    d.className = 'edit';
+    d.style.left = `${((cut.at_s - t0) / span) * 100}%`;
+    d.style.width = `${Math.max(0.2, ((end - cut.at_s) / span) * 100)}%`;
+    const i = flightIndex(cut.drone);
+    d.style.background = i >= 0 ? team.flights[i].colour : '#888';
+    d.title = `${fmt(cut.at_s, 2)} s: cut to ${cut.drone}${cut.match_focus ? ' (focus matched)' : ''}`;
+    track.appendChild(d);
+  }
+  for (const v of team.conflicts) {
+    const d = document.createElement('div');
+    d.className = 'conflict';
+    d.dataset.limit = v.limit;
+    d.style.left = `${((v.start_time_s - t0) / span) * 100}%`;
+    d.style.width = `${Math.max(0.2, ((v.end_time_s - v.start_time_s) / span) * 100)}%`;
+    d.style.background = v.limit === 'separation' ? '#ff3b2f66' : '#ff9d2e66';
+    d.title = v.limit === 'separation'
+      ? `separation ${v.drone}–${v.other}: ${fmt(v.worst_value, 2)} m < ${fmt(v.limit_value, 2)} m, ` +
+        `${fmt(v.start_time_s, 2)}–${fmt(v.end_time_s, 2)} s`
+      : `${v.other} in ${v.drone}'s shot (${fmt(v.worst_value, 1)} px), ` +
+        `${fmt(v.start_time_s, 2)}–${fmt(v.end_time_s, 2)} s`;
+    track.insertBefore(d, slider);
+  }
+  if (several) {
+    const box = $('violations');
+    const lines = team.conflicts.map((v) => (v.limit === 'separation'
+      ? `✖ separation ${v.drone}–${v.other}: ${fmt(v.worst_value, 2)} < ${fmt(v.limit_value, 2)} m`
+      : `✖ ${v.other} in ${v.drone}'s shot`) + ` at ${fmt(v.start_time_s, 2)}–${fmt(v.end_time_s, 2)} s`);
+    box.textContent = (lines.length ? lines.join('\n') : `✔ team: every pair ≥ ${fmt(team.min_separation_m, 1)} m ` +
+                       'apart, no drone in another\'s shot') + '\n' + box.textContent;
+    box.style.color = lines.length ? '#ffb27a' : box.style.color;
+  }
+}
+
 // ---- lens graphs ----
 const graphs = $('graphs');
 const series = [
@@ -586,41 +713,69 @@ function sampleAtTime(t) {
   if (lo > 0 && Math.abs(S.time_s[lo - 1] - t) <= Math.abs(S.time_s[lo] - t)) lo -= 1;
   return lo;
 }
+// The readout of the primary flight (its shot, speed and lens) or of another drone (its camera and focus).
+function readoutText(flight, j, live) {
+  const t = S.time_s[k];
+  const p = flight.pos(j), focus = flight.s.focus_distance_m[j];
+  const drone = several ? `   drone ${flight.f.name}` : '';
+  const liveText = live >= 0 ? '   live in the edit: ' + team.flights[live].name : '';
+  const position = `camera  E ${fmt(p.x, 2)}  N ${fmt(-p.z, 2)}  U ${fmt(p.y, 2)} m`;
+  if (flight === flights[team.primary]) {
+    const shot = data.shots[S.shot[k]];
+    return `t ${fmt(t, 3)} s   frame ${k} / ${N - 1}   shot ${shot ? shot.name + ' (' + shot.type + ')' : '—'}` +
+      `${drone}${liveText}\n${position}   speed ${fmt(S.speed_m_s[k], 2)} m/s\n` +
+      `lens    ${fmt(S.focal_length_mm[k], 1)} mm  f/${fmt(S.f_number[k], 1)}  focus ${fmt(focus, 2)} m ` +
+      `(${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(S.vertical_fov_deg[k], 1)}°`;
+  }
+  return `t ${fmt(t, 3)} s   frame ${k} / ${N - 1}${drone}${liveText}\n` +
+    `${position}${j < k ? '   (flight ended: holding)' : ''}\n` +
+    `lens    focus ${fmt(focus, 2)} m (${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(flight.s.vertical_fov_deg[j], 1)}°` +
+    `   (lens graphs: ${team.flights[team.primary].name})`;
+}
+// Every flight at sample k (a flight that has ended holds its last sample), the camera view through the
+// selected drone (or the one live in the edit), the subjects, the readout and the lens graphs.
 function setSample(index) {
   k = Math.max(0, Math.min(N - 1, index));
   if (N === 0) return;
   slider.value = String(k);
-  const p = pos(k), q = quat(k);
-  drone.position.copy(p);
-  currentFrustum.geometry.dispose();
-  currentFrustum.geometry = new THREE.BufferGeometry();
-  currentFrustum.geometry.setAttribute('position', new THREE.Float32BufferAttribute(frustumPoints(k, []), 3));
-  shotCamera.position.copy(p);
-  shotCamera.quaternion.copy(q);
-  shotCamera.fov = S.vertical_fov_deg[k];
+  for (const flight of flights) {
+    const j = Math.min(k, flight.n - 1);
+    flight.marker.position.copy(flight.pos(j));
+    flight.frustum.geometry.dispose();
+    flight.frustum.geometry = new THREE.BufferGeometry();
+    flight.frustum.geometry.setAttribute('position', new THREE.Float32BufferAttribute(
+      cameraFrustumPoints(flight.pos(j), flight.quat(j), flight.s.vertical_fov_deg[j], flight.f.aspect,
+                          flight.s.focus_distance_m[j], []), 3));
+  }
+  const live = liveFlightAt(S.time_s[k]);
+  const viewed = selected === 'edit' ? live : selected;
+  const flight = flights[viewed >= 0 ? viewed : team.primary];
+  const j = Math.min(k, flight.n - 1);
+  shotCamera.position.copy(flight.pos(j));
+  shotCamera.quaternion.copy(flight.quat(j));
+  shotCamera.fov = flight.s.vertical_fov_deg[j];
+  shotCamera.aspect = flight.f.aspect;
   shotCamera.updateProjectionMatrix();
   for (const { subject, body } of subjectMarkers) {
     body.position.set(subject.position_m[3 * k], subject.position_m[3 * k + 1], subject.position_m[3 * k + 2]);
   }
-  const shot = data.shots[S.shot[k]];
-  const focus = S.focus_distance_m[k];
-  const e = p.x, n = -p.z, u = p.y;
+  const p = flight.pos(j);
   const readout = $('readout');
   readout.dataset.k = String(k);
   readout.dataset.time = fmt(S.time_s[k], 6);
-  readout.dataset.e = fmt(e, 3);
-  readout.dataset.n = fmt(n, 3);
-  readout.dataset.u = fmt(u, 3);
+  readout.dataset.drone = flight.f.name;
+  readout.dataset.e = fmt(p.x, 3);
+  readout.dataset.n = fmt(-p.z, 3);
+  readout.dataset.u = fmt(p.y, 3);
   readout.dataset.focal = fmt(S.focal_length_mm[k], 3);
-  readout.textContent =
-    `t ${fmt(S.time_s[k], 3)} s   frame ${k} / ${N - 1}   shot ${shot ? shot.name + ' (' + shot.type + ')' : '—'}\n` +
-    `camera  E ${fmt(e, 2)}  N ${fmt(n, 2)}  U ${fmt(u, 2)} m   speed ${fmt(S.speed_m_s[k], 2)} m/s\n` +
-    `lens    ${fmt(S.focal_length_mm[k], 1)} mm  f/${fmt(S.f_number[k], 1)}  focus ${fmt(focus, 2)} m ` +
-    `(${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(S.vertical_fov_deg[k], 1)}°`;
+  readout.textContent = readoutText(flight, j, live);
+  const focus = S.focus_distance_m[k];
   $('lens-overlay').textContent = `${fmt(S.focal_length_mm[k], 1)} mm  f/${fmt(S.f_number[k], 1)}  ` +
     `focus ${focus === null ? '∞' : fmt(focus, 2) + ' m'}  ${fmt(S.time_s[k], 2)} s`;
   $('time').textContent = `${fmt(S.time_s[k], 2)} s / ${fmt(t1, 2)} s · ${k}`;
-  const image = frames[String(k)];
+  // Rendered frames (--frames) belong to one sequence: the edit's when the plan has one, else the primary's.
+  const framesOf = team.edit.length ? selected === 'edit' : selected === team.primary;
+  const image = framesOf ? frames[String(k)] : undefined;
   const img = $('frame-img');
   if (image) {
     if (img.dataset.k !== String(k)) { img.src = image; img.dataset.k = String(k); }
@@ -628,7 +783,8 @@ function setSample(index) {
     $('camera-label').textContent = `rendered frame ${k}`;
   } else {
     img.style.display = 'none';
-    $('camera-label').textContent = 'live preview';
+    $('camera-label').textContent = !several ? 'live preview'
+      : `${flight.f.name}${selected === 'edit' ? ' (live in the edit)' : ''}${j < k ? ', holding its last sample' : ''}`;
   }
   if (follow) placeFollowCamera();
   drawGraphs(k);
@@ -775,6 +931,10 @@ render();
 document.body.dataset.timing = [moduleStartMs, meshReadyMs, performance.now()].map((t) => Math.round(t)).join(',');
 document.body.dataset.triangles = String(triangles);
 document.body.dataset.samples = String(N);
+document.body.dataset.flights = String(flights.length);
+document.body.dataset.flightPaths = String(flightPaths);
+document.body.dataset.editCuts = String(team.edit.length);
+document.body.dataset.conflicts = String(team.conflicts.length);
 document.body.dataset.errors = String(window.previsErrors.length);
 document.body.dataset.state = window.previsErrors.length ? 'error' : 'ready';
 document.title = `cinepath view: ${window.previsErrors.length ? 'error' : 'ready'}, ${triangles} triangles`;

@@ -151,9 +151,8 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
   for (size_t f = 0; f < team.flights.size(); ++f) {
     if (team.flights[f].plan.samples.size() > team.flights[primary].plan.samples.size()) primary = f;
   }
-  Trajectory plan = team.flights[primary].plan;
   page.inputs.push_back(options.plan.string());
-  std::optional<Geodetic> origin = plan.origin;
+  std::optional<Geodetic> origin = team.origin;
   std::optional<MeshPayload> mesh;
   std::string mesh_source;
   Json ground;
@@ -164,8 +163,7 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
     const std::filesystem::path& glb = scene.RequireMesh();  // InputError when absent or missing
     page.inputs.push_back(glb.string());
     if (scene.origin) {
-      plan = ReframeToOrigin(std::move(plan), *scene.origin);  // a plan without an origin is left as it is
-      if (!team.single) team = ReframeToOrigin(std::move(team), *scene.origin);
+      team = ReframeToOrigin(std::move(team), *scene.origin);  // a plan without an origin is left as it is
       origin = scene.origin;
     }
     photos = PhotoPositionsJson(scene);
@@ -177,17 +175,14 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
   }
   Json frames = Json::object();
   if (options.frames_dir) {
-    for (const auto& [k, image] : FindRenderedFrames(*options.frames_dir, plan.samples.size())) {
+    for (const auto& [k, image] : FindRenderedFrames(*options.frames_dir, team.flights[primary].plan.samples.size())) {
       frames[std::to_string(k)] = "data:" + image.mime_type + ";base64," + Base64Encode(ReadFileToString(image.path));
       page.inputs.push_back(image.path.string());
       ++page.frames_inlined;
     }
   }
   const std::string plan_name = options.plan.filename().string();
-  const Json data =
-      team.single ? PageDataJson(plan, plan_name, origin) : TeamPageDataJson(team, primary, plan_name, origin);
-  const std::string js =
-      team.single ? std::string(PrevisJs()) : std::string(PrevisJs()) + "\n" + std::string(PrevisTeamJs());
+  const Json data = PageDataJson(team, primary, plan_name, origin);
   page.html =
       FillTemplate(std::string(PrevisHtml()),
                    {{"TITLE", HtmlEscape("cinepath view: " + plan_name)},
@@ -197,7 +192,7 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
                     {"MESH_JSON", mesh ? CompactJson(MeshJson(*mesh, mesh_source, ground)) : std::string("null")},
                     {"MESH_BASE64", mesh ? Base64Encode(mesh->deflated) : std::string()},
                     {"FRAMES_JSON", CompactJson(frames)},
-                    {"PREVIS_JS", js}});
+                    {"PREVIS_JS", std::string(PrevisJs())}});
   return page;
 }
 

@@ -2,8 +2,9 @@
 # The previs page of a plan of several drones in headless Chromium (docs/view.md, "Several drones"): the
 # two-drone test plan over the small six-photo Brighton scene loads with no error, draws two flight paths,
 # a selector with both drones and the edit, the edit's cuts on the timeline; at t = 1.25 s the camera view
-# looks through the drone live in the edit (south). A screenshot is kept in ARTIFACT_DIR. The page of a
-# one-drone plan is unchanged (its bytes: tests/golden/view). Exit 77 (skipped) without Chromium.
+# looks through the drone live in the edit (south). A screenshot is kept in ARTIFACT_DIR. A one-drone plan
+# is a team of one, drawn by the same code: one flight path, its camera, no selector, no edit, no team line
+# (its pictures: browser_test.sh's golden top view). Exit 77 (skipped) without Chromium.
 #   browser_team.sh CINEPATH SOURCE_DIR ARTIFACT_DIR
 set -uo pipefail
 CINEPATH=$1
@@ -44,9 +45,18 @@ grep -q 'id="readout"[^>]*data-drone="south"' "$work/dom.html" ||
 browse "file://$work/team.html#t=1.25&view=top" --screenshot="$ARTIFACTS/team_top.png" > /dev/null
 browse "file://$work/team.html#t=0.5" --screenshot="$ARTIFACTS/team_3d.png" > /dev/null
 [[ -s $ARTIFACTS/team_top.png ]] || fail "no screenshot"
-# The team code goes only into a page of several drones.
+# The feasibility box leads with the team line (every pair apart, or the conflicts).
+box() { grep -o 'id="violations"[^>]*>[^<]*' "$1"; }
+box "$work/dom.html" | grep -q "team: every pair\|separation" || fail "no team line in the feasibility box"
+# A team of one: the same code draws its flight, with no selector, no edit and no team line.
 "$CINEPATH" plan "$SRC/examples/orbit_shots.json" -o "$work/one.json" || fail "plan one drone"
 "$CINEPATH" view "$work/one.json" -o "$work/one.html" || fail "view one drone"
-grep -q 'several drones (docs/view.md' "$work/team.html" || fail "the team page lacks the team code"
-grep -q 'several drones (docs/view.md' "$work/one.html" && fail "a one-drone page holds the team code"
+browse "file://$work/one.html#t=2" --dump-dom > "$work/one_dom.html"
+[[ $(attr data-state "$work/one_dom.html") == ready && $(attr data-errors "$work/one_dom.html") == 0 ]] ||
+  fail "one drone: state $(attr data-state "$work/one_dom.html")"
+[[ $(attr data-flights "$work/one_dom.html") == 1 ]] || fail "one drone: data-flights $(attr data-flights "$work/one_dom.html")"
+[[ $(attr data-flight-paths "$work/one_dom.html") == 1 ]] || fail "one drone: no flight path"
+grep -q 'id="drones"' "$work/one_dom.html" && fail "one drone: a drone selector"
+box "$work/one_dom.html" | grep -q '✔ feasibility\|✖' || fail "one drone: no feasibility line"
+box "$work/one_dom.html" | grep -q 'team: every pair' && fail "one drone: a team line"
 echo "browser_team: ok (screenshots in $ARTIFACTS)"

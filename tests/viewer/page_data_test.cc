@@ -24,6 +24,16 @@ Trajectory TwoShots() {
   return plan;
 }
 
+// A plan as `view` reads it: a team, here of one flight (a "cinepath.plan/1" file).
+TeamPlan TeamOf(std::vector<Trajectory> plans) {
+  TeamPlan team;
+  team.single = plans.size() == 1;
+  for (size_t f = 0; f < plans.size(); ++f) {
+    team.flights.push_back({"drone" + std::to_string(f), std::nullopt, std::move(plans[f])});
+  }
+  return team;
+}
+
 TEST(PageData, CutsBreakThePathAndTheSpeeds) {
   const Trajectory plan = TwoShots();
   const std::vector<bool> cuts = CutBeforeSamples(plan);
@@ -40,7 +50,7 @@ TEST(PageData, ContinuousShotsAreNotCuts) {
 TEST(PageData, JsonInThreeJsFrameWithInfinityAsNull) {
   Trajectory plan = TwoShots();
   plan.feasibility.violations.push_back({"horizontal_speed", "b", 3, 4, 20, 15, "m/s"});
-  const Json data = PageDataJson(plan, "plan.json", std::nullopt);
+  const Json data = PageDataJson(TeamOf({plan}), 0, "plan.json", std::nullopt);
   EXPECT_TRUE(data["origin"].is_null());
   EXPECT_EQ(data["format"], "cinepath.previs/1");
   const Json& s = data["samples"];
@@ -54,10 +64,37 @@ TEST(PageData, JsonInThreeJsFrameWithInfinityAsNull) {
   EXPECT_EQ(s["shot"][4], 1);
   EXPECT_EQ(data["cuts_before_sample"], Json::array({3}));
   EXPECT_EQ(data["violations"][0]["limit"], "horizontal_speed");
+  // A team of one: its one flight, whose samples are the page's own (not written twice), no edit.
+  const Json& team = data["team"];
+  ASSERT_EQ(team["flights"].size(), 1u);
+  EXPECT_EQ(team["primary"], 0);
+  EXPECT_EQ(team["flights"][0]["name"], "drone0");
+  EXPECT_EQ(team["flights"][0]["cuts_before_sample"], Json::array({3}));
+  EXPECT_FALSE(team["flights"][0].contains("position_m"));
+  EXPECT_TRUE(team["edit"].empty());
+  EXPECT_TRUE(team["conflicts"].empty());
+}
+
+// Several drones: the primary's detail as for one, and every other flight with its own samples.
+TEST(PageData, EveryFlightOfATeamAboutItsPrimary) {
+  Trajectory other = TwoShots();
+  other.samples.resize(4);
+  for (auto& s : other.samples) s.position_enu_m.y() += 30;  // 30 m north
+  TeamPlan team = TeamOf({other, TwoShots()});
+  team.edit.push_back({.at_s = 1, .drone = "drone1"});
+  const Json data = PageDataJson(team, 1, "plan.json", std::nullopt);
+  EXPECT_EQ(data["samples"]["time_s"].size(), 6u);  // the primary's detail
+  const Json& flights = data["team"]["flights"];
+  ASSERT_EQ(flights.size(), 2u);
+  EXPECT_EQ(flights[0]["time_s"].size(), 4u);
+  EXPECT_EQ(flights[0]["position_m"][2], -30.0);  // north is three.js's -z
+  EXPECT_NE(flights[0]["colour"], flights[1]["colour"]);
+  EXPECT_FALSE(flights[1].contains("position_m"));
+  EXPECT_EQ(data["team"]["edit"][0]["drone"], "drone1");
 }
 
 TEST(PageData, OriginWhenKnown) {
-  const Json data = PageDataJson(TwoShots(), "plan.json", Geodetic{50.8, -0.14, 50});
+  const Json data = PageDataJson(TeamOf({TwoShots()}), 0, "plan.json", Geodetic{50.8, -0.14, 50});
   EXPECT_DOUBLE_EQ(data["origin"]["lat_deg"].get<double>(), 50.8);
 }
 
