@@ -17,6 +17,36 @@ Json FiniteOrNull(double value, int decimals) {
   return std::isfinite(value) ? Json(RoundToDecimals(value, decimals)) : Json(nullptr);
 }
 
+// What every flight's camera is drawn from, per sample: time, position and camera orientation in
+// three.js's frame, vertical angle of view, focus (null at infinity).
+Json CameraTrackJson(const Trajectory& plan) {
+  Json time = Json::array(), position = Json::array(), quaternion = Json::array(), vfov = Json::array();
+  Json focus = Json::array();
+  for (const TrajectorySample& s : plan.samples) {
+    time.push_back(RoundToDecimals(s.time_s, 6));
+    AppendVector(&position, ThreeFromEnu(s.position_enu_m), 3);
+    const Eigen::Quaterniond q = ThreeCameraFromWorldFromCamera(s.world_from_camera);
+    for (double c : {q.x(), q.y(), q.z(), q.w()}) quaternion.push_back(RoundToDecimals(c, 6));
+    vfov.push_back(RoundToDecimals(VerticalFieldOfViewDeg(plan.camera, s.focal_length_mm), 4));
+    focus.push_back(FiniteOrNull(s.focus_distance_m, 3));
+  }
+  return {{"time_s", time},
+          {"position_m", position},
+          {"quaternion", quaternion},
+          {"vertical_fov_deg", vfov},
+          {"focus_distance_m", focus}};
+}
+
+// The samples a cut lies before (CutBeforeSamples), by index.
+Json CutsJson(const Trajectory& plan) {
+  Json cuts = Json::array();
+  const std::vector<bool> cut_before = CutBeforeSamples(plan);
+  for (size_t k = 0; k < cut_before.size(); ++k) {
+    if (cut_before[k]) cuts.push_back(k);
+  }
+  return cuts;
+}
+
 }  // namespace
 
 std::vector<bool> CutBeforeSamples(const Trajectory& plan) {
@@ -68,19 +98,11 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
                     {"height_px", plan.camera.height_px}};
   data["drone"] = plan.drone.name;
 
-  Json time = Json::array(), position = Json::array(), quaternion = Json::array(), vfov = Json::array();
-  Json focal = Json::array(), focus = Json::array(), f_number = Json::array(), speed = Json::array();
-  Json shot_index = Json::array();
+  Json focal = Json::array(), f_number = Json::array(), speed = Json::array(), shot_index = Json::array();
   const std::vector<double> speeds = SampleSpeedsMps(plan);
   for (size_t k = 0; k < plan.samples.size(); ++k) {
     const TrajectorySample& s = plan.samples[k];
-    time.push_back(RoundToDecimals(s.time_s, 6));
-    AppendVector(&position, ThreeFromEnu(s.position_enu_m), 3);
-    const Eigen::Quaterniond q = ThreeCameraFromWorldFromCamera(s.world_from_camera);
-    for (double c : {q.x(), q.y(), q.z(), q.w()}) quaternion.push_back(RoundToDecimals(c, 6));
-    vfov.push_back(RoundToDecimals(VerticalFieldOfViewDeg(plan.camera, s.focal_length_mm), 4));
     focal.push_back(RoundToDecimals(s.focal_length_mm, 3));
-    focus.push_back(FiniteOrNull(s.focus_distance_m, 3));
     f_number.push_back(RoundToDecimals(s.f_number, 3));
     speed.push_back(RoundToDecimals(speeds[k], 3));
     int index = -1;
@@ -89,15 +111,13 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
     }
     shot_index.push_back(index);
   }
-  Json cuts = Json::array();
-  const std::vector<bool> cut_before = CutBeforeSamples(plan);
-  for (size_t k = 0; k < cut_before.size(); ++k) {
-    if (cut_before[k]) cuts.push_back(k);
-  }
-  data["cuts_before_sample"] = cuts;
-  data["samples"] = {{"time_s", time},           {"position_m", position},   {"quaternion", quaternion},
-                     {"vertical_fov_deg", vfov}, {"focal_length_mm", focal}, {"focus_distance_m", focus},
-                     {"f_number", f_number},     {"speed_m_s", speed},       {"shot", shot_index}};
+  data["cuts_before_sample"] = CutsJson(plan);
+  Json samples = CameraTrackJson(plan);
+  samples["focal_length_mm"] = focal;
+  samples["f_number"] = f_number;
+  samples["speed_m_s"] = speed;
+  samples["shot"] = shot_index;
+  data["samples"] = samples;
 
   Json shots = Json::array();
   for (const ShotSpan& shot : plan.shots) {
@@ -141,11 +161,6 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
 // flight's samples are already in the page's "samples" (FlightDetailJson), so only the others carry theirs.
 Json FlightJson(const DroneFlight& flight, const char* colour, bool with_samples) {
   const Trajectory& t = flight.plan;
-  Json cuts = Json::array();
-  const std::vector<bool> cut_before = CutBeforeSamples(t);
-  for (size_t k = 0; k < cut_before.size(); ++k) {
-    if (cut_before[k]) cuts.push_back(k);
-  }
   Json home = nullptr;
   if (flight.home_enu_m) {
     home = Json::array();
@@ -159,23 +174,8 @@ Json FlightJson(const DroneFlight& flight, const char* colour, bool with_samples
                {"aspect", double(t.camera.width_px) / double(std::max(1, t.camera.height_px))},
                {"home_m", home},
                {"shots", shots},
-               {"cuts_before_sample", cuts}};
-  if (!with_samples) return json;
-  Json time = Json::array(), position = Json::array(), quaternion = Json::array(), vfov = Json::array();
-  Json focus = Json::array();
-  for (const TrajectorySample& s : t.samples) {
-    time.push_back(RoundToDecimals(s.time_s, 6));
-    AppendVector(&position, ThreeFromEnu(s.position_enu_m), 3);
-    const Eigen::Quaterniond q = ThreeCameraFromWorldFromCamera(s.world_from_camera);
-    for (double c : {q.x(), q.y(), q.z(), q.w()}) quaternion.push_back(RoundToDecimals(c, 6));
-    vfov.push_back(RoundToDecimals(VerticalFieldOfViewDeg(t.camera, s.focal_length_mm), 4));
-    focus.push_back(FiniteOrNull(s.focus_distance_m, 3));
-  }
-  json["time_s"] = time;
-  json["position_m"] = position;
-  json["quaternion"] = quaternion;
-  json["vertical_fov_deg"] = vfov;
-  json["focus_distance_m"] = focus;
+               {"cuts_before_sample", CutsJson(t)}};
+  if (with_samples) json.update(CameraTrackJson(t));
   return json;
 }
 
