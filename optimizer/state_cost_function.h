@@ -25,6 +25,15 @@ namespace cinepath::optimizer {
 
 enum StateFields { kValues = kNumChannels, kValuesAndRates = 2 * kNumChannels + 6 };
 
+// A one-sample term evaluated at its sample's state, already computed: the Jacobian in the four knots as
+// `ceres::CostFunction::Evaluate` gives it (optimizer/sample_cost_function.h stacks a sample's terms in one
+// residual block and evaluates the state once for all of them).
+class StatePart {
+ public:
+  virtual ~StatePart() = default;
+  virtual bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const = 0;
+};
+
 // Functor: has `base` (SampleBase) and `template <T> bool Residuals(const SampleState<T>&, T*) const`
 // that reads only the fields `kFields` seeds. Owns the functor.
 //
@@ -35,7 +44,7 @@ enum StateFields { kValues = kNumChannels, kValuesAndRates = 2 * kNumChannels + 
 // more than `rows` hinges of the sample are active (almost always: a sample rarely presses on more than two limits at
 // once), and every Jacobian product of the solve handles `rows` rows instead of 19, most of them zero.
 template <typename Functor, int kFields>
-class StateCostFunction : public ceres::CostFunction {
+class StateCostFunction : public ceres::CostFunction, public StatePart {
  public:
   static constexpr int kMaxResiduals = 19;
   StateCostFunction(Functor* functor, int residuals, int rows = 0)
@@ -45,7 +54,9 @@ class StateCostFunction : public ceres::CostFunction {
   }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const SampleState<double> s = EvaluateSample(functor_->base, parameters);
+    return EvaluateAt(EvaluateSample(functor_->base, parameters), residuals, jacobians);
+  }
+  bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const override {
     if (!jacobians || hinges_) {
       double full_values[kMaxResiduals];
       if (!functor_->Residuals(s, full_values)) return false;
