@@ -34,6 +34,12 @@ class StatePart {
   virtual bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const = 0;
 };
 
+// A functor whose residuals can be computed for a subset (LimitsCost: the active hinges alone).
+template <typename Functor, typename T>
+concept SubsetResiduals = requires(const Functor& f, const SampleState<T>& s, T* r, const bool* only) {
+  f.Residuals(s, r, only);
+};
+
 // Functor: has `base` (SampleBase) and `template <T> bool Residuals(const SampleState<T>&, T*) const`
 // that reads only the fields `kFields` seeds. Owns the functor.
 //
@@ -57,6 +63,7 @@ class StateCostFunction : public ceres::CostFunction, public StatePart {
     return EvaluateAt(EvaluateSample(functor_->base, parameters), residuals, jacobians);
   }
   bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const override {
+    bool active[kMaxResiduals];  // hinges: which are nonzero at s, the only ones differentiated
     if (!jacobians || hinges_) {
       double full_values[kMaxResiduals];
       if (!functor_->Residuals(s, full_values)) return false;
@@ -69,10 +76,16 @@ class StateCostFunction : public ceres::CostFunction, public StatePart {
         }
         return true;
       }
+      for (int i = 0; i < functor_rows_; ++i) active[i] = full_values[i] != 0.0;
     }
     using Jet = ceres::Jet<double, kFields>;
     Jet full[kMaxResiduals], r[kMaxResiduals];
-    if (!functor_->Residuals(Seeded<Jet>(s), full)) return false;
+    if constexpr (SubsetResiduals<Functor, Jet>) {
+      // An inactive hinge is zero with zero derivatives: only the active ones run through the Jets.
+      if (!functor_->Residuals(Seeded<Jet>(s), full, hinges_ ? active : nullptr)) return false;
+    } else if (!functor_->Residuals(Seeded<Jet>(s), full)) {
+      return false;
+    }
     Compact(full, r);
     const KnotWeights& w = functor_->base.knots;
     for (int i = 0; i < num_residuals(); ++i) residuals[i] = r[i].a;
