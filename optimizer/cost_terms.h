@@ -220,85 +220,119 @@ struct LimitsCost {
     const T* k[4] = {k0, k1, k2, k3};
     return Residuals(EvaluateSample(base, k), r);
   }
-  // The residuals at the sample's state (optimizer/state_cost_function.h differentiates this). `only`: the
-  // residuals to compute (the others are zero), as StateCostFunction asks for the derivatives of the active
-  // hinges alone (null: all of them).
+  // The residuals at the sample's state (optimizer/state_cost_function.h differentiates this).
   template <typename T>
-  bool Residuals(const SampleState<T>& s, T* r, const bool* only = nullptr) const {
+  bool Residuals(const SampleState<T>& s, T* r) const {
     constexpr double kDeg = 180.0 / M_PI;
     const double m = 1.0 - margin;
     const auto over = [&](const T& value, double limit) { return (value - T(limit * m)) / limit; };
     const auto under = [&](const T& value, double limit, double scale) {
       return (T(limit) - value) / scale + T(margin);
     };
-    const auto want = [&](int first, int last) {  // any of residuals first..last
-      if (!only) return true;
-      for (int i = first; i <= last; ++i) {
-        if (only[i]) return true;
-      }
-      return false;
-    };
     // The hinges' arguments first (minus infinity: no such limit at this sample), then the residuals.
     for (int i = 0; i < kNumResiduals; ++i) r[i] = T(-std::numeric_limits<double>::infinity());
-    if (base.has_rates && want(0, 8)) {
-      if (want(0, 2)) {
-        const Vec3T<T> v = base.velocity_m_s.cast<T>() + s.velocity;
-        r[0] = over(SafeNorm2(v[0], v[1]), drone.max_horizontal_speed_m_s);
-        r[1] = over(v[2], drone.max_climb_rate_m_s);
-        r[2] = over(-v[2], drone.max_descent_rate_m_s);
-      }
-      if (want(3, 3)) {
-        const T ae = T(base.acceleration_m_s2[0]) + s.acceleration[0],
-                an = T(base.acceleration_m_s2[1]) + s.acceleration[1];
-        r[3] = over(SafeNorm2(ae, an), drone.max_acceleration_m_s2);
-      }
-      if (base.has_jerk && want(4, 4))
-        r[4] = over(SafeNorm(Vec3T<T>(base.jerk_m_s3.cast<T>() + s.jerk)), drone.max_jerk_m_s3);
-      if (want(5, 5)) {
-        const T heading_rate = T(base.heading_rate_deg_s) - s.yaw_rate * kDeg;
-        r[5] = over(SafeNorm2(heading_rate, T(0)), drone.max_yaw_rate_deg_s);
-      }
-      if (want(6, 6)) {
-        const T pitch_rate = T(base.pitch_rate_deg_s) + s.tilt_rate * kDeg;
-        r[6] = over(SafeNorm2(pitch_rate, T(0)), drone.max_gimbal_pitch_rate_deg_s);
-      }
-      if (want(7, 7)) {
-        const T focal_rate = T(base.focal_rate_mm_s) + FocalLengthMm(base, s) * s.log_focal_rate;
-        r[7] = over(SafeNorm2(focal_rate, T(0)), camera.max_focal_rate_mm_s);
-      }
-      if (want(8, 8)) {
-        const T aperture_rate = T(base.aperture_rate_stops_s) + s.stops_rate;
-        r[8] = over(SafeNorm2(aperture_rate, T(0)), camera.max_aperture_rate_stops_s);
-      }
+    if (base.has_rates) {
+      const Vec3T<T> v = base.velocity_m_s.cast<T>() + s.velocity;
+      const Vec3T<T> a = base.acceleration_m_s2.cast<T>() + s.acceleration;
+      r[0] = over(SafeNorm2(v[0], v[1]), drone.max_horizontal_speed_m_s);
+      r[1] = over(v[2], drone.max_climb_rate_m_s);
+      r[2] = over(-v[2], drone.max_descent_rate_m_s);
+      r[3] = over(SafeNorm2(a[0], a[1]), drone.max_acceleration_m_s2);
+      if (base.has_jerk) r[4] = over(SafeNorm(Vec3T<T>(base.jerk_m_s3.cast<T>() + s.jerk)), drone.max_jerk_m_s3);
+      const T heading_rate = T(base.heading_rate_deg_s) - s.yaw_rate * kDeg;
+      r[5] = over(SafeNorm2(heading_rate, T(0)), drone.max_yaw_rate_deg_s);
+      const T pitch_rate = T(base.pitch_rate_deg_s) + s.tilt_rate * kDeg;
+      r[6] = over(SafeNorm2(pitch_rate, T(0)), drone.max_gimbal_pitch_rate_deg_s);
+      const T focal_rate = T(base.focal_rate_mm_s) + FocalLengthMm(base, s) * s.log_focal_rate;
+      r[7] = over(SafeNorm2(focal_rate, T(0)), camera.max_focal_rate_mm_s);
+      const T aperture_rate = T(base.aperture_rate_stops_s) + s.stops_rate;
+      r[8] = over(SafeNorm2(aperture_rate, T(0)), camera.max_aperture_rate_stops_s);
     }
-    if (want(9, 10)) {
-      const T pitch = T(base.pitch_deg) + s.tilt * kDeg;
-      r[9] = under(pitch, drone.min_gimbal_pitch_deg, 90.0);
-      r[10] = (pitch - T(drone.max_gimbal_pitch_deg)) / 90.0 + T(margin);
-    }
-    if (want(11, 12)) {
-      const T altitude = s.position[2] - T(takeoff_up_m);
-      r[11] = under(altitude, drone.min_altitude_m, std::max(drone.min_altitude_m, 10.0));
-      r[12] = over(altitude, drone.max_altitude_m);
-    }
-    if (want(13, 14)) {
-      const T focal = FocalLengthMm(base, s);
-      r[13] = under(focal, camera.min_focal_length_mm, camera.min_focal_length_mm);
-      r[14] = over(focal, camera.max_focal_length_mm);
-    }
-    if (want(15, 16)) {
-      const T f_number = FNumber(base, s);
-      r[15] = under(f_number, camera.min_f_number, camera.min_f_number);
-      r[16] = over(f_number, camera.max_f_number);
-    }
+    const T pitch = T(base.pitch_deg) + s.tilt * kDeg;
+    r[9] = under(pitch, drone.min_gimbal_pitch_deg, 90.0);
+    r[10] = (pitch - T(drone.max_gimbal_pitch_deg)) / 90.0 + T(margin);
+    const T altitude = s.position[2] - T(takeoff_up_m);
+    r[11] = under(altitude, drone.min_altitude_m, std::max(drone.min_altitude_m, 10.0));
+    r[12] = over(altitude, drone.max_altitude_m);
+    const T focal = FocalLengthMm(base, s);
+    r[13] = under(focal, camera.min_focal_length_mm, camera.min_focal_length_mm);
+    r[14] = over(focal, camera.max_focal_length_mm);
+    const T f_number = FNumber(base, s);
+    r[15] = under(f_number, camera.min_f_number, camera.min_f_number);
+    r[16] = over(f_number, camera.max_f_number);
     const double max_dioptre = 1.0 / camera.min_focus_distance_m;
-    if (want(17, 18)) {
-      r[17] = over(s.dioptre, max_dioptre);
-      r[18] = -s.dioptre / max_dioptre;  // focus beyond infinity
-    }
+    r[17] = over(s.dioptre, max_dioptre);
+    r[18] = -s.dioptre / max_dioptre;  // focus beyond infinity
     if (raw) return true;
-    for (int i = 0; i < kNumResiduals; ++i) r[i] = want(i, i) ? weight * Hinge(r[i] + T(shift[i])) : T(0);
+    for (int i = 0; i < kNumResiduals; ++i) r[i] = weight * Hinge(r[i] + T(shift[i]));
     return true;
+  }
+  // The gradients of the residuals `only` names (active hinges: weight (argument + shift) > 0) in the state's
+  // fields, in optimizer/state_cost_function.h's kValuesAndRates order (the 8 channel values, their 8 first
+  // derivatives, the path's acceleration and jerk): weight times the argument's gradient, written out, since
+  // each hinge reads one to three of the 22 fields. Rows not named are left as they are.
+  // tests/optimizer/state_cost_function_test.cc checks every hinge against automatic differentiation.
+  void ActiveGradients(const SampleState<double>& s, const bool* only, double (*g)[2 * kNumChannels + 6]) const {
+    constexpr double kDeg = 180.0 / M_PI;
+    constexpr int kRate = kNumChannels, kAccel = 2 * kNumChannels, kJerk = 2 * kNumChannels + 3;
+    const auto row = [&](int i) -> double* {
+      if (!only[i]) return nullptr;
+      std::fill(g[i], g[i] + 2 * kNumChannels + 6, 0.0);
+      return g[i];
+    };
+    const auto norm = [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z + 1e-12); };
+    if (base.has_rates) {
+      const Eigen::Vector3d v = base.velocity_m_s + s.velocity, a = base.acceleration_m_s2 + s.acceleration;
+      if (double* d = row(0)) {
+        const double n = norm(v[0], v[1], 0) * drone.max_horizontal_speed_m_s;
+        d[kRate + kEast] = v[0] / n;
+        d[kRate + kNorth] = v[1] / n;
+      }
+      if (double* d = row(1)) d[kRate + kUp] = 1.0 / drone.max_climb_rate_m_s;
+      if (double* d = row(2)) d[kRate + kUp] = -1.0 / drone.max_descent_rate_m_s;
+      if (double* d = row(3)) {
+        const double n = norm(a[0], a[1], 0) * drone.max_acceleration_m_s2;
+        d[kAccel] = a[0] / n;
+        d[kAccel + 1] = a[1] / n;
+      }
+      if (double* d = base.has_jerk ? row(4) : nullptr) {
+        const Eigen::Vector3d j = base.jerk_m_s3 + s.jerk;
+        const double n = norm(j[0], j[1], j[2]) * drone.max_jerk_m_s3;
+        for (int c = 0; c < 3; ++c) d[kJerk + c] = j[c] / n;
+      }
+      if (double* d = row(5)) {
+        const double rate = base.heading_rate_deg_s - s.yaw_rate * kDeg;
+        d[kRate + kYaw] = rate / norm(rate, 0, 0) * -kDeg / drone.max_yaw_rate_deg_s;
+      }
+      if (double* d = row(6)) {
+        const double rate = base.pitch_rate_deg_s + s.tilt_rate * kDeg;
+        d[kRate + kTilt] = rate / norm(rate, 0, 0) * kDeg / drone.max_gimbal_pitch_rate_deg_s;
+      }
+      if (double* d = row(7)) {
+        const double focal = FocalLengthMm(base, s), rate = base.focal_rate_mm_s + focal * s.log_focal_rate;
+        const double along = rate / norm(rate, 0, 0) / camera.max_focal_rate_mm_s;
+        d[kLogFocal] = along * focal * s.log_focal_rate;
+        d[kRate + kLogFocal] = along * focal;
+      }
+      if (double* d = row(8)) {
+        const double rate = base.aperture_rate_stops_s + s.stops_rate;
+        d[kRate + kStops] = rate / norm(rate, 0, 0) / camera.max_aperture_rate_stops_s;
+      }
+    }
+    if (double* d = row(9)) d[kTilt] = -kDeg / 90.0;
+    if (double* d = row(10)) d[kTilt] = kDeg / 90.0;
+    if (double* d = row(11)) d[kUp] = -1.0 / std::max(drone.min_altitude_m, 10.0);
+    if (double* d = row(12)) d[kUp] = 1.0 / drone.max_altitude_m;
+    if (double* d = row(13)) d[kLogFocal] = -FocalLengthMm(base, s) / camera.min_focal_length_mm;
+    if (double* d = row(14)) d[kLogFocal] = FocalLengthMm(base, s) / camera.max_focal_length_mm;
+    if (double* d = row(15)) d[kStops] = -FNumber(base, s) * 0.5 * std::log(2.0) / camera.min_f_number;
+    if (double* d = row(16)) d[kStops] = FNumber(base, s) * 0.5 * std::log(2.0) / camera.max_f_number;
+    if (double* d = row(17)) d[kDioptre] = camera.min_focus_distance_m;  // 1 / the largest dioptre
+    if (double* d = row(18)) d[kDioptre] = -camera.min_focus_distance_m;
+    for (int i = 0; i < kNumResiduals; ++i) {
+      if (!only[i]) continue;
+      for (double& d : g[i]) d *= weight;
+    }
   }
 };
 
