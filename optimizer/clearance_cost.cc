@@ -2,8 +2,7 @@
 
 namespace cinepath::optimizer {
 
-bool ClearanceCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
-  const SampleState<double> s = EvaluateSample(base_, parameters);
+bool ClearanceCost::EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const {
   const auto closest = surface_->Closest(s.position);
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // d residual / d camera position
   residuals[0] = 0;

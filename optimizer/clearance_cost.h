@@ -8,15 +8,20 @@
 #include <ceres/sized_cost_function.h>
 
 #include "optimizer/sample_model.h"
+#include "optimizer/state_cost_function.h"
 #include "scene/surface_distance.h"
 
 namespace cinepath::optimizer {
 
-class ClearanceCost : public ceres::SizedCostFunction<1, kNumChannels, kNumChannels, kNumChannels, kNumChannels> {
+class ClearanceCost : public ceres::SizedCostFunction<1, kNumChannels, kNumChannels, kNumChannels, kNumChannels>,
+                      public StatePart {
  public:
   ClearanceCost(const SampleBase& base, const scene::SurfaceDistance* surface, double margin_m, double weight)
       : base_(base), surface_(surface), margin_m_(margin_m), weight_(weight) {}
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    return EvaluateAt(EvaluateSample(base_, parameters), residuals, jacobians);
+  }
+  bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const override;
   // The augmented Lagrangian's multiplier update (docs/optimize.md, "Limits as constraints"), the
   // residual being weight max(0, margin - d + shift) / margin: shift = max(0, shift + margin - d). Returns
   // (margin - d) / margin.

@@ -267,6 +267,73 @@ struct LimitsCost {
     for (int i = 0; i < kNumResiduals; ++i) r[i] = weight * Hinge(r[i] + T(shift[i]));
     return true;
   }
+  // The gradients of the residuals `only` names (active hinges: weight (argument + shift) > 0) in the state's
+  // fields, in optimizer/state_cost_function.h's kValuesAndRates order (the 8 channel values, their 8 first
+  // derivatives, the path's acceleration and jerk): weight times the argument's gradient, written out, since
+  // each hinge reads one to three of the 22 fields. Rows not named are left as they are.
+  // tests/optimizer/state_cost_function_test.cc checks every hinge against automatic differentiation.
+  void ActiveGradients(const SampleState<double>& s, const bool* only, double (*g)[2 * kNumChannels + 6]) const {
+    constexpr double kDeg = 180.0 / M_PI;
+    constexpr int kRate = kNumChannels, kAccel = 2 * kNumChannels, kJerk = 2 * kNumChannels + 3;
+    const auto row = [&](int i) -> double* {
+      if (!only[i]) return nullptr;
+      std::fill(g[i], g[i] + 2 * kNumChannels + 6, 0.0);
+      return g[i];
+    };
+    const auto norm = [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z + 1e-12); };
+    if (base.has_rates) {
+      const Eigen::Vector3d v = base.velocity_m_s + s.velocity, a = base.acceleration_m_s2 + s.acceleration;
+      if (double* d = row(0)) {
+        const double n = norm(v[0], v[1], 0) * drone.max_horizontal_speed_m_s;
+        d[kRate + kEast] = v[0] / n;
+        d[kRate + kNorth] = v[1] / n;
+      }
+      if (double* d = row(1)) d[kRate + kUp] = 1.0 / drone.max_climb_rate_m_s;
+      if (double* d = row(2)) d[kRate + kUp] = -1.0 / drone.max_descent_rate_m_s;
+      if (double* d = row(3)) {
+        const double n = norm(a[0], a[1], 0) * drone.max_acceleration_m_s2;
+        d[kAccel] = a[0] / n;
+        d[kAccel + 1] = a[1] / n;
+      }
+      if (double* d = base.has_jerk ? row(4) : nullptr) {
+        const Eigen::Vector3d j = base.jerk_m_s3 + s.jerk;
+        const double n = norm(j[0], j[1], j[2]) * drone.max_jerk_m_s3;
+        for (int c = 0; c < 3; ++c) d[kJerk + c] = j[c] / n;
+      }
+      if (double* d = row(5)) {
+        const double rate = base.heading_rate_deg_s - s.yaw_rate * kDeg;
+        d[kRate + kYaw] = rate / norm(rate, 0, 0) * -kDeg / drone.max_yaw_rate_deg_s;
+      }
+      if (double* d = row(6)) {
+        const double rate = base.pitch_rate_deg_s + s.tilt_rate * kDeg;
+        d[kRate + kTilt] = rate / norm(rate, 0, 0) * kDeg / drone.max_gimbal_pitch_rate_deg_s;
+      }
+      if (double* d = row(7)) {
+        const double focal = FocalLengthMm(base, s), rate = base.focal_rate_mm_s + focal * s.log_focal_rate;
+        const double along = rate / norm(rate, 0, 0) / camera.max_focal_rate_mm_s;
+        d[kLogFocal] = along * focal * s.log_focal_rate;
+        d[kRate + kLogFocal] = along * focal;
+      }
+      if (double* d = row(8)) {
+        const double rate = base.aperture_rate_stops_s + s.stops_rate;
+        d[kRate + kStops] = rate / norm(rate, 0, 0) / camera.max_aperture_rate_stops_s;
+      }
+    }
+    if (double* d = row(9)) d[kTilt] = -kDeg / 90.0;
+    if (double* d = row(10)) d[kTilt] = kDeg / 90.0;
+    if (double* d = row(11)) d[kUp] = -1.0 / std::max(drone.min_altitude_m, 10.0);
+    if (double* d = row(12)) d[kUp] = 1.0 / drone.max_altitude_m;
+    if (double* d = row(13)) d[kLogFocal] = -FocalLengthMm(base, s) / camera.min_focal_length_mm;
+    if (double* d = row(14)) d[kLogFocal] = FocalLengthMm(base, s) / camera.max_focal_length_mm;
+    if (double* d = row(15)) d[kStops] = -FNumber(base, s) * 0.5 * std::log(2.0) / camera.min_f_number;
+    if (double* d = row(16)) d[kStops] = FNumber(base, s) * 0.5 * std::log(2.0) / camera.max_f_number;
+    if (double* d = row(17)) d[kDioptre] = camera.min_focus_distance_m;  // 1 / the largest dioptre
+    if (double* d = row(18)) d[kDioptre] = -camera.min_focus_distance_m;
+    for (int i = 0; i < kNumResiduals; ++i) {
+      if (!only[i]) continue;
+      for (double& d : g[i]) d *= weight;
+    }
+  }
 };
 
 // The augmented Lagrangian's multiplier update of a one-residual constraint functor with `raw` and

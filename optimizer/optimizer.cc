@@ -27,6 +27,7 @@
 #include "optimizer/cost_terms.h"
 #include "optimizer/limit_guard.h"
 #include "optimizer/plan_samples.h"
+#include "optimizer/sample_cost_function.h"
 #include "optimizer/state_cost_function.h"
 #include "optimizer/visibility_targets.h"
 #include "scene/caster_ground.h"
@@ -231,6 +232,7 @@ class PlanOptimizer {
   Json Report(const Trajectory& optimized, const Json& before_terms, const Json& after_terms, double total_before,
               double total_after) const;
   Json TermCosts(double* total);
+  std::set<std::string> TermNames() const;  // of the terms in blocks of their own and of the parts
   GuardSetup GuardSetupFor() const;
   std::vector<Eigen::Vector3d> Positions(bool changed) const;
   double BlockedFraction(const Trajectory& plan, size_t* first_blocked) const;
@@ -241,16 +243,38 @@ class PlanOptimizer {
     // rates, and their 19 hinges, seldom more than two of them active at a sample, go in kLimitRows rows.
     constexpr bool kLimits = std::is_same_v<Functor, LimitsCost>;
     using Cost = StateCostFunction<Functor, kLimits ? kValuesAndRates : kValues>;
-    AddBlock(term, new Cost(functor, residuals, kLimits ? kLimitRows : 0), base.knots.first_knot, SampleOf(base));
+    AddOneSampleTerm(term, std::make_unique<Cost>(functor, residuals, kLimits ? kLimitRows : 0), base);
+  }
+  // A one-sample term: a part of its sample's block while AddTerms builds it (sample_block_), else (the limits
+  // that join later, the occlusion targets) a block of its own.
+  template <typename Cost>
+  void AddOneSampleTerm(const std::string& term, std::unique_ptr<Cost> cost, const SampleBase& base) {
+    if (!sample_block_) {
+      AddBlock(term, cost.release(), base.knots.first_knot, SampleOf(base));
+      return;
+    }
+    parts_[term].push_back({cost.get(), base.knots.first_knot});
+    sample_block_->Add(std::move(cost), IsStiff(term));
   }
   // `sample`: the plan sample of a one-sample term (-1: a term of a segment or a knot), for the coarse grid.
   void AddBlock(const std::string& term, ceres::CostFunction* cost, int first_knot, int sample = -1) {
+    terms_[term].push_back(AddResidual(cost, IsStiff(term) ? stiffness_.get() : nullptr, first_knot, sample));
+  }
+  ceres::ResidualBlockId AddResidual(ceres::CostFunction* cost, ceres::LossFunction* loss, int first_knot, int sample) {
     std::vector<double*> blocks;
     for (int j = 0; j < 4; ++j) blocks.push_back(knots_[first_knot + j].data());
-    ceres::LossFunction* loss = IsStiff(term) ? stiffness_.get() : nullptr;
-    terms_[term].push_back(problem_.AddResidualBlock(cost, loss, blocks));
-    block_sample_[terms_[term].back()] = sample;
+    const ceres::ResidualBlockId id = problem_.AddResidualBlock(cost, loss, blocks);
+    block_sample_[id] = sample;
+    return id;
   }
+  // A one-sample term inside its sample's block (SampleCostFunction owns it), with its four knots.
+  struct Part {
+    const ceres::CostFunction* cost;
+    int first_knot;
+  };
+  // The cost of terms in blocks of their own, and of parts, with the knots as they are now.
+  double BlocksCost(const std::vector<ceres::ResidualBlockId>& ids);
+  double PartsCost(const std::vector<Part>& parts) const;
   // The index of a sample's base in split_.bases (-1: a copy, not one of them).
   int SampleOf(const SampleBase& base) const {
     const auto* first = split_.bases.data();
@@ -294,7 +318,10 @@ class PlanOptimizer {
     o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     return o;
   }
-  std::map<std::string, std::vector<ceres::ResidualBlockId>> terms_;
+  std::map<std::string, std::vector<ceres::ResidualBlockId>> terms_;  // the terms in blocks of their own
+  std::map<std::string, std::vector<Part>> parts_;                    // the terms inside a sample's block
+  SampleCostFunction* sample_block_ = nullptr;                        // the sample's block AddTerms builds
+  double stiffness_scale_ = 1;  // the stiff parts' scale in the sample blocks, as stiffness_ (Solve)
   std::vector<ceres::ResidualBlockId> occlusion_blocks_;      // per sample, null when it has no target
   std::vector<std::unique_ptr<LimitsCost>> screened_limits_;  // limits not (yet) in the problem
   std::vector<int> screened_shot_;                            // the shot of each
@@ -394,6 +421,8 @@ void PlanOptimizer::AddTerms() {
     const int shot = split_.shot_of_sample[k];
     const ShotSettings* s = shot >= 0 ? &shots_[shot] : nullptr;
     const bool moves = !(s && s->held.count(kEast) && s->held.count(kYaw));
+    auto block = std::make_unique<SampleCostFunction>(base, &stiffness_scale_);
+    sample_block_ = block.get();
 
     // Framing: keep the subject where the plan put it, at the size the shot asks for.
     if (s && s->subject && moves) {
@@ -472,6 +501,8 @@ void PlanOptimizer::AddTerms() {
     }
     if (!input_.others.empty()) AddTeamTerms(k, max_dev);
     AddClearanceTerm(base, sample.position_enu_m, shot, max_dev);
+    sample_block_ = nullptr;
+    if (!block->empty()) AddResidual(block.release(), nullptr, base.knots.first_knot, static_cast<int>(k));
   }
 
   // Smoothness per spline segment, adherence per knot.
@@ -510,9 +541,10 @@ void PlanOptimizer::AddClearanceTerm(const SampleBase& base, const Eigen::Vector
   if (!scene_->surface || scene_->surface->num_faces() == 0) return;
   const auto closest = scene_->surface->Closest(position);
   if (!closest || closest->distance_m >= options_.clearance_margin_m + max_deviation_m + 0.5) return;
-  auto* clearance =
-      new ClearanceCost(base, scene_->surface.get(), options_.clearance_margin_m * (1 + options_.limit_margin),
-                        options_.weights.clearance);
+  auto owned = std::make_unique<ClearanceCost>(base, scene_->surface.get(),
+                                               options_.clearance_margin_m * (1 + options_.limit_margin),
+                                               options_.weights.clearance);
+  ClearanceCost* clearance = owned.get();
   const int first = base.knots.first_knot;
   Constraint c;
   c.shot = shot;
@@ -523,7 +555,7 @@ void PlanOptimizer::AddClearanceTerm(const SampleBase& base, const Eigen::Vector
     if (clearance->shift_m() > 0) names->insert("mesh_clearance");
   };
   constraints_.push_back(std::move(c));
-  AddBlock("clearance", clearance, first, SampleOf(base));
+  AddOneSampleTerm("clearance", std::move(owned), base);
 }
 
 // adherence per knot, with what is left of the deviation allowed at every sample the knot moves.
@@ -686,6 +718,7 @@ void PlanOptimizer::Solve(bool ramp) {
   for (double scale : stages) {
     stiffness_->Reset(scale == 1.0 ? nullptr : new ceres::ScaledLoss(nullptr, scale, ceres::TAKE_OWNERSHIP),
                       ceres::TAKE_OWNERSHIP);
+    stiffness_scale_ = scale;
     if (options_.external_solver) {
       std::vector<double*> blocks;
       std::vector<std::vector<int>> fixed;
@@ -728,19 +761,19 @@ ceres::Problem* PlanOptimizer::CoarseProblem() {
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // problem_'s
   coarse_ = std::make_unique<ceres::Problem>(po);
-  for (const auto& [name, ids] : terms_) {
-    for (const ceres::ResidualBlockId id : ids) {
-      const auto found = block_sample_.find(id);  // (the adherence's blocks are per knot)
-      const int sample = found == block_sample_.end() ? -1 : found->second;
-      if (sample >= 0 && sample % stride != 0) continue;
-      const ceres::LossFunction* loss = problem_.GetLossFunctionForResidualBlock(id);
-      std::vector<double*> blocks;
-      problem_.GetParameterBlocksForResidualBlock(id, &blocks);
-      ceres::LossFunction* weighted =
-          sample >= 0 ? new ceres::ScaledLoss(loss, stride, ceres::DO_NOT_TAKE_OWNERSHIP) : nullptr;
-      coarse_->AddResidualBlock(const_cast<ceres::CostFunction*>(problem_.GetCostFunctionForResidualBlock(id)),
-                                weighted, blocks);
-    }
+  std::vector<ceres::ResidualBlockId> ids;
+  problem_.GetResidualBlocks(&ids);  // in the order they were added
+  for (const ceres::ResidualBlockId id : ids) {
+    const auto found = block_sample_.find(id);  // (the adherence's blocks are per knot)
+    const int sample = found == block_sample_.end() ? -1 : found->second;
+    if (sample >= 0 && sample % stride != 0) continue;
+    const ceres::LossFunction* loss = problem_.GetLossFunctionForResidualBlock(id);
+    std::vector<double*> blocks;
+    problem_.GetParameterBlocksForResidualBlock(id, &blocks);
+    ceres::LossFunction* weighted =
+        sample >= 0 ? new ceres::ScaledLoss(loss, stride, ceres::DO_NOT_TAKE_OWNERSHIP) : nullptr;
+    coarse_->AddResidualBlock(const_cast<ceres::CostFunction*>(problem_.GetCostFunctionForResidualBlock(id)), weighted,
+                              blocks);
   }
   FixChannels(coarse_.get());
   return coarse_.get();
@@ -830,19 +863,41 @@ size_t PlanOptimizer::AddLimitsNearTheirBounds() {
   return added;
 }
 
+double PlanOptimizer::BlocksCost(const std::vector<ceres::ResidualBlockId>& ids) {
+  if (ids.empty()) return 0;  // (an empty list would evaluate every block)
+  ceres::Problem::EvaluateOptions eo;
+  eo.residual_blocks = ids;
+  eo.num_threads = 1;
+  double cost = 0;
+  problem_.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
+  return cost;
+}
+
+double PlanOptimizer::PartsCost(const std::vector<Part>& parts) const {
+  double cost = 0, r[LimitsCost::kNumResiduals];
+  for (const Part& p : parts) {
+    if (!p.cost->Evaluate(KnotsFrom(p.first_knot).data(), r, nullptr)) continue;
+    double squares = 0;
+    for (int i = 0; i < p.cost->num_residuals(); ++i) squares += r[i] * r[i];
+    cost += 0.5 * squares;
+  }
+  return cost;
+}
+
+std::set<std::string> PlanOptimizer::TermNames() const {
+  std::set<std::string> names;
+  for (const auto& [name, ids] : terms_) names.insert(name);
+  for (const auto& [name, parts] : parts_) names.insert(name);
+  return names;
+}
+
 Json PlanOptimizer::TermCosts(double* total) {
   Json out = Json::object();
   *total = 0;
-  for (const auto& [name, ids] : terms_) {
+  for (const std::string& name : TermNames()) {
     double cost = name == "limits" ? ScreenedLimitsCost() : 0.0;
-    if (!ids.empty()) {  // (an empty list would evaluate every block)
-      ceres::Problem::EvaluateOptions eo;
-      eo.residual_blocks = ids;
-      eo.num_threads = 1;
-      double blocks = 0;
-      problem_.Evaluate(eo, &blocks, nullptr, nullptr, nullptr);
-      cost += blocks;
-    }
+    if (const auto parts = parts_.find(name); parts != parts_.end()) cost += PartsCost(parts->second);
+    if (const auto ids = terms_.find(name); ids != terms_.end()) cost += BlocksCost(ids->second);
     out[name] = RoundToDecimals(cost, 9);
     *total += cost;
   }
@@ -1131,13 +1186,10 @@ double PlanOptimizer::GoalCost() {
     if (!kRegularizers.count(name)) ids.insert(ids.end(), blocks.begin(), blocks.end());
   }
   double cost = 0;
-  if (!ids.empty()) {
-    ceres::Problem::EvaluateOptions eo;
-    eo.residual_blocks = ids;
-    eo.num_threads = 1;
-    problem_.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
+  for (const auto& [name, parts] : parts_) {
+    if (!kRegularizers.count(name)) cost += PartsCost(parts);
   }
-  return cost + ScreenedLimitsCost();
+  return cost + BlocksCost(ids) + ScreenedLimitsCost();
 }
 
 double PlanOptimizer::Objective() {
@@ -1196,7 +1248,7 @@ OptimizeResult PlanOptimizer::Run() {
   record["knot_spacing_s"] = options_.knot_spacing_s;
   record["scene"] = input_.mesh ? Json(input_.scene_source) : Json(nullptr);
   Json names = Json::array();
-  for (const auto& [name, ids] : terms_) names.push_back(name);
+  for (const std::string& name : TermNames()) names.push_back(name);
   record["terms"] = names;
   record["cost_before"] = RoundToDecimals(total_before, 9);
   record["cost_after"] = RoundToDecimals(total_after, 9);

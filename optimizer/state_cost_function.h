@@ -8,8 +8,10 @@
 // and automatic differentiation only has to run over the state's fields the term reads: the eight
 // channel values (kValues) for the framing, depth of field, keep-out, occlusion and team terms, and
 // with them the eight first derivatives and the path's acceleration and jerk (kValuesAndRates, 22) for
-// the limits. The residuals are the same numbers as with `ceres::AutoDiffCostFunction` over the knots
-// (the state is evaluated by the same code), only the Jacobian's rounding differs.
+// the limits, whose active hinges, as hinges (`rows` below), give their gradients in those 22 fields
+// themselves (LimitsCost::ActiveGradients, no Jets). The residuals are the same numbers as with
+// `ceres::AutoDiffCostFunction` over the knots (the state is evaluated by the same code), only the
+// Jacobian's rounding differs.
 #pragma once
 
 #include <algorithm>
@@ -25,17 +27,35 @@ namespace cinepath::optimizer {
 
 enum StateFields { kValues = kNumChannels, kValuesAndRates = 2 * kNumChannels + 6 };
 
+// A one-sample term evaluated at its sample's state, already computed: the Jacobian in the four knots as
+// `ceres::CostFunction::Evaluate` gives it (optimizer/sample_cost_function.h stacks a sample's terms in one
+// residual block and evaluates the state once for all of them).
+class StatePart {
+ public:
+  virtual ~StatePart() = default;
+  virtual bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const = 0;
+};
+
+// A functor of hinges that writes the gradients of its active ones itself (LimitsCost::ActiveGradients).
+template <typename Functor>
+concept AnalyticHinges = requires(const Functor& f, const SampleState<double>& s, const bool* only,
+                                  double (*g)[kValuesAndRates]) {
+  f.ActiveGradients(s, only, g);
+};
+
 // Functor: has `base` (SampleBase) and `template <T> bool Residuals(const SampleState<T>&, T*) const`
 // that reads only the fields `kFields` seeds. Owns the functor.
 //
 // Hinges (the limits): `rows` > 0 says every residual is a hinge, max(0, x): where all are zero, so are
-// their derivatives, and no automatic differentiation runs. `rows` < the functor's `residuals` passes only the nonzero
-// residuals, in order, in `rows` rows (zeros after them), and when more are nonzero, the square root of the sum of the
-// squares of the rest in the last row. The cost is the same sum of squares; the Gauss-Newton model is the same while no
-// more than `rows` hinges of the sample are active (almost always: a sample rarely presses on more than two limits at
-// once), and every Jacobian product of the solve handles `rows` rows instead of 19, most of them zero.
+// their derivatives, and nothing is differentiated; else a functor with AnalyticHinges gives the active
+// ones' gradients itself, and any other runs its Jets. `rows` < the
+// functor's `residuals` passes only the nonzero residuals, in order, in `rows` rows (zeros after them), and when more
+// are nonzero, the square root of the sum of the squares of the rest in the last row. The cost is the same sum of
+// squares; the Gauss-Newton model is the same while no more than `rows` hinges of the sample are active (almost always:
+// a sample rarely presses on more than two limits at once), and every Jacobian product of the solve handles `rows` rows
+// instead of 19, most of them zero.
 template <typename Functor, int kFields>
-class StateCostFunction : public ceres::CostFunction {
+class StateCostFunction : public ceres::CostFunction, public StatePart {
  public:
   static constexpr int kMaxResiduals = 19;
   StateCostFunction(Functor* functor, int residuals, int rows = 0)
@@ -45,7 +65,9 @@ class StateCostFunction : public ceres::CostFunction {
   }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const SampleState<double> s = EvaluateSample(functor_->base, parameters);
+    return EvaluateAt(EvaluateSample(functor_->base, parameters), residuals, jacobians);
+  }
+  bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const override {
     if (!jacobians || hinges_) {
       double full_values[kMaxResiduals];
       if (!functor_->Residuals(s, full_values)) return false;
@@ -57,6 +79,11 @@ class StateCostFunction : public ceres::CostFunction {
           if (jacobians[j]) std::fill(jacobians[j], jacobians[j] + num_residuals() * kNumChannels, 0.0);
         }
         return true;
+      }
+      if constexpr (kFields == kValuesAndRates && AnalyticHinges<Functor>) {
+        bool active[kMaxResiduals];  // the hinges nonzero at s, the only ones differentiated
+        for (int i = 0; i < functor_rows_; ++i) active[i] = full_values[i] != 0.0;
+        if (hinges_) return HingeJacobians(s, full_values, active, residuals, jacobians);
       }
     }
     using Jet = ceres::Jet<double, kFields>;
@@ -83,6 +110,51 @@ class StateCostFunction : public ceres::CostFunction {
   }
 
  private:
+  // The hinges' Jacobian from the functor's own gradients of the active ones, without Jets: each row's
+  // gradient as Compact picks its value, the last row's, when it lumps the rest, sum(r_i g_i) / its value.
+  bool HingeJacobians(const SampleState<double>& s, const double* full, const bool* active, const double* residuals,
+                      double** jacobians) const {
+    double g[kMaxResiduals][kValuesAndRates];
+    functor_->ActiveGradients(s, active, g);
+    const int rows = num_residuals();
+    const double* row_gradient[kMaxResiduals] = {};  // null: a zero row
+    double lumped[kValuesAndRates] = {};
+    if (rows == functor_rows_) {
+      for (int i = 0; i < rows; ++i) row_gradient[i] = active[i] ? g[i] : nullptr;
+    } else {
+      int count = 0;
+      for (int i = 0; i < functor_rows_; ++i) {
+        if (!active[i]) continue;
+        if (count < rows) row_gradient[count] = g[i];
+        if (count >= rows - 1) {
+          for (int f = 0; f < kValuesAndRates; ++f) lumped[f] += full[i] * g[i][f];
+        }
+        ++count;
+      }
+      if (count > rows) {
+        for (double& f : lumped) f /= residuals[rows - 1];
+        row_gradient[rows - 1] = lumped;
+      }
+    }
+    const KnotWeights& w = functor_->base.knots;
+    for (int j = 0; j < 4; ++j) {
+      if (!jacobians[j]) continue;
+      for (int i = 0; i < rows; ++i) {
+        double* row = jacobians[j] + i * kNumChannels;
+        const double* d = row_gradient[i];
+        if (!d) {
+          std::fill(row, row + kNumChannels, 0.0);
+          continue;
+        }
+        for (int c = 0; c < kNumChannels; ++c) {
+          row[c] = w.value[j] * d[c] + w.d1[j] * d[kNumChannels + c];
+          if (c < 3) row[c] += w.d2[j] * d[2 * kNumChannels + c] + w.d3[j] * d[2 * kNumChannels + 3 + c];
+        }
+      }
+    }
+    return true;
+  }
+
   // The functor's residuals as the problem's rows (above).
   template <typename T>
   void Compact(const T* full, T* out) const {

@@ -51,11 +51,12 @@ Evaluated Evaluate(const ceres::CostFunction& cost, const std::vector<Knot>& kno
   return e;
 }
 
+// `rows` as StateCostFunction takes it (0: not hinges; `residuals`: hinges, each in its own row).
 template <int kFields, typename Functor>
-void ExpectSameAsAutoDiff(const Functor& f, int residuals, unsigned seed) {
+void ExpectSameAsAutoDiff(const Functor& f, int residuals, unsigned seed, int rows = 0) {
   const ceres::AutoDiffCostFunction<Functor, ceres::DYNAMIC, kNumChannels, kNumChannels, kNumChannels, kNumChannels>
       automatic(new Functor(f), residuals);
-  const StateCostFunction<Functor, kFields> state(new Functor(f), residuals);
+  const StateCostFunction<Functor, kFields> state(new Functor(f), residuals, rows);
   const std::vector<Knot> knots = RandomKnots(seed, 0.5);
   const Evaluated a = Evaluate(automatic, knots), s = Evaluate(state, knots);
   for (size_t i = 0; i < a.r.size(); ++i) EXPECT_NEAR(a.r[i], s.r[i], 1e-13 * std::fabs(a.r[i]));
@@ -80,6 +81,51 @@ TEST(StateCostFunction, EveryOneSampleTermMatchesAutomaticDifferentiationOverThe
   camera.min_focal_length_mm = 24;
   camera.max_focal_length_mm = 48;
   ExpectSameAsAutoDiff<kValuesAndRates>(LimitsCost{b, drone, camera, 0.0, 0.02, 100}, LimitsCost::kNumResiduals, 8);
+}
+
+// The limits as hinges (only the active ones differentiated) against automatic differentiation over the
+// knots, with every one of the 19 hinges active in one of three profiles: every maximum tiny while climbing,
+// then while descending, then every minimum huge with the focus beyond infinity.
+TEST(StateCostFunction, EveryLimitsHingeDifferentiatedAloneMatchesAutomaticDifferentiation) {
+  std::vector<bool> seen(LimitsCost::kNumResiduals, false);
+  const auto check = [&](const LimitsCost& f, unsigned seed) {
+    ExpectSameAsAutoDiff<kValuesAndRates>(f, LimitsCost::kNumResiduals, seed, LimitsCost::kNumResiduals);
+    const std::vector<Knot> k = RandomKnots(seed, 0.5);  // the knots ExpectSameAsAutoDiff takes
+    double r[LimitsCost::kNumResiduals];
+    f(k[0].data(), k[1].data(), k[2].data(), k[3].data(), r);
+    for (int i = 0; i < LimitsCost::kNumResiduals; ++i) seen[i] = seen[i] || r[i] > 0;
+  };
+  SampleBase b = MakeBase();
+  DroneProfile tight;
+  tight.max_horizontal_speed_m_s = tight.max_climb_rate_m_s = tight.max_descent_rate_m_s = 0.1;
+  tight.max_acceleration_m_s2 = tight.max_jerk_m_s3 = tight.max_yaw_rate_deg_s = 0.1;
+  tight.max_gimbal_pitch_rate_deg_s = 0.1;
+  tight.max_gimbal_pitch_deg = -80;
+  tight.max_altitude_m = 1;
+  CameraSpec small;
+  small.min_focal_length_mm = 10;
+  small.max_focal_length_mm = 20;
+  small.max_focal_rate_mm_s = small.max_aperture_rate_stops_s = 0.1;
+  small.min_f_number = 1;
+  small.max_f_number = 2;
+  small.min_focus_distance_m = 20;  // closer than the focus: 1/12 > 1/20 dioptres
+  b.velocity_m_s.z() = 3.0;
+  check(LimitsCost{b, tight, small, 0.0, 0.02, 100}, 31);
+  b.velocity_m_s.z() = -3.0;
+  check(LimitsCost{b, tight, small, 0.0, 0.02, 100}, 32);
+  DroneProfile low;
+  low.min_gimbal_pitch_deg = 10;
+  low.min_altitude_m = 100;
+  CameraSpec wide;
+  wide.min_focal_length_mm = 200;
+  wide.max_focal_length_mm = 400;
+  wide.min_f_number = 16;
+  wide.max_f_number = 22;
+  b.dioptre = -0.05;  // beyond infinity
+  check(LimitsCost{b, low, wide, 0.0, 0.02, 100}, 33);
+  for (int i = 0; i < LimitsCost::kNumResiduals; ++i) {
+    EXPECT_TRUE(seen[i]) << LimitsCost::kLimitName[i] << " was never active";
+  }
 }
 
 // The limits in `rows` rows against all 19: cost and gradient J^T r always, J^T J when no more hinges are
