@@ -9,23 +9,30 @@ bool ClearanceCost::EvaluateAt(const SampleState<double>& s, double* residuals, 
   // Behind the closest face (inside a solid, under terrain) the distance counts as negative: the residual
   // keeps growing and the push points out through that face.
   const double signed_m = closest ? (closest->behind ? -closest->distance_m : closest->distance_m) : margin_m_;
-  if (closest && signed_m < margin_m_ + shift_m_) {
+  if (signed_margin_) {
+    residuals[0] = (margin_m_ - signed_m) / margin_m_;
+    if (closest) gradient = -Away(*closest, s.position) / margin_m_;
+  } else if (closest && signed_m < margin_m_ + shift_m_) {
     residuals[0] = weight_ * (margin_m_ + shift_m_ - signed_m) / margin_m_;
-    // Out of the surface: along the offset from it, or along the face normal when on or behind it.
-    const Eigen::Vector3d offset = s.position - closest->position_enu_m;
-    const Eigen::Vector3d away = closest->distance_m > 1e-9
-                                     ? Eigen::Vector3d(offset / closest->distance_m * (closest->behind ? -1.0 : 1.0))
-                                     : closest->normal_enu;
-    gradient = -weight_ / margin_m_ * away;
+    gradient = -weight_ / margin_m_ * Away(*closest, s.position);
   }
-  if (jacobians) {
-    for (int j = 0; j < 4; ++j) {
-      if (!jacobians[j]) continue;
-      std::fill(jacobians[j], jacobians[j] + kNumChannels, 0.0);
-      for (int c = 0; c < 3; ++c) jacobians[j][c] = gradient[c] * base_.knots.value[j];
-    }
-  }
+  FillJacobians(gradient, jacobians);
   return true;
+}
+
+Eigen::Vector3d ClearanceCost::Away(const scene::SurfacePoint& closest, const Eigen::Vector3d& position) {
+  const Eigen::Vector3d offset = position - closest.position_enu_m;
+  return closest.distance_m > 1e-9 ? Eigen::Vector3d(offset / closest.distance_m * (closest.behind ? -1.0 : 1.0))
+                                   : closest.normal_enu;
+}
+
+void ClearanceCost::FillJacobians(const Eigen::Vector3d& gradient, double** jacobians) const {
+  if (!jacobians) return;
+  for (int j = 0; j < 4; ++j) {
+    if (!jacobians[j]) continue;
+    std::fill(jacobians[j], jacobians[j] + kNumChannels, 0.0);
+    for (int c = 0; c < 3; ++c) jacobians[j][c] = gradient[c] * base_.knots.value[j];
+  }
 }
 
 double ClearanceCost::SignedDistanceM(const Eigen::Vector3d& position) const {

@@ -28,11 +28,19 @@ class ClearanceCost : public ceres::SizedCostFunction<1, kNumChannels, kNumChann
   double UpdateShifts(const double* const* parameters);
   double ResetShift() { return shift_m_ = 0; }
   double shift_m() const { return shift_m_; }
+  // Bench only (the constrained peer, OptimizeOptions::constrained_solver): the residual becomes the signed
+  // margin (margin - d) / margin, without hinge, weight or shift: the clearance holds where it is <= 0.
+  void SetSignedMargin() { signed_margin_ = true; }
 
  private:
   // The distance counted: negative behind the closest face (inside a solid, under terrain).
   double SignedDistanceM(const Eigen::Vector3d& position) const;
+  // The direction out of the surface at `position`: along the offset from its closest point, or along the
+  // face normal when on or behind it.
+  static Eigen::Vector3d Away(const scene::SurfacePoint& closest, const Eigen::Vector3d& position);
+  void FillJacobians(const Eigen::Vector3d& gradient, double** jacobians) const;
   double shift_m_ = 0;
+  bool signed_margin_ = false;
   SampleBase base_;
   const scene::SurfaceDistance* surface_;
   double margin_m_;

@@ -14,11 +14,27 @@ class Problem;
 
 namespace cinepath::optimizer {
 
-// Bench only (bench/optimize_vs_ipopt.cc): a solver run on each stage in place of Ceres' own, on the
-// same problem from the same start. It gets the problem, its variable parameter blocks and, for each,
+// Fuzzing only (tests/fuzz/fuzz_plan_optimize.cc): a solver run on each stage in place of Ceres' own, on
+// the same problem from the same start. It gets the problem, its variable parameter blocks and, for each,
 // the channels held fixed; it leaves the solution in the blocks and returns its iteration count.
 using ExternalSolver = std::function<int(ceres::Problem* problem, const std::vector<double*>& blocks,
                                          const std::vector<std::vector<int>>& fixed_channels)>;
+
+// Bench only (bench/optimize_vs_ipopt.cc): the same problem as a constrained one, over the same variables
+// and from the same start. `goals`: every term but the hard limits (framing, depth of field, background
+// blur, smoothness, the adherence pull and ridge, occlusion), its cost the objective 1/2 |r|^2. `limits`:
+// one residual per hard limit (the drone's and the lens's limits, keep-out, clearance, the deviation
+// allowed, a team's separation and frames), its signed margin g: the limit holds (at the value the
+// product aims at) where g <= 0. Both problems have every knot block, with the fixed channels set the
+// same way (a SubsetManifold, or constant); `blocks` and `fixed_channels` are as for ExternalSolver.
+struct ConstrainedProblem {
+  ceres::Problem* goals = nullptr;
+  ceres::Problem* limits = nullptr;
+  std::vector<double*> blocks;
+  std::vector<std::vector<int>> fixed_channels;
+};
+// It leaves the solution in the blocks and returns its iteration count.
+using ConstrainedSolver = std::function<int(const ConstrainedProblem& problem)>;
 
 // The weight of each cost term: residuals are made dimensionless first (docs/optimize.md, "Costs"),
 // so a weight says how much one unit of that term matters against one unit of another.
@@ -48,7 +64,10 @@ struct OptimizeOptions {
   double max_deviation_m = 5.0;      // default when a shot gives none
   double limit_margin = 0.02;        // limits are aimed at (1 - margin) of their value, so they hold after
   CostWeights weights;
-  ExternalSolver external_solver;  // empty: Ceres (always, outside the peer benchmark)
+  ExternalSolver external_solver;  // empty: Ceres (always, outside the fuzz target)
+  // Set: in place of every solve, its penalty ramp and its multiplier rounds (always empty, outside the
+  // peer benchmark).
+  ConstrainedSolver constrained_solver;
 
   static OptimizeOptions ForQuality(Quality quality);
 };

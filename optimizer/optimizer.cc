@@ -141,6 +141,55 @@ std::shared_ptr<const SceneIndex> IndexScene(const OptimizeInput& input, const O
   return index;
 }
 
+// The constrained peer (OptimizeOptions::constrained_solver): the deviation allowed at a knot as a signed
+// margin, (|change| - allowed) / max(allowed, 1 m), the argument of the adherence's hinge.
+struct DeviationMargin {
+  double max_deviation_m = 5;
+  template <typename T>
+  bool operator()(const T* k, T* r) const {
+    r[0] = (SafeNorm(Vec3T<T>(k[kEast], k[kNorth], k[kUp])) - T(max_deviation_m)) / std::max(max_deviation_m, 1.0);
+    return true;
+  }
+};
+
+// The constrained peer: rows `rows` of a term's signed margins (owned). A margin no longer finite (an
+// out-of-shot margin with the body behind the camera: no such limit there) reads -1, holding, with a zero
+// derivative.
+class MarginRows : public ceres::CostFunction {
+ public:
+  MarginRows(ceres::CostFunction* margins, std::vector<int> rows) : margins_(margins), rows_(std::move(rows)) {
+    set_num_residuals(static_cast<int>(rows_.size()));
+    *mutable_parameter_block_sizes() = margins->parameter_block_sizes();
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const auto& sizes = parameter_block_sizes();
+    const int n = margins_->num_residuals();
+    std::vector<double> all(n);
+    std::vector<std::vector<double>> full(sizes.size());
+    std::vector<double*> full_blocks(sizes.size(), nullptr);
+    for (size_t j = 0; jacobians && j < sizes.size(); ++j) {
+      if (!jacobians[j]) continue;
+      full[j].resize(n * sizes[j]);
+      full_blocks[j] = full[j].data();
+    }
+    if (!margins_->Evaluate(parameters, all.data(), jacobians ? full_blocks.data() : nullptr)) return false;
+    for (size_t i = 0; i < rows_.size(); ++i) {
+      const bool finite = std::isfinite(all[rows_[i]]);
+      residuals[i] = finite ? all[rows_[i]] : -1.0;
+      for (size_t j = 0; jacobians && j < sizes.size(); ++j) {
+        if (!jacobians[j]) continue;
+        for (int c = 0; c < sizes[j]; ++c)
+          jacobians[j][i * sizes[j] + c] = finite ? full[j][rows_[i] * sizes[j] + c] : 0.0;
+      }
+    }
+    return true;
+  }
+
+ private:
+  std::unique_ptr<ceres::CostFunction> margins_;
+  std::vector<int> rows_;
+};
+
 // One stage of the ladder: the change to `base` (the input itself, or the cheaper preset's accepted result)
 // solved with `options`, its goals aimed where the input put them (`targets`: the first stage's samples,
 // null in the first stage itself). A stage that starts from a result is not refit: its change is zero
@@ -154,6 +203,12 @@ class PlanOptimizer {
   // The ladder's objective of the base: its goal and limit terms (not the smoothness and adherence of a
   // change, nor the occlusion targets), every change zero.
   double Objective();
+  // The cost of every term of the base, every change zero (PlanTermCosts).
+  Json BaseTermCosts() {
+    Prepare();
+    double total = 0;
+    return TermCosts(&total);
+  }
   const PlanSamples& samples() const { return split_; }
 
  private:
@@ -194,6 +249,7 @@ class PlanOptimizer {
     int shot = -1;
     std::function<double(bool)> update;
     std::function<void(std::set<std::string>*)> binding;
+    std::function<void(ceres::Problem*)> margin;  // the constrained peer: adds its signed margins (SolveConstrained)
   };
   // A one-sample constraint functor in the problem (the problem owns it), named `name` (LimitsCost: each
   // residual by its own name).
@@ -209,6 +265,7 @@ class PlanOptimizer {
       }
       return f->UpdateShifts(KnotsFrom(first).data());
     };
+    c.margin = [this, f, first](ceres::Problem* limits) { AddMargin(*f, first, limits); };
     c.binding = [f, name](std::set<std::string>* names) {
       if constexpr (std::is_same_v<Functor, LimitsCost>) {
         for (int i = 0; i < LimitsCost::kNumResiduals; ++i) {
@@ -221,6 +278,32 @@ class PlanOptimizer {
     constraints_.push_back(std::move(c));
   }
   std::vector<Constraint> constraints_;  // in the order they joined the problem
+  // The constrained peer (OptimizeOptions::constrained_solver): the goal terms as its objective, every hard
+  // limit's signed margin as its constraint, solved by it in place of Solve's Ceres stages.
+  void SolveConstrained();
+  // The peer's constraints of a one-sample constraint functor: its hinges' arguments (LimitsCost: those of
+  // its free channels) as residuals of `limits`.
+  template <typename Functor>
+  void AddMargin(const Functor& f, int first_knot, ceres::Problem* limits) const {
+    constexpr bool kLimits = std::is_same_v<Functor, LimitsCost>;
+    auto* margins = new Functor(f);
+    margins->raw = true;
+    std::vector<int> rows = {0};
+    if constexpr (kLimits) {
+      rows.clear();
+      for (int i = 0; i < LimitsCost::kNumResiduals; ++i) {
+        if (f.free[LimitsCost::kChannelOf[i]]) rows.push_back(i);
+      }
+    }
+    using Cost = StateCostFunction<Functor, kLimits ? kValuesAndRates : kValues>;
+    AddMarginRows(new Cost(margins, kLimits ? LimitsCost::kNumResiduals : 1), rows, first_knot, limits);
+  }
+  // Adds `rows` of `margins` (owned) on the four knots from `first_knot`, less those not finite at the
+  // current knots (a limit the sample does not have: the rates of a plan's first sample).
+  void AddMarginRows(ceres::CostFunction* margins, std::vector<int> rows, int first_knot, ceres::Problem* limits) const;
+  // The variable knot blocks and the channels fixed in each (FixChannels).
+  void VariableBlocks(std::vector<double*>* blocks, std::vector<std::vector<int>>* fixed);
+  std::vector<const AdherenceCost*> adherence_;  // per knot (the problem owns them)
   // Per shot, the limits whose multiplier was positive at the end of the solve (Report).
   std::vector<std::set<std::string>> binding_;
   // A solve within this much of every limit's aimed value (per unit of the limit) needs no other round.
@@ -554,6 +637,13 @@ void PlanOptimizer::AddClearanceTerm(const SampleBase& base, const Eigen::Vector
   c.binding = [clearance](std::set<std::string>* names) {
     if (clearance->shift_m() > 0) names->insert("mesh_clearance");
   };
+  c.margin = [this, b = &base, first](ceres::Problem* limits) {
+    auto* margin =
+        new ClearanceCost(*b, scene_->surface.get(), options_.clearance_margin_m * (1 + options_.limit_margin),
+                          options_.weights.clearance);
+    margin->SetSignedMargin();
+    AddMarginRows(margin, {0}, first, limits);
+  };
   constraints_.push_back(std::move(c));
   AddOneSampleTerm("clearance", std::move(owned), base);
 }
@@ -590,6 +680,12 @@ void PlanOptimizer::AddAdherenceTerms() {
     c.binding = [f](std::set<std::string>* names) {
       if (f->shift > 0) names->insert("max_deviation");
     };
+    c.margin = [this, f, i](ceres::Problem* limits) {
+      limits->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<DeviationMargin, 1, kNumChannels>(new DeviationMargin{f->max_deviation_m}),
+          nullptr, knots_[i].data());
+    };
+    adherence_.push_back(f);
     constraints_.push_back(std::move(c));
     terms_["adherence"].push_back(problem_.AddResidualBlock(
         new ceres::AutoDiffCostFunction<AdherenceCost, AdherenceCost::kNumResiduals, kNumChannels>(f), nullptr,
@@ -694,6 +790,10 @@ size_t PlanOptimizer::AddVisibilityTargets() {
 }
 
 void PlanOptimizer::Solve(bool ramp) {
+  if (options_.constrained_solver) {
+    SolveConstrained();
+    return;
+  }
   ceres::Solver::Options o;
   o.max_num_iterations = options_.max_iterations;
   o.function_tolerance = options_.function_tolerance;
@@ -722,14 +822,7 @@ void PlanOptimizer::Solve(bool ramp) {
     if (options_.external_solver) {
       std::vector<double*> blocks;
       std::vector<std::vector<int>> fixed;
-      for (size_t i = 0; i < knots_.size(); ++i) {
-        if (problem_.IsParameterBlockConstant(knots_[i].data())) continue;
-        blocks.push_back(knots_[i].data());
-        fixed.emplace_back();
-        for (int c = 0; c < kNumChannels; ++c) {
-          if (held_[i][c] || !touched_[i][c]) fixed.back().push_back(c);
-        }
-      }
+      VariableBlocks(&blocks, &fixed);
       const auto start = std::chrono::steady_clock::now();
       iterations_ += options_.external_solver(&problem_, blocks, fixed);
       solve_s_ += Seconds(start);
@@ -777,6 +870,71 @@ ceres::Problem* PlanOptimizer::CoarseProblem() {
   }
   FixChannels(coarse_.get());
   return coarse_.get();
+}
+
+void PlanOptimizer::VariableBlocks(std::vector<double*>* blocks, std::vector<std::vector<int>>* fixed) {
+  for (size_t i = 0; i < knots_.size(); ++i) {
+    if (problem_.IsParameterBlockConstant(knots_[i].data())) continue;
+    blocks->push_back(knots_[i].data());
+    fixed->emplace_back();
+    for (int c = 0; c < kNumChannels; ++c) {
+      if (held_[i][c] || !touched_[i][c]) fixed->back().push_back(c);
+    }
+  }
+}
+
+void PlanOptimizer::AddMarginRows(ceres::CostFunction* margins, std::vector<int> rows, int first_knot,
+                                  ceres::Problem* limits) const {
+  std::unique_ptr<ceres::CostFunction> owned(margins);
+  const std::array<const double*, 4> knots = KnotsFrom(first_knot);
+  std::vector<double> now(margins->num_residuals());
+  if (!margins->Evaluate(knots.data(), now.data(), nullptr)) return;
+  rows.erase(std::remove_if(rows.begin(), rows.end(), [&](int i) { return !std::isfinite(now[i]); }), rows.end());
+  if (rows.empty()) return;
+  std::vector<double*> blocks;
+  for (const double* k : knots) blocks.push_back(const_cast<double*>(k));
+  limits->AddResidualBlock(new MarginRows(owned.release(), std::move(rows)), nullptr, blocks);
+}
+
+void PlanOptimizer::SolveConstrained() {
+  std::vector<std::unique_ptr<ceres::CostFunction>> pulls;  // the adherence without its deviation hinge
+  ceres::Problem::Options shared;
+  shared.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // problem_'s, and `pulls`
+  ceres::Problem goals(shared), limits;
+  for (Knot& k : knots_) {
+    goals.AddParameterBlock(k.data(), kNumChannels);
+    limits.AddParameterBlock(k.data(), kNumChannels);
+  }
+  for (const auto& [name, ids] : terms_) {
+    if (IsStiff(name) || name == "clearance" || name == "adherence") continue;
+    for (const ceres::ResidualBlockId id : ids) {
+      std::vector<double*> blocks;
+      problem_.GetParameterBlocksForResidualBlock(id, &blocks);
+      goals.AddResidualBlock(const_cast<ceres::CostFunction*>(problem_.GetCostFunctionForResidualBlock(id)), nullptr,
+                             blocks);
+    }
+  }
+  for (size_t i = 0; i < knots_.size(); ++i) {
+    auto* pull = new AdherenceCost(*adherence_[i]);
+    pull->deviation_weight = 0;  // the deviation allowed is a constraint
+    pulls.emplace_back(
+        new ceres::AutoDiffCostFunction<AdherenceCost, AdherenceCost::kNumResiduals, kNumChannels>(pull));
+    goals.AddResidualBlock(pulls.back().get(), nullptr, knots_[i].data());
+  }
+  for (const Constraint& c : constraints_) c.margin(&limits);
+  for (const auto& screened : screened_limits_) {
+    if (screened) AddMargin(*screened, screened->base.knots.first_knot, &limits);
+  }
+  FixChannels(&goals);
+  FixChannels(&limits);
+  ConstrainedProblem problem;
+  problem.goals = &goals;
+  problem.limits = &limits;
+  VariableBlocks(&problem.blocks, &problem.fixed_channels);
+  const auto start = std::chrono::steady_clock::now();
+  iterations_ += options_.constrained_solver(problem);
+  solve_s_ += Seconds(start);
+  termination_ = "constrained solver";
 }
 
 // Rule 1 (docs/optimize.md, "Limits as constraints"): the penalties alone leave a limit broken wherever
@@ -1206,6 +1364,7 @@ OptimizeResult PlanOptimizer::Run() {
   for (int round = 0; round < std::max(1, options_.visibility_rounds); ++round) {
     if (round > 0 && AddVisibilityTargets() == 0) break;
     Solve(round == 0 && !warm());
+    if (options_.constrained_solver) continue;  // the peer has every limit as a constraint already
     while (AddLimitsNearTheirBounds() > 0) Solve(false);
     SolveUntilTheLimitsHold();
   }
@@ -1323,6 +1482,14 @@ OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& o
   kept.plan.optimized["cost_before"] = first_report["total"]["before"];
   kept.plan.optimized["iterations"] = iterations;
   return kept;
+}
+
+Json PlanTermCosts(const OptimizeInput& input, const Trajectory& plan, const OptimizeOptions& options) {
+  const std::shared_ptr<const SceneIndex> scene = IndexScene(input, options);
+  PlanOptimizer first(input, input.plan, options, scene, nullptr);
+  first.Objective();
+  PlanOptimizer judge(input, plan, options, scene, &first.samples());
+  return judge.BaseTermCosts();
 }
 
 }  // namespace cinepath::optimizer

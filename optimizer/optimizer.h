@@ -54,4 +54,9 @@ struct OptimizeResult {
 
 OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options);
 
+// Bench only (bench/optimize_vs_ipopt.cc): the cost of each term on `plan`, a result of optimizing
+// `input.plan`, taken as the quality ladder takes its objective: every change zero, the goals aimed where
+// the input put them. One function of the plan, whichever solver or preset produced it.
+Json PlanTermCosts(const OptimizeInput& input, const Trajectory& plan, const OptimizeOptions& options);
+
 }  // namespace cinepath::optimizer

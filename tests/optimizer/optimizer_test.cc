@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <ceres/problem.h>
 #include <gtest/gtest.h>
 
 #include "core/optics.h"
@@ -429,6 +430,42 @@ TEST(Optimizer, SameResultOnEveryRun) {
     EXPECT_EQ(a.plan.samples[k].f_number, b.plan.samples[k].f_number);
     EXPECT_EQ(a.plan.samples[k].focus_distance_m, b.plan.samples[k].focus_distance_m);
   }
+}
+
+}  // namespace
+}  // namespace cinepath::optimizer
+
+namespace cinepath::optimizer {
+namespace {
+
+// The bench's constrained peer (OptimizeOptions::constrained_solver) gets the same variables as Ceres, a
+// finite objective and one finite signed margin per hard limit; a solver that moves nothing leaves the plan
+// as given.
+TEST(Optimizer, TheConstrainedPeerGetsFiniteGoalsAndMarginsOverTheSameVariables) {
+  const Trajectory plan = PlanFromShots(kOrbitShots);
+  OptimizeOptions options = OptimizeOptions::ForQuality(Quality::kDraft);
+  int calls = 0;
+  options.constrained_solver = [&calls, &plan](const ConstrainedProblem& p) {
+    ++calls;
+    EXPECT_FALSE(p.blocks.empty());
+    EXPECT_EQ(p.blocks.size(), p.fixed_channels.size());
+    ceres::Problem::EvaluateOptions eo;
+    eo.parameter_blocks = p.blocks;
+    double goals = 0, limits = 0;
+    std::vector<double> margins, gradient;
+    EXPECT_TRUE(p.goals->Evaluate(eo, &goals, nullptr, &gradient, nullptr));
+    EXPECT_TRUE(p.limits->Evaluate(eo, &limits, &margins, nullptr, nullptr));
+    EXPECT_TRUE(std::isfinite(goals));
+    EXPECT_GT(margins.size(), plan.samples.size());  // every sample has at least its altitude limits
+    for (double g : margins) EXPECT_TRUE(std::isfinite(g));
+    return 0;
+  };
+  OptimizeInput in;
+  in.plan = plan;
+  const OptimizeResult r = OptimizePlan(in, options);
+  EXPECT_EQ(calls, 1);
+  for (size_t k = 0; k < plan.samples.size(); ++k)
+    EXPECT_LT((plan.samples[k].position_enu_m - r.plan.samples[k].position_enu_m).norm(), 1e-9);
 }
 
 }  // namespace
