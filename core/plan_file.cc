@@ -214,12 +214,13 @@ Json IntentJson(const ShotIntent& intent) {
   if (intent.background_distance_m) j["background_distance_m"] = *intent.background_distance_m;
   if (!intent.hold.empty()) j["hold"] = intent.hold;
   if (intent.max_deviation_m) j["max_deviation_m"] = *intent.max_deviation_m;
+  if (intent.retime) j["retime"] = true;
   return j;
 }
 
 ShotIntent ReadIntent(const JsonField& f) {
   f.RejectUnknownKeys({"focus", "rack", "frame_height_fraction", "frame_height_fraction_end", "screen_position",
-                       "sharp", "background_blur_px", "background_distance_m", "hold", "max_deviation_m"});
+                       "sharp", "background_blur_px", "background_distance_m", "hold", "max_deviation_m", "retime"});
   ShotIntent intent;
   if (auto focus = f.Find("focus")) {
     intent.focus = focus->AsString();
@@ -253,6 +254,7 @@ ShotIntent ReadIntent(const JsonField& f) {
   if (f.Has("background_distance_m")) intent.background_distance_m = ReadPositive(f["background_distance_m"]);
   if (auto hold = f.Find("hold")) intent.hold = ReadHoldList(*hold);
   if (f.Has("max_deviation_m")) intent.max_deviation_m = f["max_deviation_m"].AsDoubleIn(0, kMaxCoordinateM);
+  if (f.Has("retime")) intent.retime = f["retime"].AsBool();
   return intent;
 }
 

@@ -87,11 +87,12 @@ struct ShotIntent {
   std::optional<double> background_distance_m;      // the background behind the subject, without a mesh
   std::vector<std::string> hold;                    // what optimize may not move (kOptimizeChannels)
   std::optional<double> max_deviation_m;            // from the planned path (optimize's default: 5 m)
+  bool retime = false;  // optimize may slow the shot down where its limits need more time (optimizer/retime.h)
 
   bool empty() const {
     return focus.empty() && rack.empty() && !frame_height_fraction && !frame_height_fraction_end &&
            screen_position == Eigen::Vector2d(0.5, 0.5) && sharp.empty() && !background_blur_px &&
-           !background_distance_m && hold.empty() && !max_deviation_m;
+           !background_distance_m && hold.empty() && !max_deviation_m && !retime;
   }
 };
 // The names `hold` accepts.

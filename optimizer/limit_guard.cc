@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/number_format.h"
+#include "optimizer/retime.h"
 #include "optimizer/visibility_targets.h"
 #include "scene/caster_ground.h"
 
@@ -45,7 +46,11 @@ std::string HintFor(const std::string& limit, double by) {
       {"mesh_crossing", "the path passes through the scene's surfaces: move its keyframes out of the mesh"},
       {"line_of_sight", "the scene hides the subject: more deviation, another angle or a higher path"},
   };
-  if (const auto it = kHints.find(limit); it != kHints.end()) return it->second;
+  if (const auto it = kHints.find(limit); it != kHints.end()) {
+    // A rate: a shot in which no actor moves may also be flown slower (optimizer/retime.h).
+    return TimeOrderOfLimit(limit) > 0 ? it->second + "; with no actor moving, \"optimize\": {\"retime\": true}"
+                                       : it->second;
+  }
   const std::string amount = FormatSignificant(by, 3);
   if (limit == "terrain_clearance") return "needs " + amount + " m more height over the terrain";
   if (limit == "mesh_clearance") return "needs " + amount + " m more distance from the scene's surfaces";

@@ -27,6 +27,7 @@
 #include "optimizer/cost_terms.h"
 #include "optimizer/limit_guard.h"
 #include "optimizer/plan_samples.h"
+#include "optimizer/retime.h"
 #include "optimizer/sample_cost_function.h"
 #include "optimizer/state_cost_function.h"
 #include "optimizer/visibility_targets.h"
@@ -1417,19 +1418,16 @@ OptimizeResult PlanOptimizer::Run() {
   return result;
 }
 
-}  // namespace
-
 // Rule 4, the quality ladder (docs/optimize.md): a preset runs the cheaper presets first and starts from
 // the result the last of them kept; it keeps its own result only when the objective (the goal and limit
 // terms of the result, one function of the plan whatever the preset) is no larger. Its guard holds it
 // never worse in any limit than the result it started from. So final <= standard <= draft in objective,
 // and no preset breaks a limit more than a cheaper one does, by construction.
-OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options) {
-  QuietCeresLogging();
+OptimizeResult RunLadder(const OptimizeInput& input, const OptimizeOptions& options,
+                         const std::shared_ptr<const SceneIndex>& scene) {
   std::vector<Quality> ladder = {Quality::kDraft};
   if (options.quality != Quality::kDraft) ladder.push_back(Quality::kStandard);
   if (options.quality == Quality::kFinal) ladder.push_back(Quality::kFinal);
-  const std::shared_ptr<const SceneIndex> scene = IndexScene(input, options);
   std::optional<PlanSamples> targets;  // the first stage's samples: where every stage aims the goals
   OptimizeResult kept;
   double kept_objective = 0;
@@ -1482,6 +1480,85 @@ OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& o
   kept.plan.optimized["cost_before"] = first_report["total"]["before"];
   kept.plan.optimized["iterations"] = iterations;
   return kept;
+}
+
+Json RetimeJson(const RetimeResult& r) {
+  Json j = Json::object();
+  Json shots = Json::array();
+  for (const RetimedShot& s : r.shots) {
+    Json e = Json::object();
+    e["shot"] = s.shot;
+    e["duration_before_s"] = RoundToDecimals(s.duration_before_s, 6);
+    e["duration_after_s"] = RoundToDecimals(s.duration_after_s, 6);
+    e["longer_s"] = RoundToDecimals(s.duration_after_s - s.duration_before_s, 6);
+    e["slowest_factor"] = RoundToDecimals(s.slowest_factor, 4);
+    e["limits"] = s.limits;
+    e["broken_samples_before"] = s.broken_samples_before;
+    e["broken_samples_after"] = s.broken_samples_after;
+    shots.push_back(e);
+  }
+  j["shots"] = shots;
+  j["added_s"] = RoundToDecimals(r.added_s, 6);
+  j["notes"] = r.notes;
+  return j;
+}
+
+}  // namespace
+
+// Rule 7, retiming (optimizer/retime.h): after the ladder, a shot that opted in and still breaks a rate
+// limit is flown slower along the path the ladder kept, and the ladder runs again from there (never worse
+// than the retimed plan, which is never worse than the ladder's result in any level or other shot).
+OptimizeResult OptimizePlan(const OptimizeInput& input, const OptimizeOptions& options) {
+  QuietCeresLogging();
+  const std::shared_ptr<const SceneIndex> scene = IndexScene(input, options);
+  OptimizeResult kept = RunLadder(input, options, scene);
+  const bool asks =
+      std::any_of(input.plan.shots.begin(), input.plan.shots.end(), [](const ShotSpan& s) { return s.intent.retime; });
+  if (!asks) return kept;
+  if (!input.others.empty()) {
+    RetimeResult none;
+    none.notes.push_back("not retimed: the drones of a team share one clock");
+    kept.report["retime"] = RetimeJson(none);
+    return kept;
+  }
+  // The shots that opted in and still break a rate limit. Each is retimed on the ladder's result and on
+  // the plan as given (whose joins are as planned: an eased shot that ends at rest may change its pace
+  // there, which the optimized path, no longer at rest, may not), and the one with fewer samples still
+  // broken is optimized again (the ladder's on a tie: it needs less time).
+  std::set<std::string> broken;
+  for (const auto& v : kept.plan.feasibility.violations) {
+    if (TimeOrderOfLimit(v.limit) > 0) broken.insert(v.shot);
+  }
+  std::unique_ptr<scene::CasterGround> ground;
+  if (scene->caster) ground = std::make_unique<scene::CasterGround>(*scene->caster, input.scene_source);
+  RetimeResult retimed = RetimeShots(kept.plan, ground.get(), &broken);
+  std::string from = "optimized";
+  if (retimed.rate_broken_samples > 0) {
+    RetimeResult from_input = RetimeShots(input.plan, ground.get(), &broken);
+    if (from_input.rate_broken_samples < retimed.rate_broken_samples) retimed = std::move(from_input), from = "planned";
+  }
+  Json record = RetimeJson(retimed);
+  if (!retimed.shots.empty()) record["from"] = from;  // the path retimed: the ladder's result, or the plan's
+  if (retimed.shots.empty()) {
+    kept.report["retime"] = record;
+    return kept;
+  }
+  record["objective_before_retime"] = kept.report["objective"];
+  OptimizeInput again = input;
+  again.plan = retimed.plan;
+  again.own_live.clear();  // one per sample of the plan before; only a team uses it, and a team is not retimed
+  OptimizeResult result = RunLadder(again, options, scene);
+  // Never worse than the plan as given, shot by shot, in any limit; else the ladder's first result.
+  if (const std::vector<std::string> worse = WorseThan(input.plan, result.plan, ground.get()); !worse.empty()) {
+    RetimeResult refused;
+    refused.notes.push_back("not retimed: after optimizing, the retimed plan broke " + worse.front() +
+                            " by more than the plan as given");
+    kept.report["retime"] = RetimeJson(refused);
+    return kept;
+  }
+  result.report["retime"] = record;
+  result.plan.optimized["retimed_s"] = record["added_s"];
+  return result;
 }
 
 Json PlanTermCosts(const OptimizeInput& input, const Trajectory& plan, const OptimizeOptions& options) {

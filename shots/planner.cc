@@ -415,6 +415,7 @@ ShotIntent Planner::IntentOf(const ShotSpec& shot) const {
   intent.background_distance_m = shot.lens.background_distance_m;
   intent.hold = shot.optimize.hold;
   intent.max_deviation_m = shot.optimize.max_deviation_m;
+  intent.retime = shot.optimize.retime;
   return intent;
 }
 

@@ -54,6 +54,7 @@ struct LensSpec {
 struct OptimizeSpec {
   std::vector<std::string> hold;  // out of kOptimizeChannels (core/trajectory.h)
   std::optional<double> max_deviation_m;
+  bool retime = false;  // optimize may slow the shot down (no moving actor in it)
 };
 
 // One free keyframe of a KEYFRAMES shot (shot-local time).

@@ -466,12 +466,13 @@ void ParseCommonKeys(const JsonField& f, const ShotSyntax& syntax, const ShotLis
 }
 
 // The lens block, and what a shot type demands of it.
-// The shot-level "optimize" block: {"hold": [...], "max_deviation_m": m}.
+// The shot-level "optimize" block: {"hold": [...], "max_deviation_m": m, "retime": bool}.
 OptimizeSpec ParseOptimize(const JsonField& f) {
-  f.RejectUnknownKeys({"hold", "max_deviation_m"});
+  f.RejectUnknownKeys({"hold", "max_deviation_m", "retime"});
   OptimizeSpec spec;
   if (auto hold = f.Find("hold")) spec.hold = ReadHoldList(*hold);
   if (f.Has("max_deviation_m")) spec.max_deviation_m = f["max_deviation_m"].AsNonNegative();
+  if (f.Has("retime")) spec.retime = f["retime"].AsBool();
   return spec;
 }
 

@@ -227,6 +227,19 @@ TEST(PlanFile, TheFocusModeAndItsRacksRoundTrip) {
   EXPECT_TRUE(PlanFromJson(bad, "plan.json").shots[0].intent.focus.empty());
 }
 
+TEST(PlanFile, TheRetimeOptInRoundTripsAndIsWrittenOnlyWhenTrue) {
+  Trajectory plan = SmallPlan();
+  EXPECT_FALSE(PlanToJson(plan)["shots"][0].contains("intent") &&
+               PlanToJson(plan)["shots"][0]["intent"].contains("retime"));
+  plan.shots[0].intent.retime = true;
+  const Json j = PlanToJson(plan);
+  EXPECT_EQ(j["shots"][0]["intent"]["retime"], true);
+  EXPECT_TRUE(PlanFromJson(j, "plan.json").shots[0].intent.retime);
+  Json bad = j;
+  bad["shots"][0]["intent"]["retime"] = "yes";
+  EXPECT_EQ(ReadError(bad).rfind("plan.json: shots[0].intent.retime: ", 0), 0u) << ReadError(bad);
+}
+
 TEST(PlanFileDrone, AMissingFieldIsTheNamedProfilesAndSaysSo) {
   Trajectory plan = SmallPlan();
   plan.drone = *FindDroneProfile("dji-m30");

@@ -71,6 +71,40 @@ plan["drone"]["max_altitude_m"] = 1.0  # the orbit flies at 10 m: no 5 m deviati
 json.dump(plan, open(sys.argv[2], "w"))
 PY
 expect_refusal 3 "after optimizing" "$T/strict.json" --strict --quality draft
+# Retiming: an orbit too fast for the drone passes --strict when the shot opts in (longer, the report says by
+# how much, the same bytes on one core, export reads it) and is refused when it does not.
+python3 - "$T/fast_shots.json" "$T/fast_no_retime_shots.json" << 'PY'
+import json, sys
+shots = {"schema": "cinepath.shots/1", "frame_rate_hz": 30, "drone": "px4-multirotor",
+         "origin": {"lat_deg": 46.84265, "lon_deg": -91.99445, "height_m": 153.0},
+         "camera": {"filmback": "super35", "width_px": 1920, "height_px": 1080, "min_focal_length_mm": 24,
+                    "max_focal_length_mm": 120},
+         "actors": [{"name": "keeper", "height_m": 1.8, "position_enu_m": [0, 0, 0]}],
+         "shots": [{"name": "fast", "type": "ORBIT", "subject": "keeper", "duration_s": 5, "radius_m": 30,
+                    "height_m": 12, "turns": 0.6, "easing": "smootherstep", "optimize": {"retime": True}}]}
+json.dump(shots, open(sys.argv[1], "w"))
+shots["shots"][0]["optimize"]["retime"] = False
+json.dump(shots, open(sys.argv[2], "w"))
+PY
+"$CINEPATH" plan "$T/fast_shots.json" -o "$T/fast.json" 2> /dev/null
+"$CINEPATH" plan "$T/fast_no_retime_shots.json" -o "$T/fast_no_retime.json" 2> /dev/null
+"$CINEPATH" optimize "$T/fast.json" --quality draft --strict --report "$T/fast_report.json" -o "$T/fast_opt.json"
+taskset -c 0 "$CINEPATH" optimize "$T/fast.json" --quality draft -o "$T/fast_opt1.json"
+cmp "$T/fast_opt.json" "$T/fast_opt1.json" || fail "a retimed plan differs on one core"
+python3 - "$T/fast.json" "$T/fast_opt.json" "$T/fast_report.json" << 'PY'
+import json, sys
+before, after, report = (json.load(open(p)) for p in sys.argv[1:4])
+assert before["shots"][0]["intent"]["retime"] is True, before["shots"][0]
+shot = report["retime"]["shots"][0]
+assert shot["shot"] == "fast" and shot["longer_s"] > 0.5 and shot["broken_samples_after"] == 0, shot
+grown = len(after["samples"]) - len(before["samples"])
+assert abs(grown / before["frame_rate_hz"] - report["retime"]["added_s"]) < 1e-6, (grown, report["retime"])
+assert after["optimized"]["retimed_s"] == report["retime"]["added_s"]
+assert after["feasibility"]["feasible"], after["feasibility"]
+PY
+"$CINEPATH" export "$T/fast_opt.json" --format litchi-csv -o "$T/fast_mission" > /dev/null
+expect_refusal 3 "retime" "$T/fast_no_retime.json" --strict --quality draft
+
 # Several drones: the team plan of the golden test (north's 24 mm orbit sees south for 1.4 s) comes back
 # as version 2 with the conflict resolved, the same bytes on one core, and a report per drone.
 "$CINEPATH" plan "$SRC/tests/golden/plan/team_two_drones/shots.json" -o "$T/team.json"
