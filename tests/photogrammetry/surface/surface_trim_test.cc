@@ -286,6 +286,26 @@ TEST(TrimSurfaceToData, StretchedEarsAndStraysGoInABoundedNumberOfPasses) {
   EXPECT_EQ(report.border_ears_cut, 0);
 }
 
+// The faces of a grid of vertices stored `rows` per column: two triangles per cell.
+void AddGridFaces(TriangleMesh* mesh, uint32_t columns, uint32_t rows) {
+  for (uint32_t c = 0; c + 1 < columns; ++c) {
+    for (uint32_t k = 0; k + 1 < rows; ++k) {
+      const uint32_t a = c * rows + k, b = a + rows;
+      mesh->faces.push_back({a, b, b + 1});
+      mesh->faces.push_back({a, b + 1, a + 1});
+    }
+  }
+}
+
+// Only step 4 (settle_factor 3, the Poisson path's), every other step off.
+SurfaceTrimOptions SettleOnly() {
+  SurfaceTrimOptions options;
+  options.far_factor = options.border_factor = options.border_edge_factor = options.ear_edge_factor = 0;
+  options.border_pull_factor = options.spike_factor = 0;
+  options.settle_factor = 3;
+  return options;
+}
+
 // Step 4: a surface bowed up to 1 m between points that lie on a plane (a sparse ground, 2 m apart) goes
 // onto their plane; at a crease (a wall standing on the ground) the points lie on no one plane and the
 // vertices there stay.
@@ -305,17 +325,8 @@ TEST(TrimSurfaceToData, SettlesABowedSurfaceOntoThePointsPlaneButNotAtACrease) {
       mesh.vertices_m.emplace_back(x, y, 0.05 * x + std::sin(M_PI * x / 40) * std::sin(M_PI * y / 40));
     }
   }
-  for (int i = 0; i + 1 < n; ++i) {
-    for (int j = 0; j + 1 < n; ++j) {
-      const uint32_t a = i * n + j, b = a + n;
-      mesh.faces.push_back({a, b, b + 1});
-      mesh.faces.push_back({a, b + 1, a + 1});
-    }
-  }
-  SurfaceTrimOptions options;
-  options.far_factor = options.border_factor = options.border_edge_factor = options.ear_edge_factor = 0;
-  options.border_pull_factor = options.spike_factor = 0;
-  options.settle_factor = 3;
+  AddGridFaces(&mesh, n, n);
+  SurfaceTrimOptions options = SettleOnly();
   SurfaceTrimReport report;
   const TriangleMesh out = TrimSurfaceToData(mesh, points, options, &report);
   ASSERT_EQ(out.num_faces(), mesh.num_faces());
@@ -376,14 +387,7 @@ TEST(TrimSurfaceToData, SettlesARoundedCliffEdgeOntoItsTwoPlanes) {
   for (int c = 0; c < columns; ++c) {
     for (const auto& q : rounded) mesh.vertices_m.emplace_back(0.5 * c, q.x(), q.y());
   }
-  const auto rows = static_cast<uint32_t>(rounded.size());
-  for (uint32_t c = 0; c + 1 < columns; ++c) {
-    for (uint32_t k = 0; k + 1 < rows; ++k) {
-      const uint32_t a = c * rows + k, b = a + rows;
-      mesh.faces.push_back({a, b, b + 1});
-      mesh.faces.push_back({a, b + 1, a + 1});
-    }
-  }
+  AddGridFaces(&mesh, columns, static_cast<uint32_t>(rounded.size()));
   PointCloud points;
   std::mt19937 rng(11);
   std::normal_distribution<double> noise(0.0, 0.02);
@@ -405,10 +409,7 @@ TEST(TrimSurfaceToData, SettlesARoundedCliffEdgeOntoItsTwoPlanes) {
     return std::make_pair(worst_m, static_cast<double>(near) / measured);
   };
   EXPECT_GT(worst_and_share(mesh).first, 0.4);  // r (1 - cos 45°) = 0.44 m at the arcs' middles
-  SurfaceTrimOptions options;
-  options.far_factor = options.border_factor = options.border_edge_factor = options.ear_edge_factor = 0;
-  options.border_pull_factor = options.spike_factor = 0;
-  options.settle_factor = 3;
+  SurfaceTrimOptions options = SettleOnly();
   SurfaceTrimReport report;
   const TriangleMesh plane_only = TrimSurfaceToData(mesh, points, options, &report);
   EXPECT_GT(worst_and_share(plane_only).first, 0.4);
