@@ -10,6 +10,7 @@
 
 #include "photogrammetry/mesh/vertex_faces.h"
 #include "photogrammetry/surface/cgal_point_search_internal.h"
+#include "photogrammetry/surface/surface_crease.h"
 #include "photogrammetry/surface/vertex_moves_internal.h"
 
 namespace cinepath::photogrammetry {
@@ -202,29 +203,52 @@ void FitBorderToData(TriangleMesh& mesh, const PointCloud& points, const interna
 
 // Step 4: each vertex with data points under it (its nearest point within settle_factor × that point's
 // spacing) goes along the normal of the plane of those points (within settle_factor × spacing, at
-// least 8) onto that plane, when they lie on one (RMS off it under a third of a spacing; not at a crease,
-// where two surfaces' points meet). A vertex without points under it stays. Poisson's implicit surface
+// least 8; where fewer lie that close, as in a thin outer ring, the 8 nearest within twice that) onto
+// that plane, when they lie on one (RMS off it under a third of a spacing). With settle_creases the
+// points are first fitted robustly (surface_crease.h): where they hold an edge (two planes, as at a
+// cliff's top edge or foot) the vertex goes to the nearest point of the two half-planes, and where one
+// plane carries most of them and a few strays would tilt a least-squares plane, onto that plane; a move
+// longer than the radius is not made. A vertex without points under it stays. Poisson's implicit surface
 // is a smooth average of the points: where they are thin (an orbit's outer ring, spacing of metres), it
-// bows metres away from them between the points. Moves are made together, with step 2c's guard against
-// faces turning.
+// bows metres away from them between the points, and it rounds every sharp edge. Moves are made
+// together, with step 2c's guard against faces turning.
 void SettleOntoData(TriangleMesh& mesh, const PointCloud& points, const internal::PointSearch& search,
                     const std::vector<double>& point_spacing, const SurfaceTrimOptions& options,
                     SurfaceTrimReport* report) {
-  constexpr int kSettleNeighbours = 24;
+  constexpr int kSettleNeighbours = 24, kCreaseNeighbours = 48;
   const size_t n = mesh.num_vertices();
   std::vector<Eigen::Vector3d> target = mesh.vertices_m;
-  std::vector<char> moved(n, 0);
+  std::vector<char> moved(n, 0);  // 1 onto a plane, 2 onto a crease
   ForEachIndex(n, [&](size_t i) {
     const Eigen::Vector3d& p = mesh.vertices_m[i];
-    const auto near = search.Nearest(p, kSettleNeighbours);
+    const auto near = search.Nearest(p, options.settle_creases ? kCreaseNeighbours : kSettleNeighbours);
     const double s = point_spacing[near.front().second];
     const double radius_m = options.settle_factor * s;
     if (!(s > 0) || std::sqrt(near.front().first) > radius_m) return;
-    std::vector<Eigen::Vector3d> around;
-    for (const auto& hit : near) {
-      if (hit.first <= radius_m * radius_m) around.push_back(points.positions_m[hit.second]);
+    std::vector<Eigen::Vector3d> around;  // nearest first
+    for (const auto& [d2, j] : near) {
+      if (d2 <= radius_m * radius_m) around.push_back(points.positions_m[j]);
+    }
+    // Thin points (an orbit's outer ring, where the spacing is capped): the 8 nearest within twice the radius.
+    for (size_t k = around.size(); around.size() < 8 && k < near.size(); ++k) {
+      if (near[k].first <= 4 * radius_m * radius_m) around.push_back(points.positions_m[near[k].second]);
     }
     if (around.size() < 8) return;
+    if (options.settle_creases) {
+      // Two planes, or one robust plane (a least-squares plane through the points at an edge can pass the
+      // RMS test tilted half-way between the two surfaces).
+      CreaseFitOptions crease;
+      crease.tolerance_m = s / 3;
+      const CreaseFit fit = FitCrease(around, p, crease, 0x5eed0000ULL + i);
+      if (fit.planes > 0) {
+        const Eigen::Vector3d x = NearestOnCrease(fit, p);
+        if ((x - p).norm() > radius_m || x == p) return;
+        target[i] = x;
+        moved[i] = static_cast<char>(fit.planes);
+        return;
+      }
+    }
+    around.resize(std::min<size_t>(around.size(), kSettleNeighbours));
     const internal::FittedPlane plane = internal::FitPlane(around);
     if (!plane.valid) return;
     double off_plane_m2 = 0;
@@ -240,6 +264,7 @@ void SettleOntoData(TriangleMesh& mesh, const PointCloud& points, const internal
   for (size_t i = 0; i < n; ++i) {
     if (!moved[i]) continue;
     ++report->settle_vertices_moved;
+    report->settle_crease_vertices_moved += moved[i] == 2;
     report->max_settle_move_m = std::max(report->max_settle_move_m, (target[i] - mesh.vertices_m[i]).norm());
     mesh.vertices_m[i] = target[i];
   }
@@ -595,6 +620,7 @@ Json SurfaceTrimReport::ToJson() const {
   if (options.settle_factor > 0) {  // (absent where step 4 does not run: the height field's report unchanged)
     j["settle_vertices_moved"] = settle_vertices_moved;
     j["settle_moves_refused"] = settle_moves_refused;
+    if (options.settle_creases) j["settle_crease_vertices_moved"] = settle_crease_vertices_moved;
     j["max_settle_move_m"] = RoundToDecimals(max_settle_move_m, 4);
   }
   if (options.max_spacing_ratio > 0) j["spacings_capped"] = spacings_capped;
@@ -615,6 +641,7 @@ Json SurfaceTrimReport::ToJson() const {
   criteria["spike_min_m"] = options.spike_min_m;
   criteria["spike_passes"] = options.spike_passes;
   if (options.settle_factor > 0) criteria["settle_factor"] = options.settle_factor;
+  if (options.settle_factor > 0 && options.settle_creases) criteria["settle_creases"] = true;
   if (options.max_spacing_ratio > 0) criteria["max_spacing_ratio"] = options.max_spacing_ratio;
   j["criteria"] = std::move(criteria);
   return j;

@@ -44,7 +44,14 @@
 //    least) onto it, when they lie on one (RMS under a third of a spacing: not at a crease). Where the
 //    points are thin (an orbit's outer ring) Poisson's smooth implicit surface bows away from them between
 //    the points by metres; the points themselves are within centimetres. A move that would turn a face by
-//    more than 60° is halved or not made, as in 2c.
+//    more than 60° is halved or not made, as in 2c. Where fewer than 8 points lie within the radius (a
+//    thin outer ring, the spacing capped), the 8 nearest within twice the radius. With settle_creases
+//    (the Poisson path) the points are first fitted robustly (surface_crease.h): where two surfaces meet
+//    (a cliff's foot or top edge, a wall on the ground) and the points lie on two planes within a third
+//    of a spacing (85 % of them, the planes at 25° or more), the vertex goes to the nearest point of the
+//    two half-planes; where one plane carries 75 % of them and the rest are too few for a second, onto
+//    that plane; a move longer than the radius is not made. Poisson rounds such an edge over a metre or
+//    more, and a least-squares plane through both surfaces' points can pass the RMS test tilted.
 #pragma once
 
 #include <cstdint>
@@ -69,7 +76,8 @@ struct SurfaceTrimOptions {
   double spike_factor = 1.0;          // 0 = skip step 3
   double spike_min_m = 0.25;
   int spike_passes = 3;
-  double settle_factor = 0;  // 0 = skip step 4 (the Poisson path of surface_pipeline.cc sets it)
+  double settle_factor = 0;     // 0 = skip step 4 (the Poisson path of surface_pipeline.cc sets it)
+  bool settle_creases = false;  // step 4 also onto two planes where the points hold an edge (Poisson path)
   // Every local spacing at most this × the points' median spacing (0 = no cap; the Poisson path sets it):
   // in a thin outer ring the points are metres apart, and 3 such spacings kept faces 60 m from any point.
   double max_spacing_ratio = 0;
@@ -83,21 +91,22 @@ struct SurfaceTrimReport {
   int64_t border_passes = 0;
   int64_t border_ears_cut = 0;  // step 2b
   int64_t ear_passes = 0;
-  int64_t border_vertices_pulled = 0;    // step 2c
-  int64_t border_pulls_refused = 0;      // step 2c: moves taken back (a face would turn)
-  int64_t border_moves_shortened = 0;    // step 2c: moves kept at 1/2, 1/4 or 1/8 (a face would turn)
-  double max_border_pull_m = 0;          // the longest move
-  int64_t border_vertices_extended = 0;  // step 2c: moved out to the data's border
-  double max_border_extension_m = 0;     // the longest such move
-  int64_t spike_vertices_flattened = 0;  // step 3 (a vertex flattened in two passes counts twice)
-  double max_spike_height_m = 0;         // largest distance to the ring plane among flattened vertices
-  int64_t settle_vertices_moved = 0;     // step 4
-  int64_t settle_moves_refused = 0;      // step 4: moves taken back (a face would turn)
-  double max_settle_move_m = 0;          // the longest such move
-  int64_t spacings_capped = 0;           // points whose spacing max_spacing_ratio capped
-  double median_spacing_m = 0;           // median local spacing over the data points
-  double median_point_spacing_m = 0;     // the same, not floored by min_spacing_m (the points' own)
-  SurfaceTrimOptions options;            // the criteria, as run
+  int64_t border_vertices_pulled = 0;        // step 2c
+  int64_t border_pulls_refused = 0;          // step 2c: moves taken back (a face would turn)
+  int64_t border_moves_shortened = 0;        // step 2c: moves kept at 1/2, 1/4 or 1/8 (a face would turn)
+  double max_border_pull_m = 0;              // the longest move
+  int64_t border_vertices_extended = 0;      // step 2c: moved out to the data's border
+  double max_border_extension_m = 0;         // the longest such move
+  int64_t spike_vertices_flattened = 0;      // step 3 (a vertex flattened in two passes counts twice)
+  double max_spike_height_m = 0;             // largest distance to the ring plane among flattened vertices
+  int64_t settle_vertices_moved = 0;         // step 4
+  int64_t settle_moves_refused = 0;          // step 4: moves taken back (a face would turn)
+  int64_t settle_crease_vertices_moved = 0;  // step 4: of the moved, those onto two planes (a crease)
+  double max_settle_move_m = 0;              // the longest such move
+  int64_t spacings_capped = 0;               // points whose spacing max_spacing_ratio capped
+  double median_spacing_m = 0;               // median local spacing over the data points
+  double median_point_spacing_m = 0;         // the same, not floored by min_spacing_m (the points' own)
+  SurfaceTrimOptions options;                // the criteria, as run
   Json ToJson() const;
 };
 

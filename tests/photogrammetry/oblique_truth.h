@@ -23,8 +23,9 @@
 namespace cinepath::testing {
 
 struct TruthDistances {
-  std::vector<double> distance_m;  // one per distinct vertex position
-  std::vector<double> radius_m;    // its horizontal distance from the centre
+  std::vector<double> distance_m;           // one per distinct vertex position
+  std::vector<double> radius_m;             // its horizontal distance from the centre
+  std::vector<Eigen::Vector3d> position_m;  // the vertex, in the truth's frame
   size_t size() const { return distance_m.size(); }
   // The q-quantile (0..1) of the distances of the vertices with r_lo <= radius < r_hi.
   double Quantile(double q, double r_lo = 0, double r_hi = INFINITY) const {
@@ -81,6 +82,7 @@ inline TruthDistances MeasureAgainstTruth(const std::filesystem::path& scene_dir
     const Eigen::Vector3d p = truth_frame.EnuFromGeodetic(scene_frame.GeodeticFromEnu(scene_p));
     out.distance_m.push_back(index.DistanceM(p));
     out.radius_m.push_back((p.head<2>() - centre_en_m).norm());
+    out.position_m.push_back(p);
   }
   return out;
 }

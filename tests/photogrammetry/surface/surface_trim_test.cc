@@ -286,6 +286,26 @@ TEST(TrimSurfaceToData, StretchedEarsAndStraysGoInABoundedNumberOfPasses) {
   EXPECT_EQ(report.border_ears_cut, 0);
 }
 
+// The faces of a grid of vertices stored `rows` per column: two triangles per cell.
+void AddGridFaces(TriangleMesh* mesh, uint32_t columns, uint32_t rows) {
+  for (uint32_t c = 0; c + 1 < columns; ++c) {
+    for (uint32_t k = 0; k + 1 < rows; ++k) {
+      const uint32_t a = c * rows + k, b = a + rows;
+      mesh->faces.push_back({a, b, b + 1});
+      mesh->faces.push_back({a, b + 1, a + 1});
+    }
+  }
+}
+
+// Only step 4 (settle_factor 3, the Poisson path's), every other step off.
+SurfaceTrimOptions SettleOnly() {
+  SurfaceTrimOptions options;
+  options.far_factor = options.border_factor = options.border_edge_factor = options.ear_edge_factor = 0;
+  options.border_pull_factor = options.spike_factor = 0;
+  options.settle_factor = 3;
+  return options;
+}
+
 // Step 4: a surface bowed up to 1 m between points that lie on a plane (a sparse ground, 2 m apart) goes
 // onto their plane; at a crease (a wall standing on the ground) the points lie on no one plane and the
 // vertices there stay.
@@ -305,17 +325,8 @@ TEST(TrimSurfaceToData, SettlesABowedSurfaceOntoThePointsPlaneButNotAtACrease) {
       mesh.vertices_m.emplace_back(x, y, 0.05 * x + std::sin(M_PI * x / 40) * std::sin(M_PI * y / 40));
     }
   }
-  for (int i = 0; i + 1 < n; ++i) {
-    for (int j = 0; j + 1 < n; ++j) {
-      const uint32_t a = i * n + j, b = a + n;
-      mesh.faces.push_back({a, b, b + 1});
-      mesh.faces.push_back({a, b + 1, a + 1});
-    }
-  }
-  SurfaceTrimOptions options;
-  options.far_factor = options.border_factor = options.border_edge_factor = options.ear_edge_factor = 0;
-  options.border_pull_factor = options.spike_factor = 0;
-  options.settle_factor = 3;
+  AddGridFaces(&mesh, n, n);
+  SurfaceTrimOptions options = SettleOnly();
   SurfaceTrimReport report;
   const TriangleMesh out = TrimSurfaceToData(mesh, points, options, &report);
   ASSERT_EQ(out.num_faces(), mesh.num_faces());
@@ -328,6 +339,89 @@ TEST(TrimSurfaceToData, SettlesABowedSurfaceOntoThePointsPlaneButNotAtACrease) {
   // Beside the wall the vertices kept their bow (a vertex 2 m from it, in the middle: 0.1 m of bow left).
   const Eigen::Vector3d& beside = out.vertices_m[38 * n + 20];
   EXPECT_GT(beside.z() - 0.05 * beside.x(), 0.1);
+}
+
+// A cliff's profile in (y, z): ground at z = 3 up to y = 15, the face up to z = 11, the plateau beyond.
+// `fillet_m` > 0 rounds both edges (the foot concave, the top convex) with arcs of that radius, as a smooth
+// surface does (0.44 m off the nearer plane at the arcs' middles). Sampled every `step_m` along the profile, from y = 5
+// to y = 25.
+std::vector<Eigen::Vector2d> CliffProfile(double fillet_m, double step_m) {
+  const double r = fillet_m;
+  std::vector<Eigen::Vector2d> path;  // dense polyline, then resampled
+  for (double y = 5; y < 15 - r; y += 0.01) path.emplace_back(y, 3.0);
+  for (double t = 0; r > 0 && t < M_PI / 2; t += 0.005)
+    path.emplace_back(15 - r + r * std::sin(t), 3 + r - r * std::cos(t));
+  for (double z = 3 + r; z < 11 - r; z += 0.01) path.emplace_back(15.0, z);
+  for (double t = 0; r > 0 && t < M_PI / 2; t += 0.005)
+    path.emplace_back(15 + r - r * std::cos(t), 11 - r + r * std::sin(t));
+  for (double y = 15 + r; y <= 25; y += 0.01) path.emplace_back(y, 11.0);
+  std::vector<Eigen::Vector2d> out{path.front()};
+  double run = 0;
+  for (size_t k = 1; k < path.size(); ++k) {
+    run += (path[k] - path[k - 1]).norm();
+    if (run >= step_m) {
+      out.push_back(path[k]);
+      run = 0;
+    }
+  }
+  return out;
+}
+
+// The distance from (y, z) to the sharp profile.
+double DistanceToCliff(const Eigen::Vector2d& q) {
+  auto segment = [&](Eigen::Vector2d a, Eigen::Vector2d b) {
+    const Eigen::Vector2d d = b - a;
+    const double t = std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (q - (a + t * d)).norm();
+  };
+  return std::min({segment({5, 3}, {15, 3}), segment({15, 3}, {15, 11}), segment({15, 11}, {25, 11})});
+}
+
+// Step 4 with settle_creases: a surface whose cliff edges are rounded (arcs of 1.5 m, up to 0.44 m off
+// the sharp profile, as Poisson rounds them) goes onto the two planes its points define at each edge, the foot's and
+// the top's; without it, the rounded vertices stay (the points there lie on no one plane).
+TEST(TrimSurfaceToData, SettlesARoundedCliffEdgeOntoItsTwoPlanes) {
+  const std::vector<Eigen::Vector2d> rounded = CliffProfile(1.5, 0.5), sharp = CliffProfile(0, 0.5);
+  const int columns = 21;  // x = 0 .. 10 every 0.5 m
+  TriangleMesh mesh;
+  for (int c = 0; c < columns; ++c) {
+    for (const auto& q : rounded) mesh.vertices_m.emplace_back(0.5 * c, q.x(), q.y());
+  }
+  AddGridFaces(&mesh, columns, static_cast<uint32_t>(rounded.size()));
+  PointCloud points;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  for (int c = 0; c < columns; ++c) {
+    for (const auto& q : sharp) {
+      points.positions_m.emplace_back(0.5 * c + 0.25 + noise(rng), q.x() + noise(rng), q.y() + noise(rng));
+    }
+  }
+  auto worst_and_share = [&](const TriangleMesh& m) {
+    double worst_m = 0;
+    int near = 0, measured = 0;
+    for (const auto& v : m.vertices_m) {
+      if (v.x() < 2 || v.x() > 8 || v.y() < 8 || v.y() > 22) continue;  // away from the sheet's borders
+      const double d = DistanceToCliff({v.y(), v.z()});
+      worst_m = std::max(worst_m, d);
+      near += d <= 0.1;
+      ++measured;
+    }
+    return std::make_pair(worst_m, static_cast<double>(near) / measured);
+  };
+  EXPECT_GT(worst_and_share(mesh).first, 0.4);  // r (1 - cos 45°) = 0.44 m at the arcs' middles
+  SurfaceTrimOptions options = SettleOnly();
+  SurfaceTrimReport report;
+  const TriangleMesh plane_only = TrimSurfaceToData(mesh, points, options, &report);
+  EXPECT_GT(worst_and_share(plane_only).first, 0.4);
+  options.settle_creases = true;
+  const TriangleMesh out = TrimSurfaceToData(mesh, points, options, &report);
+  ASSERT_EQ(out.num_faces(), mesh.num_faces());
+  const auto [worst_m, share] = worst_and_share(out);
+  std::cerr << "rounded cliff: worst " << worst_m << " m, within 0.1 m " << share << "; "
+            << report.settle_crease_vertices_moved << " vertices onto two planes\n";
+  EXPECT_LT(worst_m, 0.15);
+  EXPECT_GT(share, 0.95);
+  EXPECT_GT(report.settle_crease_vertices_moved, 50);
 }
 
 TEST(FilterPoints, KeepsAnOutlierFreeTerrainAndSaysWhyItDropsPoints) {
