@@ -64,12 +64,21 @@ std::vector<ColmapImageFeatures> ReadColmapFeatures(const fs::path& database) {
   if (rc != SQLITE_OK) throw InputError(Located(file, std::string("cannot be opened (") + sqlite3_errmsg(raw) + ")"));
 
   std::map<std::int64_t, ColmapImageFeatures> images;
-  ForEachRow(db.get(), file + ": images", "SELECT image_id, name FROM images ORDER BY image_id", [&](sqlite3_stmt* s) {
-    ColmapImageFeatures& image = images[sqlite3_column_int64(s, 0)];
-    image.image_id = static_cast<std::uint32_t>(sqlite3_column_int64(s, 0));
-    const unsigned char* name = sqlite3_column_text(s, 1);
-    image.name = name ? reinterpret_cast<const char*>(name) : "";
-  });
+  ForEachRow(db.get(), file + ": images",
+             "SELECT images.image_id, images.name, cameras.width, cameras.height FROM images LEFT JOIN cameras ON "
+             "images.camera_id = cameras.camera_id ORDER BY images.image_id",
+             [&](sqlite3_stmt* s) {
+               ColmapImageFeatures& image = images[sqlite3_column_int64(s, 0)];
+               image.image_id = static_cast<std::uint32_t>(sqlite3_column_int64(s, 0));
+               const unsigned char* name = sqlite3_column_text(s, 1);
+               image.name = name ? reinterpret_cast<const char*>(name) : "";
+               image.width_px = sqlite3_column_int(s, 2);
+               image.height_px = sqlite3_column_int(s, 3);
+               if (image.width_px <= 0 || image.height_px <= 0) {
+                 throw InputError(Located(file + ": images[image_id " + std::to_string(image.image_id) + "]",
+                                          "no camera with a width and height"));
+               }
+             });
   auto image_of = [&](sqlite3_stmt* s, const std::string& table) -> ColmapImageFeatures& {
     const std::int64_t id = sqlite3_column_int64(s, 0);
     auto it = images.find(id);

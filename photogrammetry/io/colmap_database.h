@@ -1,7 +1,8 @@
 // Reads the features COLMAP's feature_extractor stored in its SQLite database (database.db): every
 // image's id and name, its keypoints (x, y, then the affine shape COLMAP keeps) and its SIFT
-// descriptors (128 bytes each, one row per keypoint). The database is opened read-only; only the
-// `images`, `keypoints` and `descriptors` tables are read.
+// descriptors (128 bytes each, one row per keypoint), and the size of its camera's images. The
+// database is opened read-only; only the `cameras`, `images`, `keypoints` and `descriptors` tables are
+// read.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +16,9 @@ inline constexpr int kSiftDescriptorBytes = 128;
 
 struct ColmapImageFeatures {
   std::uint32_t image_id = 0;
-  std::string name;                       // the image's path relative to COLMAP's image folder
+  std::string name;  // the image's path relative to COLMAP's image folder
+  int width_px = 0;  // its camera's image size
+  int height_px = 0;
   int keypoint_columns = 0;               // 2 (x, y), 4 (+ scale, orientation) or 6 (+ affine shape)
   std::vector<float> keypoints;           // num_keypoints() rows of keypoint_columns, in pixels
   std::vector<std::uint8_t> descriptors;  // num_keypoints() rows of kSiftDescriptorBytes

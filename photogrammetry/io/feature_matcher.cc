@@ -171,6 +171,25 @@ std::vector<FeatureMatch> MatchSiftDescriptors(const std::vector<std::uint8_t>& 
   return matches;
 }
 
+std::size_t BlankBorderDescriptors(std::vector<ColmapImageFeatures>* images) {
+  std::size_t blanked = 0;
+  for (ColmapImageFeatures& image : *images) {
+    const std::size_t columns = static_cast<std::size_t>(image.keypoint_columns);
+    for (std::size_t i = 0; i < image.num_keypoints() && columns >= 2; ++i) {
+      const float* k = image.keypoints.data() + i * columns;
+      // (x, y), (x, y, scale, orientation) or (x, y, a11, a12, a21, a22): the scale is |first column of A|.
+      const double scale = columns == 4 ? k[2] : columns == 6 ? std::hypot(k[2], k[4]) : 1.0;
+      const double margin = 0.5 + 2.0 * std::max(1.0, scale);
+      if (k[0] >= margin && k[1] >= margin && k[0] <= image.width_px - margin && k[1] <= image.height_px - margin) {
+        continue;
+      }
+      std::fill_n(image.descriptors.begin() + static_cast<std::ptrdiff_t>(i * kDims), kDims, std::uint8_t{0});
+      ++blanked;
+    }
+  }
+  return blanked;
+}
+
 std::vector<ImagePairMatches> MatchAllPairs(const std::vector<ColmapImageFeatures>& images,
                                             const FeatureMatchOptions& options) {
   std::vector<ImagePairMatches> pairs;

@@ -17,8 +17,11 @@ namespace {
 namespace fs = std::filesystem;
 using cinepath::testing::InputErrorMessage;
 
-// The three tables COLMAP 3.8 creates that the reader reads (the same columns, fewer constraints).
+// The four tables COLMAP 3.8 creates that the reader reads (the same columns, fewer constraints).
 const char* kSchema =
+    "CREATE TABLE cameras (camera_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, model INTEGER NOT NULL, "
+    "width INTEGER NOT NULL, height INTEGER NOT NULL, params BLOB, prior_focal_length INTEGER NOT NULL);"
+    "INSERT INTO cameras VALUES (1, 4, 800, 450, NULL, 0);"
     "CREATE TABLE images (image_id INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, name TEXT NOT NULL UNIQUE, "
     "camera_id INTEGER NOT NULL);"
     "CREATE TABLE keypoints (image_id INTEGER PRIMARY KEY NOT NULL, rows INTEGER NOT NULL, cols INTEGER NOT NULL, "
@@ -88,6 +91,8 @@ TEST_F(ColmapDatabaseTest, ReadsImagesKeypointsAndDescriptorsByImageId) {
   EXPECT_EQ(images[0].image_id, 1u);
   EXPECT_EQ(images[0].name, "a.jpg");
   EXPECT_EQ(images[1].name, "b.jpg");
+  EXPECT_EQ(images[1].width_px, 800);
+  EXPECT_EQ(images[1].height_px, 450);
   EXPECT_EQ(images[0].num_keypoints(), 2u);
   EXPECT_EQ(images[1].num_keypoints(), 3u);
   EXPECT_EQ(images[1].keypoint_columns, 6);
@@ -105,6 +110,13 @@ TEST_F(ColmapDatabaseTest, AnImageWithoutFeaturesHasNone) {
   const std::vector<ColmapImageFeatures> images = ReadColmapFeatures(path_);
   ASSERT_EQ(images.size(), 1u);
   EXPECT_EQ(images[0].num_keypoints(), 0u);
+}
+
+TEST_F(ColmapDatabaseTest, AnImageWithoutItsCameraIsNamed) {
+  Exec(kSchema);
+  Exec("INSERT INTO images VALUES (1, 'a.jpg', 3);");
+  const std::string message = InputErrorMessage([&] { ReadColmapFeatures(path_); });
+  EXPECT_NE(message.find("images[image_id 1]: no camera with a width and height"), std::string::npos) << message;
 }
 
 TEST_F(ColmapDatabaseTest, AMissingFileIsNamed) {

@@ -215,6 +215,33 @@ TEST(FeatureMatcher, EveryPairInAFixedOrderAndTheSameAtAnyThreadCount) {
   }
 }
 
+TEST(FeatureMatcher, BorderKeypointsAreBlankedAndNeverMatched) {
+  std::mt19937 rng(8);
+  std::vector<Descriptor> seen;
+  for (int i = 0; i < 5; ++i) seen.push_back(RandomDescriptor(&rng));
+  ColmapImageFeatures image;
+  image.width_px = 800;
+  image.height_px = 450;
+  image.keypoint_columns = 6;
+  // (x, y, scale): inside; on the last row; 7 px from the bottom at scale 3.7 (margin 7.9 px); the
+  // same 7 px from the bottom at scale 1 (margin 2.5 px); past the left edge.
+  const double keypoints[5][3] = {{400, 200, 2}, {300, 449.8, 1}, {789, 443, 3.7}, {789, 443, 1}, {0.3, 100, 1}};
+  for (const auto& k : keypoints) {
+    for (double v : {k[0], k[1], k[2], 0.0, 0.0, k[2]}) image.keypoints.push_back(static_cast<float>(v));
+  }
+  image.descriptors = Bytes(seen);
+  ColmapImageFeatures copy = image;
+  std::vector<ColmapImageFeatures> images = {image, copy};
+  EXPECT_EQ(BlankBorderDescriptors(&images), 6u);
+  for (int i = 0; i < 5; ++i) {
+    const bool kept = i == 0 || i == 3;
+    const auto begin = images[0].descriptors.begin() + i * kDims;
+    EXPECT_EQ(std::count(begin, begin + kDims, 0) == kDims, !kept) << i;
+  }
+  EXPECT_EQ(MatchSiftDescriptors(images[0].descriptors, images[1].descriptors, FeatureMatchOptions()),
+            (std::vector<FeatureMatch>{{0, 0}, {3, 3}}));
+}
+
 TEST(FeatureMatcher, WritesCOLMAPsRawMatchList) {
   std::vector<ColmapImageFeatures> images(3);
   images[0].name = "a.jpg";
