@@ -40,6 +40,7 @@ struct Nearest {
   }
 };
 
+constexpr float kNever = 3.0e38f;       // a second nearest no dot product exceeds (rows past the end)
 constexpr std::size_t kBlockRows = 4;   // rows of the first set per block of dot products
 constexpr std::size_t kBlockCols = 16;  // rows of the second set per block
 
@@ -80,6 +81,20 @@ void DotsPortable(const float* a, const float* panel, float* dots) {
   }
 }
 
+// Which rows and columns of a block have a dot product above their second nearest so far: only those
+// can change (Nearest::Add), and most blocks change none. Bit r of row_mask, bit c of col_mask.
+void FlagsPortable(const float* dots, const float* row_second, const float* col_second, unsigned* row_mask,
+                   unsigned* col_mask) {
+  *row_mask = 0;
+  *col_mask = 0;
+  for (std::size_t r = 0; r < kBlockRows; ++r) {
+    for (std::size_t c = 0; c < kBlockCols; ++c) {
+      if (dots[r * kBlockCols + c] > row_second[r]) *row_mask |= 1u << r;
+      if (dots[r * kBlockCols + c] > col_second[c]) *col_mask |= 1u << c;
+    }
+  }
+}
+
 #if defined(__x86_64__) && defined(__GNUC__)
 // The same with AVX and FMA (16 columns as two 8-float registers per row): products and sums of
 // integers below 2^24 are exact, so fused or not, in any order, the dots are the same.
@@ -100,9 +115,28 @@ __attribute__((target("avx,fma"))) void DotsAvx(const float* a, const float* pan
     _mm256_storeu_ps(dots + r * kBlockCols + 8, acc[2 * r + 1]);
   }
 }
+// The same flags as FlagsPortable, eight columns at a time.
+__attribute__((target("avx"))) void FlagsAvx(const float* dots, const float* row_second, const float* col_second,
+                                             unsigned* row_mask, unsigned* col_mask) {
+  *row_mask = 0;
+  for (std::size_t r = 0; r < kBlockRows; ++r) {
+    const __m256 m = _mm256_max_ps(_mm256_load_ps(dots + r * kBlockCols), _mm256_load_ps(dots + r * kBlockCols + 8));
+    if (_mm256_movemask_ps(_mm256_cmp_ps(m, _mm256_set1_ps(row_second[r]), _CMP_GT_OQ)) != 0) *row_mask |= 1u << r;
+  }
+  for (std::size_t half = 0; half < 2; ++half) {
+    __m256 m = _mm256_load_ps(dots + half * 8);
+    for (std::size_t r = 1; r < kBlockRows; ++r) m = _mm256_max_ps(m, _mm256_load_ps(dots + r * kBlockCols + half * 8));
+    const int bits = _mm256_movemask_ps(_mm256_cmp_ps(m, _mm256_loadu_ps(col_second + half * 8), _CMP_GT_OQ));
+    *col_mask = half == 0 ? static_cast<unsigned>(bits) : *col_mask | static_cast<unsigned>(bits) << 8;
+  }
+}
 bool HaveAvx() { return __builtin_cpu_supports("avx") && __builtin_cpu_supports("fma"); }
 #else
 void DotsAvx(const float* a, const float* panel, float* dots) { DotsPortable(a, panel, dots); }
+void FlagsAvx(const float* dots, const float* row_second, const float* col_second, unsigned* row_mask,
+              unsigned* col_mask) {
+  FlagsPortable(dots, row_second, col_second, row_mask, col_mask);
+}
 bool HaveAvx() { return false; }
 #endif
 
@@ -113,20 +147,29 @@ void NearestBothWays(const Rows& a, const Rows& b, bool use_avx, std::vector<Nea
   nearest_a->assign(a.count, Nearest());
   nearest_b->assign(b.count, Nearest());
   auto dots_of = use_avx ? DotsAvx : DotsPortable;
+  auto flags_of = use_avx ? FlagsAvx : FlagsPortable;
   alignas(32) float dots[kBlockRows * kBlockCols];
+  float row_second[kBlockRows], col_second[kBlockCols];
   for (std::size_t j0 = 0; j0 < b.count; j0 += kTileRows) {
     const std::size_t j1 = std::min(b.count, j0 + kTileRows);
     for (std::size_t i = 0; i < a.count; i += kBlockRows) {
       const std::size_t rows = std::min(kBlockRows, a.count - i);
+      for (std::size_t r = 0; r < kBlockRows; ++r) row_second[r] = r < rows ? (*nearest_a)[i + r].second : kNever;
       for (std::size_t j = j0; j < j1; j += kBlockCols) {
         const std::size_t cols = std::min(kBlockCols, j1 - j);
+        for (std::size_t c = 0; c < kBlockCols; ++c) col_second[c] = c < cols ? (*nearest_b)[j + c].second : kNever;
         dots_of(a.values.data() + i * kDims, b.values.data() + j * kDims, dots);
-        for (std::size_t r = 0; r < rows; ++r) {
+        unsigned row_mask = 0, col_mask = 0;
+        flags_of(dots, row_second, col_second, &row_mask, &col_mask);
+        for (std::size_t r = 0; r < rows && row_mask != 0; ++r) {
+          if ((row_mask >> r & 1u) == 0) continue;
           for (std::size_t c = 0; c < cols; ++c) {
             (*nearest_a)[i + r].Add(dots[r * kBlockCols + c], static_cast<std::int32_t>(j + c));
           }
+          row_second[r] = (*nearest_a)[i + r].second;
         }
-        for (std::size_t c = 0; c < cols; ++c) {
+        for (std::size_t c = 0; c < cols && col_mask != 0; ++c) {
+          if ((col_mask >> c & 1u) == 0) continue;
           for (std::size_t r = 0; r < rows; ++r) {
             (*nearest_b)[j + c].Add(dots[r * kBlockCols + c], static_cast<std::int32_t>(i + r));
           }
