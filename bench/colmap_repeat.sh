@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # COLMAP runs that repeat (`cinepath mesh --images`, photogrammetry/io/colmap_runner.h), measured:
 #   bench/colmap_repeat.sh [BUILD_DIR] [PHOTOS_DIR] [RUNS]
-# 1. colmap feature_extractor with all threads and with one (wall, user CPU; same keypoints?);
+# 1. colmap feature_extractor with all threads and with one (wall, user CPU, the ids it gave the images);
 # 2. on copies of the one-thread database, in the same run: cinepath's matcher (feature_matcher_bench,
 #    2 threads then 1) and colmap exhaustive_matcher (all threads), then matches_importer on cinepath's
 #    raw matches: time, raw and verified match counts;
@@ -19,7 +19,8 @@ timed() {
   cat "$WORK/time.txt"
 }
 count() { sqlite3 "$1" "SELECT COALESCE(SUM(rows), 0) FROM $2"; }
-keypoints_md5() { sqlite3 "$1" "SELECT hex(data) FROM keypoints ORDER BY image_id" | md5sum | cut -c1-8; }
+# The images' ids in name order: with several threads COLMAP numbers them as they finish.
+image_ids() { sqlite3 "$1" "SELECT image_id FROM images ORDER BY name" | tr '\n' ' '; }
 
 echo "== feature_extractor (OPENCV, one camera, CPU)"
 for threads in -1 1; do
@@ -28,7 +29,7 @@ for threads in -1 1; do
   t=$(timed colmap feature_extractor --database_path "$db" --image_path "$PHOTOS" \
     --ImageReader.camera_model OPENCV --ImageReader.single_camera 1 --SiftExtraction.use_gpu 0 \
     --SiftExtraction.num_threads $threads --random_seed 0)
-  echo "threads $threads: $t; keypoints md5 $(keypoints_md5 "$db")"
+  echo "threads $threads: $t; image ids in name order: $(image_ids "$db")"
 done
 
 echo "== matching the one-thread database (same run)"

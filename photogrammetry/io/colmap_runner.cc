@@ -94,7 +94,7 @@ fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& wor
     if (on_step) on_step(name);
     RunStep(name, std::move(args), workspace / ("colmap_" + name + ".log"));
   };
-  // One extraction thread: with more, the descriptors' bytes differ from run to run.
+  // One extraction thread: with more, COLMAP numbers the images in the order they finish (other ids).
   step("feature_extractor",
        {options.colmap_binary, "feature_extractor", "--database_path", db.string(), "--image_path", images_dir.string(),
         "--ImageReader.camera_model", options.camera_model, "--ImageReader.single_camera",
