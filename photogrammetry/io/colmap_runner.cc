@@ -82,6 +82,17 @@ fs::path LargestModel(const fs::path& sparse) {
 
 }  // namespace
 
+void ExtractColmapFeatures(const fs::path& images_dir, const fs::path& database, const ColmapRunOptions& options,
+                           const fs::path& log) {
+  // One thread: with more, COLMAP numbers the images in the order they finish (other ids every run).
+  RunStep("feature_extractor",
+          {options.colmap_binary, "feature_extractor", "--database_path", database.string(), "--image_path",
+           images_dir.string(), "--ImageReader.camera_model", options.camera_model, "--ImageReader.single_camera",
+           options.single_camera ? "1" : "0", "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", "1",
+           "--random_seed", "0"},
+          log);
+}
+
 fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& workspace, const ColmapRunOptions& options,
                                  const std::function<void(const std::string&)>& on_step) {
   if (!fs::is_directory(images_dir)) throw InputError(Located(images_dir.string(), "not a directory (`images_dir`)"));
@@ -94,12 +105,8 @@ fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& wor
     if (on_step) on_step(name);
     RunStep(name, std::move(args), workspace / ("colmap_" + name + ".log"));
   };
-  // One extraction thread: with more, COLMAP numbers the images in the order they finish (other ids).
-  step("feature_extractor",
-       {options.colmap_binary, "feature_extractor", "--database_path", db.string(), "--image_path", images_dir.string(),
-        "--ImageReader.camera_model", options.camera_model, "--ImageReader.single_camera",
-        options.single_camera ? "1" : "0", "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", "1",
-        "--random_seed", "0"});
+  if (on_step) on_step("feature_extractor");
+  ExtractColmapFeatures(images_dir, db, options, workspace / "colmap_feature_extractor.log");
   // Matching of our own (COLMAP's CPU matcher never repeats), verified by COLMAP (which repeats: the
   // same two-view geometries in 5 of 5 runs at all threads); border keypoints, whose descriptors
   // change from run to run, left out.

@@ -26,6 +26,11 @@ struct ColmapRunOptions {
   int num_threads = -1;  // matching, verification and mapping; -1: all cores (extraction runs on one)
 };
 
+// The extraction step alone: `colmap feature_extractor` into `database` (which must not exist yet), on
+// one thread with the run's camera options, its log in `log`. RuntimeError when it fails.
+void ExtractColmapFeatures(const std::filesystem::path& images_dir, const std::filesystem::path& database,
+                           const ColmapRunOptions& options, const std::filesystem::path& log);
+
 // Returns the sparse model folder. RuntimeError (with the log's last lines) when a step fails or no
 // model comes out; InputError when the images folder does not exist. `on_step` (optional) is told the
 // name of each step as it starts.
