@@ -14,6 +14,8 @@ find_package(draco 1.5 REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)
 find_package(embree 3 REQUIRED)
 pkg_check_modules(GEOGRAPHICLIB REQUIRED IMPORTED_TARGET geographiclib)
+# COLMAP's database.db (the features the photos-only path matches itself).
+find_package(SQLite3 3.40 REQUIRED)
 # render's image files and textures, without OpenImageIO's ~260 libraries (preview/CMakeLists.txt).
 find_package(PNG REQUIRED)
 find_package(JPEG REQUIRED)

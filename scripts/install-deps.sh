@@ -23,7 +23,7 @@ PACKAGES=(
   libcgal-dev libopenmesh-dev libgeographiclib-dev libceres-dev libtinygltf-dev libdraco-dev
   libopenimageio-dev openimageio-tools libembree-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
   libfmt-dev libtbb-dev libgtest-dev libbenchmark-dev libstb-dev libmeshoptimizer-dev zlib1g-dev
-  libpng-dev libjpeg62-turbo-dev libopenexr-dev
+  libpng-dev libjpeg62-turbo-dev libopenexr-dev libsqlite3-dev
   # data and tools the pipeline runs
   proj-data colmap fonts-dejavu-core ffmpeg
   # independent tools the tests compare against

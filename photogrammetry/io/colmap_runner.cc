@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "photogrammetry/io/colmap_database.h"
 #include "photogrammetry/io/colmap_reader.h"
+#include "photogrammetry/io/feature_matcher.h"
 
 extern char** environ;
 
@@ -80,6 +82,17 @@ fs::path LargestModel(const fs::path& sparse) {
 
 }  // namespace
 
+void ExtractColmapFeatures(const fs::path& images_dir, const fs::path& database, const ColmapRunOptions& options,
+                           const fs::path& log) {
+  // One thread: with more, COLMAP numbers the images in the order they finish (other ids every run).
+  RunStep("feature_extractor",
+          {options.colmap_binary, "feature_extractor", "--database_path", database.string(), "--image_path",
+           images_dir.string(), "--ImageReader.camera_model", options.camera_model, "--ImageReader.single_camera",
+           options.single_camera ? "1" : "0", "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", "1",
+           "--random_seed", "0"},
+          log);
+}
+
 fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& workspace, const ColmapRunOptions& options,
                                  const std::function<void(const std::string&)>& on_step) {
   if (!fs::is_directory(images_dir)) throw InputError(Located(images_dir.string(), "not a directory (`images_dir`)"));
@@ -92,14 +105,24 @@ fs::path RunColmapReconstruction(const fs::path& images_dir, const fs::path& wor
     if (on_step) on_step(name);
     RunStep(name, std::move(args), workspace / ("colmap_" + name + ".log"));
   };
-  step("feature_extractor",
-       {options.colmap_binary, "feature_extractor", "--database_path", db.string(), "--image_path", images_dir.string(),
-        "--ImageReader.camera_model", options.camera_model, "--ImageReader.single_camera",
-        options.single_camera ? "1" : "0", "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", threads});
-  step("exhaustive_matcher", {options.colmap_binary, "exhaustive_matcher", "--database_path", db.string(),
-                              "--SiftMatching.use_gpu", "0", "--SiftMatching.num_threads", threads});
-  step("mapper", {options.colmap_binary, "mapper", "--database_path", db.string(), "--image_path", images_dir.string(),
-                  "--output_path", (workspace / "sparse").string(), "--Mapper.num_threads", threads});
+  if (on_step) on_step("feature_extractor");
+  ExtractColmapFeatures(images_dir, db, options, workspace / "colmap_feature_extractor.log");
+  // Matching of our own (COLMAP's CPU matcher never repeats), verified by COLMAP (which repeats: the
+  // same two-view geometries in 5 of 5 runs at all threads); border keypoints, whose descriptors
+  // change from run to run, left out.
+  if (on_step) on_step("feature_matcher");
+  const fs::path match_list = workspace / "raw_matches.txt";
+  std::vector<ColmapImageFeatures> features = ReadColmapFeatures(db);
+  BlankBorderDescriptors(&features);
+  FeatureMatchOptions match_options;
+  match_options.num_threads = options.num_threads > 0 ? options.num_threads : 0;
+  WriteColmapRawMatches(match_list, features, MatchAllPairs(features, match_options));
+  step("matches_importer", {options.colmap_binary, "matches_importer", "--database_path", db.string(),
+                            "--match_list_path", match_list.string(), "--match_type", "raw", "--SiftMatching.use_gpu",
+                            "0", "--SiftMatching.num_threads", threads, "--random_seed", "0"});
+  step("mapper",
+       {options.colmap_binary, "mapper", "--database_path", db.string(), "--image_path", images_dir.string(),
+        "--output_path", (workspace / "sparse").string(), "--Mapper.num_threads", threads, "--random_seed", "0"});
   const fs::path model = LargestModel(workspace / "sparse");
   if (model.empty()) {
     throw RuntimeError("colmap mapper registered no images (log " + (workspace / "colmap_mapper.log").string() + ":" +
