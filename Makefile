@@ -47,13 +47,15 @@ bench: build
 # not already run there (measured 2026-11-25: the sanitize step took 30+ min with them): the browser
 # tests (their time is Chromium's), the killed-run tests (they kill the binary at many moments; about
 # the atomic writes, and 400 s for mesh alone), the determinism runs (byte equality is checked by
-# make test; the mesh and render paths they drive run in the golden and preview tests), and two
-# scene-sized for-plan unit tests (the smaller for-plan tests run the same code).
+# make test; the mesh and render paths they drive run in the golden and preview tests), two
+# scene-sized for-plan unit tests (the smaller for-plan tests run the same code), and the bundled
+# sample's Poisson run (21 s of CPU unsanitized; mesh_truth.oblique runs the same Poisson path there).
 # The optimizer's rule-2 property runs 5 of its 20 random plans (661 s for 20 under the sanitizers, the
 # longest test of the step; every plan runs the same code).
 SANITIZE_ENV = UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:suppressions=$(CURDIR)/tests/sanitizers/ubsan.supp \
   CINEPATH_PROPERTY_PLANS=5
-SANITIZE_SLOW = viewer\.browser|pipeline\.killed\.|pipeline\.determinism|pipeline\.texture_determinism
+SANITIZE_SLOW = viewer\.browser|pipeline\.killed\.|pipeline\.determinism|pipeline\.texture_determinism|\
+  mesh_real\.sample_poisson
 SANITIZE_SLOW_UNITS = DecimateForPlan\.AnOrbit|DecimateForPlan\.ATileOverTheBound
 SANITIZE_SKIP = interop\.|colmap_runner|repo\.|pipeline\.examples_makefile|$(SANITIZE_SLOW)|$(SANITIZE_SLOW_UNITS)
 BINARY_TESTS = golden\.|pipeline\.|preview\.|optimizer\.|viewer\.|extremes\.|mesh_truth\.|mesh_real\.
