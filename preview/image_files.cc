@@ -1,6 +1,7 @@
 #include "preview/image_files.h"
 
 #include <png.h>
+#include <sys/mman.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <unistd.h>
@@ -268,7 +269,7 @@ uint8_t LinearToSrgb8ByTable(const SrgbTable& table, float linear) {
 uint8_t LinearToSrgb8ByTable(float linear) { return LinearToSrgb8ByTable(SrgbTableOnce(), linear); }
 
 Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width, int height) {
-  Srgb8Image image{width, height, std::vector<uint8_t>(size_t(width) * height * 3)};
+  Srgb8Image image{width, height, ImageBytes(size_t(width) * height * 3)};
   const SrgbTable& table = SrgbTableOnce();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rgb_linear.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
@@ -278,10 +279,28 @@ Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width
   return image;
 }
 
+namespace {
+
+// Asks the kernel for 2 MB pages over a large fresh buffer (Linux's transparent huge pages, when set to
+// "madvise" as Debian ships them): a 4096² atlas's 50 MB then takes ~25 page faults instead of ~12,800.
+// Only a hint: where it is refused, the buffer is as before.
+void AdviseHugePages(uint8_t* data, size_t size) {
+  constexpr uintptr_t kPage = 4096;
+  if (size < (8u << 20)) return;
+  const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kPage - 1) & ~(kPage - 1);
+  const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + size) & ~(kPage - 1);
+#ifdef MADV_HUGEPAGE
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#endif
+}
+
+}  // namespace
+
 Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& where, int parts) {
   Srgb8Image image;
   DecodeJpegRows(encoded, where, 0, 0, nullptr, &image.width, &image.height);
   image.rgb.resize(size_t(image.width) * image.height * 3);
+  AdviseHugePages(image.rgb.data(), image.rgb.size());
   // Small images, or one part: one decoder. Otherwise the rows in bands, one decoder each, the later
   // bands smaller (their decoder also entropy-decodes the rows it skips); the same bytes either way.
   if (parts <= 1 || image.height < 512) {

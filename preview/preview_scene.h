@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include "preview/image_files.h"
 #include "preview/render_options.h"
 #include "preview/subject_proxies.h"
 #include "scene/border_ring.h"
@@ -32,7 +33,7 @@ namespace cinepath::preview {
 struct Texture {
   int width = 0;
   int height = 0;
-  std::vector<uint8_t> srgb;                                // width x height x RGB
+  ImageBytes srgb;                                          // width x height x RGB
   Eigen::Vector3f Sample(const Eigen::Vector2f& uv) const;  // bilinear in linear light, wrapping (glTF REPEAT)
 };
 

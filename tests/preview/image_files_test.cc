@@ -8,7 +8,9 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <unistd.h>
+#include <algorithm>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -181,6 +183,38 @@ TEST(JpegDecode, BandsDecodedAtOnceGiveTheBytesOfOneDecoder) {
       EXPECT_TRUE(banded.rgb == one.rgb) << "sampling " << h << "x" << v << ", " << parts << " bands";
     }
     EXPECT_TRUE(DecodeSrgb8(jpeg, "test").rgb == one.rgb);
+  }
+}
+
+// libjpeg's own decode of a JPEG, row by row into a zero-filled buffer: the reference bytes.
+std::vector<uint8_t> ReferenceDecode(const std::vector<uint8_t>& encoded) {
+  jpeg_decompress_struct jpeg{};
+  jpeg_error_mgr error{};
+  jpeg.err = jpeg_std_error(&error);
+  jpeg_create_decompress(&jpeg);
+  jpeg_mem_src(&jpeg, encoded.data(), static_cast<unsigned long>(encoded.size()));
+  jpeg_read_header(&jpeg, TRUE);
+  jpeg.out_color_space = JCS_RGB;
+  jpeg_start_decompress(&jpeg);
+  std::vector<uint8_t> rgb(size_t(jpeg.output_width) * jpeg.output_height * 3);
+  while (jpeg.output_scanline < jpeg.output_height) {
+    JSAMPROW row = &rgb[size_t(jpeg.output_scanline) * jpeg.output_width * 3];
+    jpeg_read_scanlines(&jpeg, &row, 1);
+  }
+  jpeg_finish_decompress(&jpeg);
+  jpeg_destroy_decompress(&jpeg);
+  return rgb;
+}
+
+// The texels' buffer is neither zero-filled first nor, past 8 MB, in 4 KiB pages (huge pages are asked
+// for): every byte must still be the decoder's.
+TEST(JpegDecode, ALargeImageIsDecodedInFullIntoItsUnfilledBuffer) {
+  const std::vector<uint8_t> jpeg = TestJpeg(1800, 1700, 2, 2);  // 9.2 MB of texels
+  const std::vector<uint8_t> reference = ReferenceDecode(jpeg);
+  for (int parts : {1, 2}) {
+    const Srgb8Image image = DecodeJpeg(jpeg, "test", parts);
+    ASSERT_EQ(image.rgb.size(), reference.size());
+    EXPECT_TRUE(std::equal(image.rgb.begin(), image.rgb.end(), reference.begin())) << parts << " bands";
   }
 }
 
