@@ -61,6 +61,15 @@ Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width
 Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& encoded, const std::string& where);
 // A JPEG decoded by `parts` decoders at once, each a band of rows (the same bytes as one decoder).
 Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& where, int parts);
+// A JPEG decoded by two decoders that split its rows when the second starts (the same bytes as one
+// decoder): the first starts at once on the calling thread from the top; the second, a task, starts
+// when a thread is free (at once on an idle machine, later when the plan's reading holds the other core,
+// never when none frees up before the first ends) and takes the bottom rows from
+// JpegSecondBandStart(height, rows the first has taken), so both end together. DecodeSrgb8's JPEG path.
+Srgb8Image DecodeJpegShared(const std::vector<uint8_t>& encoded, const std::string& where);
+// The second decoder's first row (a multiple of 16, not before `first_done`), or `height` when what is
+// left is too little to share.
+int JpegSecondBandStart(int height, int first_done);
 
 // PNG or JPEG (quality 95) from 8-bit sRGB; RuntimeError naming the file when it cannot be written.
 void WriteSrgb8Atomic(const std::filesystem::path& path, const Srgb8Image& image);

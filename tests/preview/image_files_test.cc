@@ -218,6 +218,34 @@ TEST(JpegDecode, ALargeImageIsDecodedInFullIntoItsUnfilledBuffer) {
   }
 }
 
+// The shared decode splits where the second decoder finds the first when it starts: whenever that is,
+// the same bytes as one decoder.
+TEST(JpegDecode, TwoDecodersSplittingWhenTheSecondStartsGiveTheBytesOfOne) {
+  for (const auto& [h, v] : {std::pair{1, 1}, std::pair{2, 2}, std::pair{2, 1}}) {
+    const std::vector<uint8_t> jpeg = TestJpeg(301, 777, h, v);
+    const Srgb8Image one = DecodeJpeg(jpeg, "test", 1);
+    for (int run = 0; run < 20; ++run) {
+      const Srgb8Image shared = DecodeJpegShared(jpeg, "test");
+      ASSERT_EQ(shared.width, 301);
+      ASSERT_EQ(shared.height, 777);
+      EXPECT_TRUE(shared.rgb == one.rgb) << "sampling " << h << "x" << v << ", run " << run;
+    }
+  }
+}
+
+TEST(JpegDecode, TheSecondBandStartsOnAnMcuRowAfterTheFirstsRows) {
+  for (int height : {512, 777, 4096}) {
+    for (int done = 0; done <= height; done += 16) {
+      const int start = JpegSecondBandStart(height, done);
+      EXPECT_GE(start, std::min(done, height)) << height << " " << done;
+      EXPECT_TRUE(start == height || start % 16 == 0) << height << " " << done;
+      EXPECT_LE(start, height);
+    }
+    EXPECT_GT(JpegSecondBandStart(height, 0), height / 2);  // the skipped rows cost the second decoder
+    EXPECT_EQ(JpegSecondBandStart(height, height - 16), height);
+  }
+}
+
 TEST(JpegDecode, BrokenBytesAreAnInputError) {
   std::vector<uint8_t> jpeg = TestJpeg(64, 64, 2, 2);
   jpeg.resize(40);
