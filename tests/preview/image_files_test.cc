@@ -1,12 +1,14 @@
 // The EXR writer read back through the OpenEXR library's InputFile: channels (stored in name order),
 // size, ZIP compression, every value bit for bit; the same bytes on every call and in the file, no
-// temporary file left behind. JPEG decoding in bands. The sRGB encoding's ends.
+// temporary file left behind. JPEG decoding in bands. The PNG writer read back. The sRGB encoding's ends.
 #include "preview/image_files.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <png.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 #include <algorithm>
 
@@ -251,6 +253,34 @@ TEST(JpegDecode, BrokenBytesAreAnInputError) {
   jpeg.resize(40);
   EXPECT_THROW(DecodeSrgb8(jpeg, "test"), InputError);
   EXPECT_THROW(DecodeSrgb8(std::vector<uint8_t>{1, 2, 3, 4}, "test"), InputError);
+}
+
+// The PNG writer (its own chunks, the zlib stream deflated in two bands of rows at once) read back by
+// libpng: the same size and bytes, for images of one band and of two; the same file bytes whether one
+// thread or several write it.
+TEST(PngWriter, LibpngReadsBackEveryByteAndTheFileIsTheSameOnOneThread) {
+  const auto dir = TestDir("png");
+  for (const auto& [width, height] : {std::pair{7, 5}, std::pair{301, 777}}) {
+    Srgb8Image image{width, height, ImageBytes(size_t(width) * height * 3)};
+    uint32_t state = 11;
+    for (auto& byte : image.rgb) byte = uint8_t((state = state * 1664525u + 1013904223u) >> 24);
+    const std::filesystem::path path = dir / ("image_" + std::to_string(height) + ".png");
+    WriteSrgb8Atomic(path, image);
+    png_image read{};
+    read.version = PNG_IMAGE_VERSION;
+    ASSERT_TRUE(png_image_begin_read_from_file(&read, path.c_str())) << read.message;
+    read.format = PNG_FORMAT_RGB;
+    std::vector<uint8_t> rgb(PNG_IMAGE_SIZE(read));
+    ASSERT_TRUE(png_image_finish_read(&read, nullptr, rgb.data(), 0, nullptr)) << read.message;
+    EXPECT_EQ(int(read.width), width);
+    EXPECT_EQ(int(read.height), height);
+    EXPECT_TRUE(std::equal(rgb.begin(), rgb.end(), image.rgb.begin(), image.rgb.end())) << height << " rows";
+    const std::filesystem::path one_thread = dir / ("one_" + std::to_string(height) + ".png");
+    tbb::task_arena(1).execute([&] { WriteSrgb8Atomic(one_thread, image); });
+    std::ifstream a(path, std::ios::binary), b(one_thread, std::ios::binary);
+    EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), {}, std::istreambuf_iterator<char>(b), {}));
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Srgb8, Ends) {
