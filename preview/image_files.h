@@ -1,5 +1,6 @@
-// Frames and sheets on disk: PNG (libpng) and JPEG (libjpeg) hold sRGB-encoded 8-bit colour (encoded here,
-// by the sRGB transfer function, rounded), EXR linear 32-bit float (the OpenEXR library, ZIP-compressed).
+// Frames and sheets on disk: PNG (its chunks written here, zlib; libpng decodes) and JPEG (libjpeg) hold
+// sRGB-encoded 8-bit colour (encoded here, by the sRGB transfer function, rounded), EXR linear 32-bit
+// float (the OpenEXR library, ZIP-compressed).
 // No OpenImageIO: its Debian build brings ~260 shared libraries whose loading took half a second of every
 // render's start. Every file is written to a temporary name beside its target and renamed once complete,
 // so a failed write leaves no partial file.
@@ -7,7 +8,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -16,11 +20,34 @@
 
 namespace cinepath::preview {
 
+// std::allocator, except that resize() leaves the new elements uninitialised: image buffers are written
+// in full by their decoder or encoder, and zero-filling a 4096² atlas's 50 MB first (on one core, then
+// the decoders' own writes) was ~50 M instructions and every page fault on the loading thread.
+template <typename T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+using ImageBytes = std::vector<uint8_t, UninitializedAllocator<uint8_t>>;
+
 // An 8-bit sRGB image, RGB interleaved, rows from the top.
 struct Srgb8Image {
   int width = 0;
   int height = 0;
-  std::vector<uint8_t> rgb;
+  ImageBytes rgb;
 };
 
 // Linear [0, 1] -> 8-bit sRGB: the transfer function, rounded; 0 for NaN and below, 255 from 1 up.
@@ -35,8 +62,18 @@ Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width
 Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& encoded, const std::string& where);
 // A JPEG decoded by `parts` decoders at once, each a band of rows (the same bytes as one decoder).
 Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& where, int parts);
+// A JPEG decoded by two decoders that split its rows when the second starts (the same bytes as one
+// decoder): the first starts at once on the calling thread from the top; the second, a task, starts
+// when a thread is free (at once on an idle machine, later when the plan's reading holds the other core,
+// never when none frees up before the first ends) and takes the bottom rows from
+// JpegSecondBandStart(height, rows the first has taken), so both end together. DecodeSrgb8's JPEG path.
+Srgb8Image DecodeJpegShared(const std::vector<uint8_t>& encoded, const std::string& where);
+// The second decoder's first row (a multiple of 16, not before `first_done`), or `height` when what is
+// left is too little to share.
+int JpegSecondBandStart(int height, int first_done);
 
-// PNG or JPEG (quality 95) from 8-bit sRGB; RuntimeError naming the file when it cannot be written.
+// PNG (zlib level 1, the Sub filter, deflated in two bands of rows at once: the same bytes on any thread
+// count) or JPEG (quality 95) from 8-bit sRGB; RuntimeError naming the file when it cannot be written.
 void WriteSrgb8Atomic(const std::filesystem::path& path, const Srgb8Image& image);
 // EXR (ZIP compression) from linear float channels, interleaved; channel names as given ("R,G,B", "Z").
 void WriteExrAtomic(const std::filesystem::path& path, int width, int height, const std::vector<std::string>& channels,

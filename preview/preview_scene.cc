@@ -84,7 +84,7 @@ PreviewScene::PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shadin
   tbb::parallel_invoke(
       [&] {
         const auto start = Clock::now();
-        caster_ = std::make_unique<scene::RayCaster>(mesh_);
+        caster_ = std::make_shared<const scene::RayCaster>(mesh_);
         load_times_.bvh_s = SecondsSince(start);
       },
       [&] {
@@ -95,28 +95,29 @@ PreviewScene::PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shadin
   Finish(sun, backdrop);
 }
 
-PreviewScene::PreviewScene(scene::SceneMesh mesh, std::vector<Texture> textures, const Trajectory& plan,
-                           Shading shading, SunDirection sun, Backdrop backdrop)
-    : mesh_(std::move(mesh)), subjects_(plan), textures_(std::move(textures)), shading_(shading) {
+PreviewScene::PreviewScene(scene::SceneMesh mesh, std::vector<Texture> textures, const Prepared& prepared,
+                           const Trajectory& plan, Shading shading, SunDirection sun, Backdrop backdrop)
+    : mesh_(std::move(mesh)),
+      caster_(prepared.caster),
+      subjects_(plan),
+      textures_(std::move(textures)),
+      shading_(shading) {
   if (textures_.size() != mesh_.images.size()) throw InternalError("PreviewScene: one texture per mesh image");
-  const auto start = Clock::now();
-  caster_ = std::make_unique<scene::RayCaster>(mesh_);
-  load_times_.bvh_s = SecondsSince(start);
-  Finish(sun, backdrop);
+  if (!caster_) throw InternalError("PreviewScene: no ray caster given");
+  Finish(sun, backdrop, prepared.ring.get());
 }
 
-void PreviewScene::Finish(SunDirection sun, Backdrop backdrop) {
+void PreviewScene::Finish(SunDirection sun, Backdrop backdrop, const scene::BorderRing* ring) {
   const double az = sun.azimuth_deg * kDegToRad, el = sun.elevation_deg * kDegToRad;
   sun_direction_enu_ = Eigen::Vector3d(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el));
   const auto ground_start = Clock::now();
-  if (backdrop == Backdrop::kGround) ground_ = BorderGround();
+  if (backdrop == Backdrop::kGround) ground_ = BorderGround(ring ? *ring : scene::FindBorderRing(mesh_));
   load_times_.ground_s = SecondsSince(ground_start);
 }
 
 // The plane and colour of the ground past the edge: the border ring (scene/border_ring.h), each ring
 // face's colour at its centroid (texture included), averaged per sector of azimuth.
-GroundBackdrop PreviewScene::BorderGround() const {
-  const scene::BorderRing ring = scene::FindBorderRing(mesh_);
+GroundBackdrop PreviewScene::BorderGround(const scene::BorderRing& ring) const {
   std::vector<Eigen::Vector3f> face_colors(ring.faces.size());
   for (size_t i = 0; i < ring.faces.size(); ++i) {
     scene::RayHit at_centroid;

@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include "preview/image_files.h"
 #include "preview/render_options.h"
 #include "preview/subject_proxies.h"
 #include "scene/border_ring.h"
@@ -32,7 +33,7 @@ namespace cinepath::preview {
 struct Texture {
   int width = 0;
   int height = 0;
-  std::vector<uint8_t> srgb;                                // width x height x RGB
+  ImageBytes srgb;                                          // width x height x RGB
   Eigen::Vector3f Sample(const Eigen::Vector2f& uv) const;  // bilinear in linear light, wrapping (glTF REPEAT)
 };
 
@@ -67,9 +68,9 @@ struct GroundBackdrop {
 
 // Wall-clock seconds of each loading step (`render -v` prints them; never written into an image).
 struct SceneLoadTimes {
-  double bvh_s = 0;       // Embree's BVH of the mesh
+  double bvh_s = 0;       // Embree's BVH of the mesh (0 when it was given built)
   double textures_s = 0;  // decoding the base-colour images (JPEG/PNG) to 8-bit texels
-  double ground_s = 0;    // the ground past the edge (border ring)
+  double ground_s = 0;    // the ground past the edge (border ring, unless given found, and its colours)
 };
 
 // The mesh's images decoded, one texture each (libjpeg, libpng). InputError for an image that cannot be.
@@ -80,9 +81,16 @@ class PreviewScene {
   // Builds the BVH and decodes the textures, at once. InputError for an empty or broken mesh.
   PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun,
                Backdrop backdrop = Backdrop::kNone);
-  // The same with the textures decoded already (DecodeTextures(mesh)): only the BVH is built.
-  PreviewScene(scene::SceneMesh mesh, std::vector<Texture> textures, const Trajectory& plan, Shading shading,
-               SunDirection sun, Backdrop backdrop);
+  // What render's loading makes of the mesh beside the plan's reading, shared by every flight's scene:
+  // its BVH (a RayCaster of this mesh: its queries are const) and, for Backdrop::kGround, its border ring
+  // (scene::FindBorderRing; found here when null).
+  struct Prepared {
+    std::shared_ptr<const scene::RayCaster> caster;
+    std::shared_ptr<const scene::BorderRing> ring;
+  };
+  // The same with the textures decoded already (DecodeTextures(mesh)) and the BVH built already.
+  PreviewScene(scene::SceneMesh mesh, std::vector<Texture> textures, const Prepared& prepared, const Trajectory& plan,
+               Shading shading, SunDirection sun, Backdrop backdrop);
   ~PreviewScene();
 
   // One instant of the scene: the time and where the subjects stand then, worked out once for the many
@@ -122,12 +130,13 @@ class PreviewScene {
   Eigen::Vector3f Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
                         const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out) const;
   Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
-  GroundBackdrop BorderGround() const;
-  void Finish(SunDirection sun, Backdrop backdrop);  // the sun's direction and the ground past the edge
+  GroundBackdrop BorderGround(const scene::BorderRing& ring) const;
+  // The sun's direction and the ground past the edge (from `ring` when given).
+  void Finish(SunDirection sun, Backdrop backdrop, const scene::BorderRing* ring = nullptr);
   Eigen::Vector3f Light(const Eigen::Vector3d& position, const Eigen::Vector3d& normal, const Instant& at) const;
 
   scene::SceneMesh mesh_;
-  std::unique_ptr<scene::RayCaster> caster_;
+  std::shared_ptr<const scene::RayCaster> caster_;
   SubjectProxies subjects_;
   std::vector<Texture> textures_;  // one per mesh image
   Shading shading_;

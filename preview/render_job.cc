@@ -12,6 +12,7 @@
 #include <memory>
 #include <sstream>
 
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
 #include "core/error.h"
@@ -27,6 +28,7 @@
 #include "preview/sun_position.h"
 #include "preview/thin_lens_camera.h"
 #include "scene/glb_reader.h"
+#include "scene/ray_caster.h"
 
 namespace cinepath::preview {
 namespace {
@@ -175,20 +177,46 @@ SunDirection SunForOptions(const RenderOptions& options, const Trajectory& plan,
   return sun;
 }
 
-// The GLB read and its textures decoded on another thread while the plan is read and the options are
-// checked (the plan's JSON and the atlas's JPEG are the two longest loading steps, and independent). Its
-// errors are raised where the GLB used to be read, after the plan's and the options' own.
+// The GLB read, then its textures decoded, its BVH built and its border ring found at once, on other
+// threads while the plan is read and the options are checked (the plan's JSON and the atlas's JPEG are
+// the two longest loading steps of the bundled scene, and independent; a large mesh's BVH and border ring
+// take longer than its atlas). Its errors are raised where the GLB used to be read, after the plan's and
+// the options' own: the GLB's, then the textures', then the BVH's (the order of the steps before they
+// overlapped; the ring raises none).
 class SceneLoader {
  public:
-  explicit SceneLoader(const SceneFile& scene_file) {
-    group_.run([this, &scene_file] {
+  // `ring`: also the mesh's border ring (for the ground past the edge).
+  SceneLoader(const SceneFile& scene_file, bool ring) {
+    group_.run([this, &scene_file, ring] {
+      using Clock = std::chrono::steady_clock;
       try {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = Clock::now();
         mesh_ = scene::ReadGlbFile(scene_file.RequireMesh());
-        const auto decoded = std::chrono::steady_clock::now();
-        glb_s_ = std::chrono::duration<double>(decoded - start).count();
-        textures_ = DecodeTextures(mesh_);
-        textures_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - decoded).count();
+        glb_s_ = std::chrono::duration<double>(Clock::now() - start).count();
+        tbb::parallel_invoke(
+            [this] {
+              const auto begin = Clock::now();
+              try {
+                textures_ = DecodeTextures(mesh_);
+              } catch (...) {
+                textures_error_ = std::current_exception();
+              }
+              textures_s_ = std::chrono::duration<double>(Clock::now() - begin).count();
+            },
+            [this] {
+              const auto begin = Clock::now();
+              try {
+                prepared_.caster = std::make_shared<const scene::RayCaster>(mesh_);
+              } catch (...) {
+                bvh_error_ = std::current_exception();
+              }
+              bvh_s_ = std::chrono::duration<double>(Clock::now() - begin).count();
+            },
+            [this, ring] {
+              const auto begin = Clock::now();
+              if (ring) prepared_.ring = std::make_shared<const scene::BorderRing>(scene::FindBorderRing(mesh_));
+              ring_s_ = std::chrono::duration<double>(Clock::now() - begin).count();
+            });
       } catch (...) {
         error_ = std::current_exception();
       }
@@ -198,24 +226,30 @@ class SceneLoader {
   SceneLoader(const SceneLoader&) = delete;
   SceneLoader& operator=(const SceneLoader&) = delete;
 
-  // Waits; the loading step's error if it failed. Call once.
+  // Waits; the loading steps' first error if one failed. Call once.
   void Wait(const RenderLog& log) {
     group_.wait();
-    if (error_) std::rethrow_exception(error_);
+    for (const std::exception_ptr& error : {error_, textures_error_, bvh_error_}) {
+      if (error) std::rethrow_exception(error);
+    }
     if (log.step_done) {
       log.step_done("open GLB (parse, Draco), beside the plan", glb_s_);
       log.step_done("decode textures, beside the plan", textures_s_);
+      log.step_done("BVH, beside the textures", bvh_s_);
+      log.step_done("border ring of the ground past the edge, beside them", ring_s_);
     }
   }
   scene::SceneMesh& mesh() { return mesh_; }
   std::vector<Texture>& textures() { return textures_; }
+  const PreviewScene::Prepared& prepared() const { return prepared_; }
 
  private:
   tbb::task_group group_;
   scene::SceneMesh mesh_;
   std::vector<Texture> textures_;
-  std::exception_ptr error_;
-  double glb_s_ = 0, textures_s_ = 0;
+  PreviewScene::Prepared prepared_;
+  std::exception_ptr error_, textures_error_, bvh_error_;
+  double glb_s_ = 0, textures_s_ = 0, bvh_s_ = 0, ring_s_ = 0;
 };
 
 }  // namespace
@@ -500,7 +534,7 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   };
   // Everything that can be refused, before anything is written.
   const SceneFile scene_file = ReadSceneFile(scene_json);
-  SceneLoader loader(scene_file);
+  SceneLoader loader(scene_file, options.backdrop == Backdrop::kGround);
   TeamPlan team = ReadTeamPlanFile(plan_json);
   summary.notes = TeamPlanNotes(team);
   summary.inputs.push_back(plan_json.string());
@@ -553,12 +587,9 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
     const Trajectory& plan = team.flights[f].plan;
     const bool last = f + 1 == team.flights.size();  // the last flight takes the mesh, the others a copy
     const PreviewScene scene(last ? std::move(loader.mesh()) : loader.mesh(),
-                             last ? std::move(loader.textures()) : loader.textures(), plan, options.shading, sun,
-                             options.backdrop);
-    if (log.step_done) {
-      log.step_done("BVH", scene.load_times().bvh_s);
-      log.step_done("ground past the edge", scene.load_times().ground_s);
-    }
+                             last ? std::move(loader.textures()) : loader.textures(), loader.prepared(), plan,
+                             options.shading, sun, options.backdrop);
+    if (log.step_done) log.step_done("ground past the edge (its colours)", scene.load_times().ground_s);
     std::vector<std::pair<size_t, fs::path>> targets;
     for (size_t k : frames) {
       if (k >= plan.samples.size()) break;

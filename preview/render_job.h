@@ -26,7 +26,7 @@ struct RenderedFrame {
 struct RenderLog {
   std::function<void(const RenderedFrame&, size_t done, size_t total)> frame_done;
   // Each loading step before the first frame, with its wall-clock seconds (`render -v`): "read plan.json
-  // and scene.json", "open GLB (parse, Draco)", "BVH", "decode textures", "ground past the edge".
+  // and scene.json", "open GLB (parse, Draco)", "decode textures", "BVH", "ground past the edge".
   std::function<void(const std::string& step, double seconds)> step_done;
 };
 

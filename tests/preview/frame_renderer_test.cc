@@ -137,6 +137,31 @@ TEST(FrameRenderer, TheGroundContinuesPastTheMeshToTheHorizon) {
   }
 }
 
+// render builds the BVH and finds the border ring beside the textures' decoding and hands them to the
+// scene: the same pixels, depths and ground as the scene that builds them itself.
+TEST(FrameRenderer, AScenePreparedBesideItsTexturesRendersTheSameFrame) {
+  Trajectory tall = StillCamera({0, 0, 10}, 24, 8, 30);
+  tall.camera.height_px = 160;
+  FrameSettings settings = Settings(Quality::kStandard, 4);
+  settings.height_px = 160;
+  const scene::SceneMesh mesh = GroundPatch();
+  const PreviewScene built(mesh, tall, Shading::kSun, SunDirection{}, Backdrop::kGround);
+  PreviewScene::Prepared prepared;
+  prepared.caster = std::make_shared<const scene::RayCaster>(mesh);
+  prepared.ring = std::make_shared<const scene::BorderRing>(scene::FindBorderRing(mesh));
+  const PreviewScene given(mesh, DecodeTextures(mesh), prepared, tall, Shading::kSun, SunDirection{},
+                           Backdrop::kGround);
+  ASSERT_TRUE(given.ground().has_value());
+  EXPECT_EQ(given.ground()->sector_color, built.ground()->sector_color);
+  const FrameImage a = RenderFrame(built, tall, 1, settings), b = RenderFrame(given, tall, 1, settings);
+  EXPECT_EQ(a.rgb_linear, b.rgb_linear);
+  EXPECT_EQ(a.depth_m, b.depth_m);
+  // Without a ring given, the scene finds it.
+  const PreviewScene no_ring(mesh, DecodeTextures(mesh), {prepared.caster, nullptr}, tall, Shading::kSun,
+                             SunDirection{}, Backdrop::kGround);
+  EXPECT_EQ(no_ring.ground()->sector_color, built.ground()->sector_color);
+}
+
 // The red channel averaged down each column.
 std::vector<double> ColumnProfile(const FrameImage& image) {
   std::vector<double> profile(image.width, 0.0);

@@ -1,14 +1,18 @@
 // The EXR writer read back through the OpenEXR library's InputFile: channels (stored in name order),
 // size, ZIP compression, every value bit for bit; the same bytes on every call and in the file, no
-// temporary file left behind. JPEG decoding in bands. The sRGB encoding's ends.
+// temporary file left behind. JPEG decoding in bands. The PNG writer read back. The sRGB encoding's ends.
 #include "preview/image_files.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <png.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
+#include <algorithm>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -184,11 +188,99 @@ TEST(JpegDecode, BandsDecodedAtOnceGiveTheBytesOfOneDecoder) {
   }
 }
 
+// libjpeg's own decode of a JPEG, row by row into a zero-filled buffer: the reference bytes.
+std::vector<uint8_t> ReferenceDecode(const std::vector<uint8_t>& encoded) {
+  jpeg_decompress_struct jpeg{};
+  jpeg_error_mgr error{};
+  jpeg.err = jpeg_std_error(&error);
+  jpeg_create_decompress(&jpeg);
+  jpeg_mem_src(&jpeg, encoded.data(), static_cast<unsigned long>(encoded.size()));
+  jpeg_read_header(&jpeg, TRUE);
+  jpeg.out_color_space = JCS_RGB;
+  jpeg_start_decompress(&jpeg);
+  std::vector<uint8_t> rgb(size_t(jpeg.output_width) * jpeg.output_height * 3);
+  while (jpeg.output_scanline < jpeg.output_height) {
+    JSAMPROW row = &rgb[size_t(jpeg.output_scanline) * jpeg.output_width * 3];
+    jpeg_read_scanlines(&jpeg, &row, 1);
+  }
+  jpeg_finish_decompress(&jpeg);
+  jpeg_destroy_decompress(&jpeg);
+  return rgb;
+}
+
+// The texels' buffer is neither zero-filled first nor, past 8 MB, in 4 KiB pages (huge pages are asked
+// for): every byte must still be the decoder's.
+TEST(JpegDecode, ALargeImageIsDecodedInFullIntoItsUnfilledBuffer) {
+  const std::vector<uint8_t> jpeg = TestJpeg(1800, 1700, 2, 2);  // 9.2 MB of texels
+  const std::vector<uint8_t> reference = ReferenceDecode(jpeg);
+  for (int parts : {1, 2}) {
+    const Srgb8Image image = DecodeJpeg(jpeg, "test", parts);
+    ASSERT_EQ(image.rgb.size(), reference.size());
+    EXPECT_TRUE(std::equal(image.rgb.begin(), image.rgb.end(), reference.begin())) << parts << " bands";
+  }
+}
+
+// The shared decode splits where the second decoder finds the first when it starts: whenever that is,
+// the same bytes as one decoder.
+TEST(JpegDecode, TwoDecodersSplittingWhenTheSecondStartsGiveTheBytesOfOne) {
+  for (const auto& [h, v] : {std::pair{1, 1}, std::pair{2, 2}, std::pair{2, 1}}) {
+    const std::vector<uint8_t> jpeg = TestJpeg(301, 777, h, v);
+    const Srgb8Image one = DecodeJpeg(jpeg, "test", 1);
+    for (int run = 0; run < 20; ++run) {
+      const Srgb8Image shared = DecodeJpegShared(jpeg, "test");
+      ASSERT_EQ(shared.width, 301);
+      ASSERT_EQ(shared.height, 777);
+      EXPECT_TRUE(shared.rgb == one.rgb) << "sampling " << h << "x" << v << ", run " << run;
+    }
+  }
+}
+
+TEST(JpegDecode, TheSecondBandStartsOnAnMcuRowAfterTheFirstsRows) {
+  for (int height : {512, 777, 4096}) {
+    for (int done = 0; done <= height; done += 16) {
+      const int start = JpegSecondBandStart(height, done);
+      EXPECT_GE(start, std::min(done, height)) << height << " " << done;
+      EXPECT_TRUE(start == height || start % 16 == 0) << height << " " << done;
+      EXPECT_LE(start, height);
+    }
+    EXPECT_GT(JpegSecondBandStart(height, 0), height / 2);  // the skipped rows cost the second decoder
+    EXPECT_EQ(JpegSecondBandStart(height, height - 16), height);
+  }
+}
+
 TEST(JpegDecode, BrokenBytesAreAnInputError) {
   std::vector<uint8_t> jpeg = TestJpeg(64, 64, 2, 2);
   jpeg.resize(40);
   EXPECT_THROW(DecodeSrgb8(jpeg, "test"), InputError);
   EXPECT_THROW(DecodeSrgb8(std::vector<uint8_t>{1, 2, 3, 4}, "test"), InputError);
+}
+
+// The PNG writer (its own chunks, the zlib stream deflated in two bands of rows at once) read back by
+// libpng: the same size and bytes, for images of one band and of two; the same file bytes whether one
+// thread or several write it.
+TEST(PngWriter, LibpngReadsBackEveryByteAndTheFileIsTheSameOnOneThread) {
+  const auto dir = TestDir("png");
+  for (const auto& [width, height] : {std::pair{7, 5}, std::pair{301, 777}}) {
+    Srgb8Image image{width, height, ImageBytes(size_t(width) * height * 3)};
+    uint32_t state = 11;
+    for (auto& byte : image.rgb) byte = uint8_t((state = state * 1664525u + 1013904223u) >> 24);
+    const std::filesystem::path path = dir / ("image_" + std::to_string(height) + ".png");
+    WriteSrgb8Atomic(path, image);
+    png_image read{};
+    read.version = PNG_IMAGE_VERSION;
+    ASSERT_TRUE(png_image_begin_read_from_file(&read, path.c_str())) << read.message;
+    read.format = PNG_FORMAT_RGB;
+    std::vector<uint8_t> rgb(PNG_IMAGE_SIZE(read));
+    ASSERT_TRUE(png_image_finish_read(&read, nullptr, rgb.data(), 0, nullptr)) << read.message;
+    EXPECT_EQ(int(read.width), width);
+    EXPECT_EQ(int(read.height), height);
+    EXPECT_TRUE(std::equal(rgb.begin(), rgb.end(), image.rgb.begin(), image.rgb.end())) << height << " rows";
+    const std::filesystem::path one_thread = dir / ("one_" + std::to_string(height) + ".png");
+    tbb::task_arena(1).execute([&] { WriteSrgb8Atomic(one_thread, image); });
+    std::ifstream a(path, std::ios::binary), b(one_thread, std::ios::binary);
+    EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), {}, std::istreambuf_iterator<char>(b), {}));
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Srgb8, Ends) {
