@@ -54,8 +54,8 @@ bench: build
 # longest test of the step; every plan runs the same code).
 SANITIZE_ENV = UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:suppressions=$(CURDIR)/tests/sanitizers/ubsan.supp \
   CINEPATH_PROPERTY_PLANS=5
-SANITIZE_SLOW = viewer\.browser|pipeline\.killed\.|pipeline\.determinism|pipeline\.texture_determinism|\
-  mesh_real\.sample_poisson
+SANITIZE_POISSON = mesh_real\.sample_poisson
+SANITIZE_SLOW = viewer\.browser|pipeline\.killed\.|pipeline\.determinism|pipeline\.texture_determinism|$(SANITIZE_POISSON)
 SANITIZE_SLOW_UNITS = DecimateForPlan\.AnOrbit|DecimateForPlan\.ATileOverTheBound
 SANITIZE_SKIP = interop\.|colmap_runner|repo\.|pipeline\.examples_makefile|$(SANITIZE_SLOW)|$(SANITIZE_SLOW_UNITS)
 BINARY_TESTS = golden\.|pipeline\.|preview\.|optimizer\.|viewer\.|extremes\.|mesh_truth\.|mesh_real\.
