@@ -3,10 +3,10 @@
 # shot gets with cinepath's local slow-down, against the peer of the same run, one uniform stretch of the
 # whole shot by its worst ratio (value / limit)^(1 / order) (what slowing the shot's duration_s in the shot
 # list does), and what optimize costs with it.
-#   bench/optimize_retime.sh BUILD_DIR OUT_DIR
+#   bench/optimize_retime.sh BUILD_DIR [OUT_DIR]
 set -euo pipefail
 BUILD=$1
-OUT=$2
+OUT=${2:-$(mktemp -d)}
 CINEPATH=$BUILD/cli/cinepath
 mkdir -p "$OUT"
 printf '| profile | orbit | shot s | path retimed | rate limits it broke | uniform stretch of that path: s longer | cinepath retime: s longer | slowest factor | feasible after | optimize CPU s without / with retime |\n'
