@@ -13,6 +13,7 @@
 
 #include "core/drone_profiles.h"
 #include "core/feasibility.h"
+#include "core/json.h"
 #include "optimizer/optimizer.h"
 #include "optimizer/plan_samples.h"
 #include "tests/optimizer/test_scenes.h"
@@ -28,26 +29,42 @@ std::string Num(double v) { return std::to_string(v); }
 // ends, joined continuously or by a cut.
 std::string TwoOrbits(const std::string& profile, double radius_m, double turns, double duration_s, bool retime,
                       const std::string& transition) {
-  std::string lens = R"("min_focal_length_mm": 24, "max_focal_length_mm": 200)";
+  Json camera = {{"filmback", "super35"},
+                 {"width_px", 1920},
+                 {"height_px", 1080},
+                 {"min_focal_length_mm", 24},
+                 {"max_focal_length_mm", 200}};
   const auto drone = FindDroneProfile(profile);  // held: the lens is a reference into it
   if (const auto& fixed = drone->lens) {         // the aircraft's built-in lens
-    lens = "\"min_focal_length_mm\": " + Num(fixed->min_focal_length_mm) +
-           ", \"max_focal_length_mm\": " + Num(fixed->max_focal_length_mm) +
-           ", \"min_f_number\": " + Num(fixed->min_f_number) + ", \"max_f_number\": " + Num(fixed->max_f_number) +
-           ", \"min_focus_distance_m\": " + Num(fixed->min_focus_distance_m);
+    camera["min_focal_length_mm"] = fixed->min_focal_length_mm;
+    camera["max_focal_length_mm"] = fixed->max_focal_length_mm;
+    camera["min_f_number"] = fixed->min_f_number;
+    camera["max_f_number"] = fixed->max_f_number;
+    camera["min_focus_distance_m"] = fixed->min_focus_distance_m;
   }
-  return R"({"schema": "cinepath.shots/1", "frame_rate_hz": 30, "camera": {"filmback": "super35", "width_px": 1920,
-      "height_px": 1080, )" +
-         lens + R"(}, "drone": ")" + profile + R"(",
-      "actors": [{"name": "keeper", "height_m": 1.8, "position_enu_m": [0, 0, 0]}],
-      "shots": [{"name": "fast", "type": "ORBIT", "subject": "keeper", "duration_s": )" +
-         Num(duration_s) + R"(, "radius_m": )" + Num(radius_m) + R"(, "height_m": 12, "turns": )" + Num(turns) +
-         R"(, "direction": "cw", "start_bearing_deg": 0, "easing": "smootherstep",
-                 "optimize": {"retime": )" +
-         (retime ? "true" : "false") + R"(}},
-                {"name": "slow", "type": "ORBIT", "subject": "keeper", "duration_s": 6, "radius_m": )" +
-         Num(radius_m) + R"(, "height_m": 12, "turns": 0.02, "direction": "cw", "start_bearing_deg": )" +
-         Num(360 * turns) + R"(, "easing": "smootherstep", "transition": ")" + transition + R"("}]})";
+  const auto orbit = [&](const std::string& name, double seconds, double orbit_turns, double bearing_deg) {
+    return Json{{"name", name},
+                {"type", "ORBIT"},
+                {"subject", "keeper"},
+                {"duration_s", seconds},
+                {"radius_m", radius_m},
+                {"height_m", 12},
+                {"turns", orbit_turns},
+                {"direction", "cw"},
+                {"start_bearing_deg", bearing_deg},
+                {"easing", "smootherstep"}};
+  };
+  Json fast = orbit("fast", duration_s, turns, 0);
+  fast["optimize"] = {{"retime", retime}};
+  Json slow = orbit("slow", 6, 0.02, 360 * turns);
+  slow["transition"] = transition;
+  const Json shots = {{"schema", "cinepath.shots/1"},
+                      {"frame_rate_hz", 30},
+                      {"camera", camera},
+                      {"drone", profile},
+                      {"actors", Json::array({{{"name", "keeper"}, {"height_m", 1.8}, {"position_enu_m", {0, 0, 0}}}})},
+                      {"shots", Json::array({fast, slow})}};
+  return shots.dump();
 }
 
 // The largest excess of every limit in every shot.
@@ -194,7 +211,7 @@ TEST(Retime, TheOptInIsReadFromTheShotList) {
   EXPECT_TRUE(plan.shots[0].intent.retime);
   EXPECT_FALSE(plan.shots[1].intent.retime);
   std::string bad = shots;
-  bad.replace(bad.find("\"retime\": true"), 14, "\"retime\": 1");
+  bad.replace(bad.find("\"retime\":true"), 13, "\"retime\":1");
   try {
     PlanFromShots(bad);
     ADD_FAILURE() << "a number for retime was read";
