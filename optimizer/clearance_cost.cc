@@ -2,7 +2,7 @@
 
 namespace cinepath::optimizer {
 
-bool ClearanceCost::EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const {
+bool ClearanceCost::EvaluateState(const SampleState<double>& s, double* residuals, double* state_rows) const {
   const auto closest = surface_->Closest(s.position);
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // d residual / d camera position
   residuals[0] = 0;
@@ -16,7 +16,10 @@ bool ClearanceCost::EvaluateAt(const SampleState<double>& s, double* residuals, 
     residuals[0] = weight_ * (margin_m_ + shift_m_ - signed_m) / margin_m_;
     gradient = -weight_ / margin_m_ * Away(*closest, s.position);
   }
-  FillJacobians(gradient, jacobians);
+  if (state_rows) {  // the camera position is the state's first three fields
+    std::fill(state_rows, state_rows + kStateFields, 0.0);
+    for (int c = 0; c < 3; ++c) state_rows[c] = gradient[c];
+  }
   return true;
 }
 
@@ -24,15 +27,6 @@ Eigen::Vector3d ClearanceCost::Away(const scene::SurfacePoint& closest, const Ei
   const Eigen::Vector3d offset = position - closest.position_enu_m;
   return closest.distance_m > 1e-9 ? Eigen::Vector3d(offset / closest.distance_m * (closest.behind ? -1.0 : 1.0))
                                    : closest.normal_enu;
-}
-
-void ClearanceCost::FillJacobians(const Eigen::Vector3d& gradient, double** jacobians) const {
-  if (!jacobians) return;
-  for (int j = 0; j < 4; ++j) {
-    if (!jacobians[j]) continue;
-    std::fill(jacobians[j], jacobians[j] + kNumChannels, 0.0);
-    for (int c = 0; c < 3; ++c) jacobians[j][c] = gradient[c] * base_.knots.value[j];
-  }
 }
 
 double ClearanceCost::SignedDistanceM(const Eigen::Vector3d& position) const {

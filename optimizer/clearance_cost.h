@@ -19,9 +19,10 @@ class ClearanceCost : public ceres::SizedCostFunction<1, kNumChannels, kNumChann
   ClearanceCost(const SampleBase& base, const scene::SurfaceDistance* surface, double margin_m, double weight)
       : base_(base), surface_(surface), margin_m_(margin_m), weight_(weight) {}
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    return EvaluateAt(EvaluateSample(base_, parameters), residuals, jacobians);
+    return EvaluateAt(EvaluateSample(base_, parameters), residuals, jacobians, base_.knots);
   }
-  bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const override;
+  bool EvaluateState(const SampleState<double>& s, double* residuals, double* state_rows) const override;
+  int rows() const override { return 1; }
   // The augmented Lagrangian's multiplier update (docs/optimize.md, "Limits as constraints"), the
   // residual being weight max(0, margin - d + shift) / margin: shift = max(0, shift + margin - d). Returns
   // (margin - d) / margin.
@@ -38,7 +39,6 @@ class ClearanceCost : public ceres::SizedCostFunction<1, kNumChannels, kNumChann
   // The direction out of the surface at `position`: along the offset from its closest point, or along the
   // face normal when on or behind it.
   static Eigen::Vector3d Away(const scene::SurfacePoint& closest, const Eigen::Vector3d& position);
-  void FillJacobians(const Eigen::Vector3d& gradient, double** jacobians) const;
   double shift_m_ = 0;
   bool signed_margin_ = false;
   SampleBase base_;

@@ -68,6 +68,9 @@ struct OptimizeOptions {
   // Set: in place of every solve, its penalty ramp and its multiplier rounds (always empty, outside the
   // peer benchmark).
   ConstrainedSolver constrained_solver;
+  // Bench only (bench/optimize_bench.cc, `--solver ceres`): Ceres' own Levenberg-Marquardt with its sparse
+  // normal Cholesky in place of the banded solver (optimizer/banded_solver.h), on the same problem.
+  bool ceres_solver = false;
 
   static OptimizeOptions ForQuality(Quality quality);
 };

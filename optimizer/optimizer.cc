@@ -23,6 +23,7 @@
 #include "core/number_format.h"
 #include "core/optics.h"
 #include "core/rotation.h"
+#include "optimizer/banded_solver.h"
 #include "optimizer/clearance_cost.h"
 #include "optimizer/cost_terms.h"
 #include "optimizer/limit_guard.h"
@@ -237,6 +238,7 @@ class PlanOptimizer {
   // How far past the first clear viewpoint a target is set: the pull stops just short of its target.
   static constexpr double kTargetOvershootM = 0.75;
   void Solve(bool ramp);
+  void SolveBandedStage(ceres::Problem* problem);
   // Solves again with the multipliers of the hard limits updated until they hold (docs/optimize.md,
   // "Limits as constraints"), at most options_.multiplier_rounds times.
   void SolveUntilTheLimitsHold();
@@ -413,6 +415,7 @@ class PlanOptimizer {
   size_t frames_without_target_ = 0;  // blocked, and no clear viewpoint within reach (summed over rounds)
   int iterations_ = 0;
   double solve_s_ = 0;
+  double damping_ = 0;  // the banded solver's damping at the end of the last solve (0: none yet)
   std::string termination_ = "no variables";
   std::vector<std::string> skipped_;
 };
@@ -830,8 +833,13 @@ void PlanOptimizer::Solve(bool ramp) {
       termination_ = "external solver";
       continue;
     }
+    ceres::Problem* problem = scale < 1.0 ? CoarseProblem() : &problem_;
+    if (!options_.ceres_solver) {
+      SolveBandedStage(problem);
+      continue;
+    }
     ceres::Solver::Summary summary;
-    ceres::Solve(o, scale < 1.0 ? CoarseProblem() : &problem_, &summary);
+    ceres::Solve(o, problem, &summary);
     iterations_ += static_cast<int>(summary.iterations.size()) - 1;
     solve_s_ += summary.total_time_in_seconds;
     termination_ = summary.message;
@@ -839,6 +847,30 @@ void PlanOptimizer::Solve(bool ramp) {
       throw RuntimeError("optimize: the solver failed: " + summary.message);
     }
   }
+}
+
+// One stage with the banded Levenberg-Marquardt (optimizer/banded_solver.h): the knots are one array, every
+// block reads a few consecutive knots, and the fixed channels are those FixChannels holds.
+void PlanOptimizer::SolveBandedStage(ceres::Problem* problem) {
+  if (knots_.empty()) return;
+  std::vector<std::array<bool, kNumChannels>> fixed(knots_.size());
+  for (size_t i = 0; i < knots_.size(); ++i) {
+    for (int c = 0; c < kNumChannels; ++c) fixed[i][c] = held_[i][c] || !touched_[i][c];
+  }
+  BandedSolverOptions o;
+  o.max_iterations = options_.max_iterations;
+  o.function_tolerance = options_.function_tolerance;
+  // Each solve starts at the damping the last one ended with (the next stage or round is a nearby problem):
+  // from Ceres' default of 1e-4, every solve first spent five to eight rejected steps raising it.
+  if (damping_ > 0) o.initial_damping = damping_;
+  const auto start = std::chrono::steady_clock::now();
+  const BandedSolverSummary summary =
+      SolveBanded(problem, knots_.front().data(), static_cast<int>(knots_.size()), fixed, o);
+  solve_s_ += Seconds(start);
+  iterations_ += summary.iterations;
+  damping_ = summary.final_damping;
+  termination_ = summary.message;
+  if (summary.failed) throw RuntimeError("optimize: the solver failed: " + summary.message);
 }
 
 int PlanOptimizer::CoarseStride() const {

@@ -22,7 +22,7 @@
 
 namespace cinepath::optimizer {
 
-class SampleCostFunction : public ceres::CostFunction {
+class SampleCostFunction : public ceres::CostFunction, public StateBlock {
  public:
   // `stiffness`: the continuation's scale on the stiff parts' cost, read at every evaluation (1: full weight).
   SampleCostFunction(const SampleBase& base, const double* stiffness) : base_(base), stiffness_(stiffness) {
@@ -41,33 +41,58 @@ class SampleCostFunction : public ceres::CostFunction {
   bool empty() const { return parts_.empty(); }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const SampleState<double> s = EvaluateSample(base_, parameters);
-    const double scale = std::sqrt(*stiffness_);
-    double* part_jacobians[4];
+    if (!jacobians) return EvaluateRows(parameters, residuals, nullptr, true);
+    std::vector<double>& state_rows = StateRowsBuffer(num_residuals());
+    if (!EvaluateRows(parameters, residuals, state_rows.data(), false)) return false;
+    StateRowsToKnots(base_.knots, state_rows.data(), num_residuals(), jacobians);
+    const double scale = std::sqrt(*stiffness_);  // the stiff parts' Jacobian rows, as Ceres scales a loss's
+    if (scale == 1.0) return true;
     for (const Part& p : parts_) {
-      if (jacobians) {
-        for (int j = 0; j < 4; ++j) part_jacobians[j] = jacobians[j] ? jacobians[j] + p.row * kNumChannels : nullptr;
-      }
-      if (!p.state->EvaluateAt(s, residuals + p.row, jacobians ? part_jacobians : nullptr)) return false;
-      if (!p.stiff || scale == 1.0) continue;
-      const int rows = p.cost->num_residuals();
-      for (int i = 0; i < rows; ++i) residuals[p.row + i] *= scale;
-      if (!jacobians) continue;
+      if (!p.stiff) continue;
       for (int j = 0; j < 4; ++j) {
-        if (!part_jacobians[j]) continue;
-        for (int i = 0; i < rows * kNumChannels; ++i) part_jacobians[j][i] *= scale;
+        if (!jacobians[j]) continue;
+        double* rows = jacobians[j] + p.row * kNumChannels;
+        for (int i = 0; i < p.state->rows() * kNumChannels; ++i) rows[i] *= scale;
       }
     }
     return true;
   }
 
+  // The rows in the sample's state (StateBlock): each part's, a stiff part's times sqrt(stiffness).
+  bool EvaluateStateBlock(double const* const* parameters, double* residuals, double* state_rows) const override {
+    return EvaluateRows(parameters, residuals, state_rows, true);
+  }
+  const KnotWeights& knot_weights() const override { return base_.knots; }
+
  private:
+  // The parts' residuals (a stiff part's times sqrt(stiffness)) and state rows (scaled too when `scale_rows`).
+  bool EvaluateRows(double const* const* parameters, double* residuals, double* state_rows, bool scale_rows) const {
+    const SampleState<double> s = EvaluateSample(base_, parameters);
+    const double scale = std::sqrt(*stiffness_);
+    for (const Part& p : parts_) {
+      double* rows = state_rows ? state_rows + p.row * kStateFields : nullptr;
+      if (!p.state->EvaluateState(s, residuals + p.row, rows)) return false;
+      if (!p.stiff || scale == 1.0) continue;
+      const int n = p.state->rows();
+      for (int i = 0; i < n; ++i) residuals[p.row + i] *= scale;
+      if (rows && scale_rows) {
+        for (int i = 0; i < n * kStateFields; ++i) rows[i] *= scale;
+      }
+    }
+    return true;
+  }
   struct Part {
     std::unique_ptr<ceres::CostFunction> cost;
     const StatePart* state;  // the same object as `cost`
     int row;                 // its first residual in the block
     bool stiff;
   };
+  // A buffer per thread for Evaluate's state rows (a block has no fixed row count).
+  static std::vector<double>& StateRowsBuffer(int rows) {
+    thread_local std::vector<double> buffer;
+    buffer.resize(static_cast<size_t>(rows) * kStateFields);
+    return buffer;
+  }
   SampleBase base_;
   const double* stiffness_;
   std::vector<Part> parts_;

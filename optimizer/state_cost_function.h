@@ -27,13 +27,53 @@ namespace cinepath::optimizer {
 
 enum StateFields { kValues = kNumChannels, kValuesAndRates = 2 * kNumChannels + 6 };
 
+// The derivatives of a term's rows in its sample's state, one row of kValuesAndRates per residual: the
+// eight channel values, their eight first derivatives, then the path's acceleration and jerk (east, north,
+// up), as StateCostFunction::Seeded numbers them; zero where the term does not read a field.
+inline constexpr int kStateFields = kValuesAndRates;
+
+// The chain rule from a block's state rows to its four knots (the Jacobians as ceres::CostFunction gives them).
+inline void StateRowsToKnots(const KnotWeights& w, const double* state_rows, int rows, double** jacobians) {
+  for (int j = 0; j < 4; ++j) {
+    if (!jacobians[j]) continue;
+    for (int i = 0; i < rows; ++i) {
+      const double* d = state_rows + i * kStateFields;
+      double* row = jacobians[j] + i * kNumChannels;
+      for (int c = 0; c < kNumChannels; ++c) {
+        row[c] = w.value[j] * d[c] + w.d1[j] * d[kNumChannels + c];
+        if (c < 3) row[c] += w.d2[j] * d[2 * kNumChannels + c] + w.d3[j] * d[2 * kNumChannels + 3 + c];
+      }
+    }
+  }
+}
+
 // A one-sample term evaluated at its sample's state, already computed: the Jacobian in the four knots as
 // `ceres::CostFunction::Evaluate` gives it (optimizer/sample_cost_function.h stacks a sample's terms in one
-// residual block and evaluates the state once for all of them).
+// residual block and evaluates the state once for all of them), or in the state's fields (`state_rows`:
+// rows x kStateFields, null for the residuals only), which the banded solver (optimizer/banded_solver.h)
+// takes through the spline's weights itself.
 class StatePart {
  public:
   virtual ~StatePart() = default;
-  virtual bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const = 0;
+  virtual bool EvaluateState(const SampleState<double>& s, double* residuals, double* state_rows) const = 0;
+  virtual int rows() const = 0;
+  bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians, const KnotWeights& w) const {
+    if (!jacobians) return EvaluateState(s, residuals, nullptr);
+    double state_rows[kMaxStateRows * kStateFields];
+    if (!EvaluateState(s, residuals, state_rows)) return false;
+    StateRowsToKnots(w, state_rows, rows(), jacobians);
+    return true;
+  }
+  static constexpr int kMaxStateRows = 19;
+};
+
+// A block of residuals on one sample's four knots that can give its Jacobian in the sample's state (the
+// sample blocks, and the one-sample terms in blocks of their own): the banded solver asks for that.
+class StateBlock {
+ public:
+  virtual ~StateBlock() = default;
+  virtual bool EvaluateStateBlock(double const* const* parameters, double* residuals, double* state_rows) const = 0;
+  virtual const KnotWeights& knot_weights() const = 0;
 };
 
 // A functor of hinges that writes the gradients of its active ones itself (LimitsCost::ActiveGradients).
@@ -55,7 +95,7 @@ concept AnalyticHinges = requires(const Functor& f, const SampleState<double>& s
 // a sample rarely presses on more than two limits at once), and every Jacobian product of the solve handles `rows` rows
 // instead of 19, most of them zero.
 template <typename Functor, int kFields>
-class StateCostFunction : public ceres::CostFunction, public StatePart {
+class StateCostFunction : public ceres::CostFunction, public StatePart, public StateBlock {
  public:
   static constexpr int kMaxResiduals = 19;
   StateCostFunction(Functor* functor, int residuals, int rows = 0)
@@ -65,55 +105,47 @@ class StateCostFunction : public ceres::CostFunction, public StatePart {
   }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    return EvaluateAt(EvaluateSample(functor_->base, parameters), residuals, jacobians);
+    return EvaluateAt(EvaluateSample(functor_->base, parameters), residuals, jacobians, functor_->base.knots);
   }
-  bool EvaluateAt(const SampleState<double>& s, double* residuals, double** jacobians) const override {
-    if (!jacobians || hinges_) {
+  bool EvaluateStateBlock(double const* const* parameters, double* residuals, double* state_rows) const override {
+    return EvaluateState(EvaluateSample(functor_->base, parameters), residuals, state_rows);
+  }
+  const KnotWeights& knot_weights() const override { return functor_->base.knots; }
+  int rows() const override { return num_residuals(); }
+  bool EvaluateState(const SampleState<double>& s, double* residuals, double* state_rows) const override {
+    if (!state_rows || hinges_) {
       double full_values[kMaxResiduals];
       if (!functor_->Residuals(s, full_values)) return false;
       Compact(full_values, residuals);
-      if (!jacobians) return true;
+      if (!state_rows) return true;
       // Every hinge inactive: zero residuals, and zero derivatives (max(0, x) is flat at x <= 0).
       if (std::all_of(residuals, residuals + num_residuals(), [](double r) { return r == 0.0; })) {
-        for (int j = 0; j < 4; ++j) {
-          if (jacobians[j]) std::fill(jacobians[j], jacobians[j] + num_residuals() * kNumChannels, 0.0);
-        }
+        std::fill(state_rows, state_rows + num_residuals() * kStateFields, 0.0);
         return true;
       }
       if constexpr (kFields == kValuesAndRates && AnalyticHinges<Functor>) {
         bool active[kMaxResiduals];  // the hinges nonzero at s, the only ones differentiated
         for (int i = 0; i < functor_rows_; ++i) active[i] = full_values[i] != 0.0;
-        if (hinges_) return HingeJacobians(s, full_values, active, residuals, jacobians);
+        if (hinges_) return HingeRows(s, full_values, active, residuals, state_rows);
       }
     }
     using Jet = ceres::Jet<double, kFields>;
     Jet full[kMaxResiduals], r[kMaxResiduals];
     if (!functor_->Residuals(Seeded<Jet>(s), full)) return false;
     Compact(full, r);
-    const KnotWeights& w = functor_->base.knots;
-    for (int i = 0; i < num_residuals(); ++i) residuals[i] = r[i].a;
-    for (int j = 0; j < 4; ++j) {
-      if (!jacobians[j]) continue;
-      for (int i = 0; i < num_residuals(); ++i) {
-        const auto& d = r[i].v;
-        double* row = jacobians[j] + i * kNumChannels;
-        for (int c = 0; c < kNumChannels; ++c) {
-          row[c] = w.value[j] * d[c];
-          if constexpr (kFields == kValuesAndRates) {
-            row[c] += w.d1[j] * d[kNumChannels + c];
-            if (c < 3) row[c] += w.d2[j] * d[2 * kNumChannels + c] + w.d3[j] * d[2 * kNumChannels + 3 + c];
-          }
-        }
-      }
+    for (int i = 0; i < num_residuals(); ++i) {
+      residuals[i] = r[i].a;
+      double* row = state_rows + i * kStateFields;
+      for (int f = 0; f < kStateFields; ++f) row[f] = f < kFields ? r[i].v[f] : 0.0;
     }
     return true;
   }
 
  private:
-  // The hinges' Jacobian from the functor's own gradients of the active ones, without Jets: each row's
+  // The hinges' state rows from the functor's own gradients of the active ones, without Jets: each row's
   // gradient as Compact picks its value, the last row's, when it lumps the rest, sum(r_i g_i) / its value.
-  bool HingeJacobians(const SampleState<double>& s, const double* full, const bool* active, const double* residuals,
-                      double** jacobians) const {
+  bool HingeRows(const SampleState<double>& s, const double* full, const bool* active, const double* residuals,
+                 double* state_rows) const {
     double g[kMaxResiduals][kValuesAndRates];
     functor_->ActiveGradients(s, active, g);
     const int rows = num_residuals();
@@ -136,20 +168,12 @@ class StateCostFunction : public ceres::CostFunction, public StatePart {
         row_gradient[rows - 1] = lumped;
       }
     }
-    const KnotWeights& w = functor_->base.knots;
-    for (int j = 0; j < 4; ++j) {
-      if (!jacobians[j]) continue;
-      for (int i = 0; i < rows; ++i) {
-        double* row = jacobians[j] + i * kNumChannels;
-        const double* d = row_gradient[i];
-        if (!d) {
-          std::fill(row, row + kNumChannels, 0.0);
-          continue;
-        }
-        for (int c = 0; c < kNumChannels; ++c) {
-          row[c] = w.value[j] * d[c] + w.d1[j] * d[kNumChannels + c];
-          if (c < 3) row[c] += w.d2[j] * d[2 * kNumChannels + c] + w.d3[j] * d[2 * kNumChannels + 3 + c];
-        }
+    for (int i = 0; i < rows; ++i) {
+      double* row = state_rows + i * kStateFields;
+      if (row_gradient[i]) {
+        std::copy(row_gradient[i], row_gradient[i] + kStateFields, row);
+      } else {
+        std::fill(row, row + kStateFields, 0.0);
       }
     }
     return true;

@@ -1,0 +1,389 @@
+#include "optimizer/banded_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+#include <ceres/ceres.h>
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "core/error.h"
+#include "optimizer/state_cost_function.h"
+
+namespace cinepath::optimizer {
+namespace {
+
+constexpr int kChannels = 8;
+using Mat8 = Eigen::Matrix<double, kChannels, kChannels>;
+using Vec8 = Eigen::Matrix<double, kChannels, 1>;
+
+struct Block {
+  const ceres::CostFunction* cost;
+  const StateBlock* state;  // non-null: the Jacobian comes in the sample's state (StateAccumulate)
+  const ceres::LossFunction* loss;
+  std::vector<double*> params;
+  std::vector<int> knot;  // of each parameter block
+  int rows;
+};
+
+// The lower band of a symmetric block matrix over knots: block (i, i - d) for d = 0..band.
+class BlockBand {
+ public:
+  BlockBand(int n, int band) : n_(n), band_(band), blocks_(static_cast<size_t>(n) * (band + 1), Mat8::Zero()) {}
+  int size() const { return n_; }
+  int band() const { return band_; }
+  Mat8& at(int i, int j) { return blocks_[static_cast<size_t>(i) * (band_ + 1) + (i - j)]; }  // j in [i - band, i]
+  const Mat8& at(int i, int j) const { return blocks_[static_cast<size_t>(i) * (band_ + 1) + (i - j)]; }
+  void SetZero() {
+    for (Mat8& m : blocks_) m.setZero();
+  }
+
+  // y = A x (A symmetric, its lower band stored).
+  void Multiply(const std::vector<Vec8>& x, std::vector<Vec8>* y) const {
+    y->assign(n_, Vec8::Zero());
+    for (int i = 0; i < n_; ++i) {
+      (*y)[i] += at(i, i) * x[i];
+      for (int j = std::max(0, i - band_); j < i; ++j) {
+        (*y)[i] += at(i, j) * x[j];
+        (*y)[j] += at(i, j).transpose() * x[i];
+      }
+    }
+  }
+
+  // In place: the band's Cholesky factor L (A = L L^T); false when A is not positive definite.
+  bool Factor() {
+    for (int i = 0; i < n_; ++i) {
+      for (int j = std::max(0, i - band_); j <= i; ++j) {
+        Mat8 s = at(i, j);
+        for (int k = std::max(0, i - band_); k < j; ++k) {
+          if (k < j - band_) continue;
+          s.noalias() -= at(i, k) * at(j, k).transpose();
+        }
+        if (j < i) {  // L(i, j) = S L(j, j)^-T
+          at(i, j) = at(j, j).triangularView<Eigen::Lower>().solve(s.transpose()).transpose();
+          continue;
+        }
+        Eigen::LLT<Mat8> llt(s);
+        if (llt.info() != Eigen::Success) return false;
+        at(i, i) = llt.matrixL();
+      }
+    }
+    return true;
+  }
+
+  // Solves L L^T x = b with the factor.
+  void Solve(std::vector<Vec8>* b) const {
+    std::vector<Vec8>& x = *b;
+    for (int i = 0; i < n_; ++i) {
+      for (int k = std::max(0, i - band_); k < i; ++k) x[i].noalias() -= at(i, k) * x[k];
+      x[i] = at(i, i).triangularView<Eigen::Lower>().solve(x[i]);
+    }
+    for (int i = n_ - 1; i >= 0; --i) {
+      for (int k = i + 1; k <= std::min(n_ - 1, i + band_); ++k) x[i].noalias() -= at(k, i).transpose() * x[k];
+      x[i] = at(i, i).transpose().triangularView<Eigen::Upper>().solve(x[i]);
+    }
+  }
+
+ private:
+  int n_, band_;
+  std::vector<Mat8> blocks_;
+};
+
+class Solver {
+ public:
+  Solver(ceres::Problem* problem, double* knots, int num_knots, const std::vector<std::array<bool, 8>>& fixed)
+      : knots_(knots), n_(num_knots), fixed_(fixed) {
+    std::vector<ceres::ResidualBlockId> ids;
+    problem->GetResidualBlocks(&ids);  // in the order they were added: a fixed order of sums
+    for (const ceres::ResidualBlockId id : ids) {
+      Block b;
+      b.cost = problem->GetCostFunctionForResidualBlock(id);
+      b.state = dynamic_cast<const StateBlock*>(b.cost);
+      b.loss = problem->GetLossFunctionForResidualBlock(id);
+      problem->GetParameterBlocksForResidualBlock(id, &b.params);
+      b.rows = b.cost->num_residuals();
+      int lo = n_, hi = -1;
+      for (double* p : b.params) {
+        const int k = static_cast<int>((p - knots_) / kChannels);
+        b.knot.push_back(k);
+        lo = std::min(lo, k);
+        hi = std::max(hi, k);
+      }
+      if (b.params.size() > kMaxKnots) throw RuntimeError("banded solver: a residual block reads more than four knots");
+      band_ = std::max(band_, hi - lo);
+      most_rows_ = std::max(most_rows_, b.rows);
+      most_params_ = std::max(most_params_, static_cast<int>(b.params.size()));
+      blocks_.push_back(std::move(b));
+    }
+  }
+
+  BandedSolverSummary Run(const BandedSolverOptions& o) {
+    BandedSolverSummary summary;
+    BlockBand h(n_, band_), damped(n_, band_);
+    std::vector<Vec8> g(n_), dx(n_), hdx(n_);
+    std::vector<double> saved(knots_, knots_ + n_ * kChannels);
+    double cost = Evaluate(&h, &g);
+    summary.initial_cost = summary.final_cost = cost;
+    if (!std::isfinite(cost)) {
+      summary.failed = true;
+      summary.message = "the cost is not finite at the start";
+      return summary;
+    }
+    double lambda = o.initial_damping, nu = 2;
+    summary.message = "iteration cap";
+    while (summary.iterations < o.max_iterations) {
+      if (GradientNorm(g) <= o.gradient_tolerance) {
+        summary.message = "gradient tolerance";
+        break;
+      }
+      ++summary.iterations;
+      if (!Step(h, g, lambda, &damped, &dx)) {
+        lambda *= nu;
+        nu *= 2;
+        continue;
+      }
+      h.Multiply(dx, &hdx);
+      double predicted = 0, step_norm = 0, x_norm = 0;
+      for (int i = 0; i < n_; ++i) {
+        predicted -= g[i].dot(dx[i]) + 0.5 * dx[i].dot(hdx[i]);
+        step_norm += dx[i].squaredNorm();
+      }
+      for (int i = 0; i < n_ * kChannels; ++i) x_norm += knots_[i] * knots_[i];
+      if (std::sqrt(step_norm) <= o.parameter_tolerance * (std::sqrt(x_norm) + o.parameter_tolerance)) {
+        summary.message = "parameter tolerance";
+        break;
+      }
+      std::copy(knots_, knots_ + n_ * kChannels, saved.begin());
+      for (int i = 0; i < n_; ++i) {
+        for (int c = 0; c < kChannels; ++c) knots_[i * kChannels + c] += dx[i][c];
+      }
+      const double trial = Evaluate(nullptr, nullptr);
+      const double rho = (cost - trial) / predicted;
+      if (trace_)
+        std::fprintf(stderr, "%4d %.6e -> %.6e rho %.3f lambda %.2e\n", summary.iterations, cost, trial, rho, lambda);
+      if (!(std::isfinite(trial) && predicted > 0 && rho > o.min_relative_decrease)) {
+        std::copy(saved.begin(), saved.end(), knots_);
+        lambda *= nu;
+        nu *= 2;
+        continue;
+      }
+      const double decrease = (cost - trial) / std::max(cost, std::numeric_limits<double>::min());
+      cost = Evaluate(&h, &g);
+      lambda *= std::max(1.0 / 3.0, 1.0 - std::pow(2 * rho - 1, 3));
+      nu = 2;
+      if (decrease <= o.function_tolerance) {
+        summary.message = "function tolerance";
+        break;
+      }
+    }
+    summary.final_cost = cost;
+    summary.final_damping = lambda;
+    return summary;
+  }
+
+ private:
+  // dx from (H + lambda diag(H)) dx = -g, the fixed channels held; false when the system cannot be factored.
+  bool Step(const BlockBand& h, const std::vector<Vec8>& g, double lambda, BlockBand* damped,
+            std::vector<Vec8>* dx) const {
+    *damped = h;
+    for (int i = 0; i < n_; ++i) {
+      // A fixed channel does not move: its row and column out of the system, its step zero.
+      for (int j = std::max(0, i - band_); j <= i; ++j) {
+        Mat8& block = damped->at(i, j);
+        for (int c = 0; c < kChannels; ++c) {
+          if (fixed_[i][c]) block.row(c).setZero();
+          if (fixed_[j][c]) block.col(c).setZero();
+        }
+      }
+      Mat8& d = damped->at(i, i);
+      for (int c = 0; c < kChannels; ++c) {
+        if (fixed_[i][c]) {
+          d(c, c) = 1;
+          continue;
+        }
+        d(c, c) += lambda * std::clamp(h.at(i, i)(c, c), 1e-6, 1e32);
+      }
+      (*dx)[i] = -g[i];
+    }
+    if (!damped->Factor()) return false;
+    damped->Solve(dx);
+    for (int i = 0; i < n_; ++i) {
+      for (int c = 0; c < kChannels; ++c) {
+        if (fixed_[i][c] || !std::isfinite((*dx)[i][c])) (*dx)[i][c] = 0;
+      }
+    }
+    return true;
+  }
+
+  double GradientNorm(const std::vector<Vec8>& g) const {
+    double most = 0;
+    for (int i = 0; i < n_; ++i) {
+      for (int c = 0; c < kChannels; ++c) {
+        if (!fixed_[i][c]) most = std::max(most, std::fabs(g[i][c]));
+      }
+    }
+    return most;
+  }
+
+  // The cost 1/2 sum rho(|r|^2); with `h`, also the Gauss-Newton matrix J^T J and the gradient J^T r
+  // (each block's rows and Jacobian scaled by sqrt(rho'), exact for losses without curvature). Not finite
+  // when a block cannot be evaluated.
+  double Evaluate(BlockBand* h, std::vector<Vec8>* g) {
+    if (h) {
+      h->SetZero();
+      g->assign(n_, Vec8::Zero());
+    }
+    residuals_.resize(most_rows_);
+    jacobians_.resize(static_cast<size_t>(most_rows_) * std::max(kChannels * most_params_, kStateFields));
+    double cost = 0;
+    std::vector<double*> jacobian_ptrs(most_params_);
+    for (const Block& b : blocks_) {
+      const int np = static_cast<int>(b.params.size());
+      for (int j = 0; j < np; ++j) jacobian_ptrs[j] = jacobians_.data() + static_cast<size_t>(j) * b.rows * kChannels;
+      const bool ok =
+          b.state ? b.state->EvaluateStateBlock(b.params.data(), residuals_.data(), h ? jacobians_.data() : nullptr)
+                  : b.cost->Evaluate(b.params.data(), residuals_.data(), h ? jacobian_ptrs.data() : nullptr);
+      if (!ok) return std::numeric_limits<double>::quiet_NaN();
+      double squared = 0;
+      for (int i = 0; i < b.rows; ++i) squared += residuals_[i] * residuals_[i];
+      double rho[3] = {squared, 1, 0};
+      if (b.loss) b.loss->Evaluate(squared, rho);
+      cost += 0.5 * rho[0];
+      if (!std::isfinite(cost)) return cost;
+      if (!h || rho[1] <= 0) continue;
+      if (b.state) {
+        StateAccumulate(b, rho[1], h, g);
+      } else {
+        Accumulate(b, jacobian_ptrs.data(), rho[1], h, g);
+      }
+    }
+    return cost;
+  }
+
+  // A block whose Jacobian came in its sample's state (jacobians_: rows x kStateFields). Most rows read the
+  // eight channel values only (the goals, keep-out, clearance): their Gram matrix in those, 8 x 8, goes to
+  // the knot pair (a, c) times value_a value_c, the spline's weights. Rows that read rates (a limit's
+  // active hinges) keep a 22 x 22 Gram matrix, taken through every weight of each field's channel.
+  void StateAccumulate(const Block& b, double weight, BlockBand* h, std::vector<Vec8>* g) {
+    values_gram_.setZero();
+    values_gradient_.setZero();
+    bool values = false, rates = false;
+    for (int i = 0; i < b.rows; ++i) {
+      const Eigen::Map<const Eigen::Matrix<double, kStateFields, 1>> d(jacobians_.data() + i * kStateFields);
+      const bool reads_rates = !d.tail<kStateFields - kChannels>().isZero(0);
+      if (!reads_rates && d.head<kChannels>().isZero(0)) continue;
+      const double r = weight * residuals_[i];
+      if (!reads_rates) {
+        values_gram_.noalias() += (weight * d.head<kChannels>()) * d.head<kChannels>().transpose();
+        values_gradient_.noalias() += r * d.head<kChannels>();
+        values = true;
+        continue;
+      }
+      if (!rates) {
+        state_gram_.setZero();
+        state_gradient_.setZero();
+        rates = true;
+      }
+      state_gram_.noalias() += (weight * d) * d.transpose();
+      state_gradient_.noalias() += r * d;
+    }
+    const KnotWeights& w = b.state->knot_weights();
+    const int first = b.knot[0];
+    if (values) {
+      for (int a = 0; a < 4; ++a) {
+        (*g)[first + a].noalias() += w.value[a] * values_gradient_;
+        for (int c = 0; c <= a; ++c) h->at(first + a, first + c).noalias() += (w.value[a] * w.value[c]) * values_gram_;
+      }
+    }
+    if (rates) AddStateGram(w, first, h, g);
+  }
+
+  // The 22 x 22 Gram matrix and gradient in the state's fields into the knots: field f of channel ch(f) and
+  // derivative order o(f) moves with knot a by the weight W[o(f)][a].
+  void AddStateGram(const KnotWeights& w, int first, BlockBand* h, std::vector<Vec8>* g) const {
+    const std::array<const std::array<double, 4>*, 4> by_order = {&w.value, &w.d1, &w.d2, &w.d3};
+    const auto channel = [](int f) { return f < 2 * kChannels ? f % kChannels : (f - 2 * kChannels) % 3; };
+    const auto order = [](int f) { return f < kChannels ? 0 : f < 2 * kChannels ? 1 : f < 2 * kChannels + 3 ? 2 : 3; };
+    // K[a]: fields x channels, the weight of each field in knot a.
+    Eigen::Matrix<double, kStateFields, kChannels> k[4];
+    for (int a = 0; a < 4; ++a) {
+      k[a].setZero();
+      for (int f = 0; f < kStateFields; ++f) k[a](f, channel(f)) = (*by_order[order(f)])[a];
+    }
+    for (int c = 0; c < 4; ++c) {
+      const Eigen::Matrix<double, kStateFields, kChannels> p = state_gram_ * k[c];
+      (*g)[first + c].noalias() += k[c].transpose() * state_gradient_;
+      for (int a = c; a < 4; ++a) h->at(first + a, first + c).noalias() += k[a].transpose() * p;
+    }
+  }
+
+  // Adds the block's rows (times weight = rho') to J^T J and J^T r: first into the block's own dense Gram
+  // matrix over its knots' channels, a rank-one update per row over the columns that row reads, then into
+  // the band. A row whose Jacobian is zero (a hinge of
+  // a limit that holds: most rows of a plan) costs nothing.
+  void Accumulate(const Block& b, double* const* jacobians, double weight, BlockBand* h, std::vector<Vec8>* g) {
+    const int np = static_cast<int>(b.params.size());
+    const int n = np * kChannels;
+    gram_.topLeftCorner(n, n).setZero();
+    gradient_.head(n).setZero();
+    bool any = false;
+    for (int i = 0; i < b.rows; ++i) {
+      bool zero = true;
+      for (int j = 0; j < np; ++j) {
+        for (int c = 0; c < kChannels; ++c) {
+          const double v = jacobians[j][i * kChannels + c];
+          row_[j * kChannels + c] = v;
+          zero = zero && v == 0;
+        }
+      }
+      if (zero) continue;
+      any = true;
+      gradient_.head(n) += (weight * residuals_[i]) * row_.head(n);
+      for (int q = 0; q < n; ++q) {
+        if (row_[q] == 0) continue;
+        gram_.col(q).segment(q, n - q) += (weight * row_[q]) * row_.segment(q, n - q);
+      }
+    }
+    if (!any) return;
+    for (int q = 0; q < n; ++q) {  // the lower triangle mirrored
+      for (int p = q + 1; p < n; ++p) gram_(q, p) = gram_(p, q);
+    }
+    for (int a = 0; a < np; ++a) {
+      (*g)[b.knot[a]] += gradient_.segment<kChannels>(a * kChannels);
+      for (int c = 0; c < np; ++c) {
+        if (b.knot[c] > b.knot[a]) continue;
+        h->at(b.knot[a], b.knot[c]) += gram_.block<kChannels, kChannels>(a * kChannels, c * kChannels);
+      }
+    }
+  }
+
+  Mat8 values_gram_;
+  Vec8 values_gradient_;
+  Eigen::Matrix<double, kStateFields, kStateFields> state_gram_;
+  Eigen::Matrix<double, kStateFields, 1> state_gradient_;
+  // Accumulate's work space: a block reads at most kMaxKnots knots.
+  static constexpr int kMaxKnots = 4;
+  Eigen::Matrix<double, kMaxKnots * kChannels, kMaxKnots * kChannels> gram_;
+  Eigen::Matrix<double, kMaxKnots * kChannels, 1> gradient_, row_;
+
+  bool trace_ = std::getenv("CINEPATH_CERES_TRACE") != nullptr;  // each step on stderr
+  double* knots_;
+  int n_;
+  const std::vector<std::array<bool, 8>>& fixed_;
+  std::vector<Block> blocks_;
+  int band_ = 0, most_rows_ = 0, most_params_ = 0;
+  std::vector<double> residuals_, jacobians_;
+};
+
+}  // namespace
+
+BandedSolverSummary SolveBanded(ceres::Problem* problem, double* knots, int num_knots,
+                                const std::vector<std::array<bool, 8>>& fixed, const BandedSolverOptions& options) {
+  Solver solver(problem, knots, num_knots, fixed);
+  return solver.Run(options);
+}
+
+}  // namespace cinepath::optimizer

@@ -1,0 +1,50 @@
+// Levenberg-Marquardt on the optimizer's own problem shape (docs/optimize.md, "Speed"): every variable is a
+// knot of eight channels, and every residual block reads a few consecutive knots (a sample's four, a
+// segment's four, one knot's adherence). The Gauss-Newton matrix J^T J is therefore block-banded: a knot
+// couples with the next three only. This solver accumulates it straight into that band, block by block,
+// skipping the rows whose Jacobian is zero (the hinges of limits that hold: most rows of a plan), and
+// factors it with a banded block Cholesky in time linear in the knots. Ceres' general sparse path did the
+// same work through a block-sparse Jacobian, its products and a sparse J^T J, which cost most of a solve.
+//
+// The steps are Levenberg-Marquardt's with Marquardt's diagonal damping and Nielsen's update of the damping
+// (H. B. Nielsen, "Damping parameter in Marquardt's method", IMM-REP-1999-05, DTU), as Ceres takes them:
+// a step is accepted when the cost falls by at least 1e-3 of what the model predicted. The problem is a
+// ceres::Problem (cost functions, loss functions with zero curvature, as the optimizer's scaled losses), so
+// the same problem can still go to Ceres (OptimizeOptions::solver). Single-threaded, a fixed order of sums:
+// the same bytes on every run.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace ceres {
+class Problem;
+}
+
+namespace cinepath::optimizer {
+
+struct BandedSolverOptions {
+  int max_iterations = 100;          // steps tried, accepted or not
+  double function_tolerance = 1e-8;  // an accepted step that lowers the cost by less than this fraction ends it
+  double parameter_tolerance = 1e-10;
+  double gradient_tolerance = 1e-12;    // largest gradient entry, in cost per unit of a channel
+  double initial_damping = 1e-4;        // lambda: the step solves (H + lambda diag(H)) dx = -g
+  double min_relative_decrease = 1e-3;  // a step is accepted when the cost falls by this much of the model's
+};
+
+struct BandedSolverSummary {
+  int iterations = 0;  // steps tried
+  double initial_cost = 0, final_cost = 0;
+  double final_damping = 0;  // lambda at the end: where the next solve of a similar problem may start
+  bool failed = false;       // the cost could not be evaluated at the start
+  std::string message;
+};
+
+// Solves `problem` over the knots [knots, knots + 8 * num_knots) (one contiguous array of num_knots
+// parameter blocks of 8; every parameter block of the problem is one of them), leaving the solution in them.
+// `fixed[i][c]`: channel c of knot i does not move (a constant block has every channel fixed).
+BandedSolverSummary SolveBanded(ceres::Problem* problem, double* knots, int num_knots,
+                                const std::vector<std::array<bool, 8>>& fixed, const BandedSolverOptions& options);
+
+}  // namespace cinepath::optimizer
