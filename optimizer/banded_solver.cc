@@ -53,22 +53,23 @@ class BlockBand {
     }
   }
 
-  // In place: the band's Cholesky factor L (A = L L^T); false when A is not positive definite.
+  // In place: the band's Cholesky factor L (A = L L^T), and the inverse of each diagonal block of L; false when
+  // A is not positive definite.
   bool Factor() {
+    inverse_.resize(n_);
     for (int i = 0; i < n_; ++i) {
       for (int j = std::max(0, i - band_); j <= i; ++j) {
         Mat8 s = at(i, j);
-        for (int k = std::max(0, i - band_); k < j; ++k) {
-          if (k < j - band_) continue;
-          s.noalias() -= at(i, k) * at(j, k).transpose();
-        }
+        for (int k = std::max(0, i - band_); k < j; ++k) s.noalias() -= at(i, k).lazyProduct(at(j, k).transpose());
         if (j < i) {  // L(i, j) = S L(j, j)^-T
-          at(i, j) = at(j, j).triangularView<Eigen::Lower>().solve(s.transpose()).transpose();
+          at(i, j) = s.lazyProduct(inverse_[j].transpose());
           continue;
         }
         Eigen::LLT<Mat8> llt(s);
         if (llt.info() != Eigen::Success) return false;
         at(i, i) = llt.matrixL();
+        inverse_[i].setIdentity();
+        at(i, i).triangularView<Eigen::Lower>().solveInPlace(inverse_[i]);
       }
     }
     return true;
@@ -79,17 +80,18 @@ class BlockBand {
     std::vector<Vec8>& x = *b;
     for (int i = 0; i < n_; ++i) {
       for (int k = std::max(0, i - band_); k < i; ++k) x[i].noalias() -= at(i, k) * x[k];
-      x[i] = at(i, i).triangularView<Eigen::Lower>().solve(x[i]);
+      x[i] = inverse_[i] * x[i];
     }
     for (int i = n_ - 1; i >= 0; --i) {
       for (int k = i + 1; k <= std::min(n_ - 1, i + band_); ++k) x[i].noalias() -= at(k, i).transpose() * x[k];
-      x[i] = at(i, i).transpose().triangularView<Eigen::Upper>().solve(x[i]);
+      x[i] = inverse_[i].transpose() * x[i];
     }
   }
 
  private:
   int n_, band_;
   std::vector<Mat8> blocks_;
+  std::vector<Mat8> inverse_;  // of L's diagonal blocks (Factor)
 };
 
 class Solver {
@@ -265,58 +267,59 @@ class Solver {
 
   // A block whose Jacobian came in its sample's state (jacobians_: rows x kStateFields). Most rows read the
   // eight channel values only (the goals, keep-out, clearance): their Gram matrix in those, 8 x 8, goes to
-  // the knot pair (a, c) times value_a value_c, the spline's weights. Rows that read rates (a limit's
-  // active hinges) keep a 22 x 22 Gram matrix, taken through every weight of each field's channel.
+  // the knot pair (a, c) times value_a value_c, the spline's weights. A row that reads rates (a limit's active
+  // hinge, one to three fields) goes to the knots on its own, over the few channels it reads.
   void StateAccumulate(const Block& b, double weight, BlockBand* h, std::vector<Vec8>* g) {
-    values_gram_.setZero();
-    values_gradient_.setZero();
-    bool values = false, rates = false;
-    for (int i = 0; i < b.rows; ++i) {
-      const Eigen::Map<const Eigen::Matrix<double, kStateFields, 1>> d(jacobians_.data() + i * kStateFields);
-      const bool reads_rates = !d.tail<kStateFields - kChannels>().isZero(0);
-      if (!reads_rates && d.head<kChannels>().isZero(0)) continue;
-      const double r = weight * residuals_[i];
-      if (!reads_rates) {
-        values_gram_.noalias() += (weight * d.head<kChannels>()) * d.head<kChannels>().transpose();
-        values_gradient_.noalias() += r * d.head<kChannels>();
-        values = true;
-        continue;
-      }
-      if (!rates) {
-        state_gram_.setZero();
-        state_gradient_.setZero();
-        rates = true;
-      }
-      state_gram_.noalias() += (weight * d) * d.transpose();
-      state_gradient_.noalias() += r * d;
-    }
     const KnotWeights& w = b.state->knot_weights();
     const int first = b.knot[0];
-    if (values) {
-      for (int a = 0; a < 4; ++a) {
-        (*g)[first + a].noalias() += w.value[a] * values_gradient_;
-        for (int c = 0; c <= a; ++c) h->at(first + a, first + c).noalias() += (w.value[a] * w.value[c]) * values_gram_;
+    values_gram_.setZero();
+    values_gradient_.setZero();
+    bool values = false;
+    for (int i = 0; i < b.rows; ++i) {
+      const double* d = jacobians_.data() + i * kStateFields;
+      bool reads_rates, reads_values;
+      reads_rates = (Eigen::Map<const Eigen::Array<double, kStateFields - kChannels, 1>>(d + kChannels) != 0).any();
+      reads_values = (Eigen::Map<const Eigen::Array<double, kChannels, 1>>(d) != 0).any();
+      if (reads_rates) {
+        AddRateRow(w, first, d, weight, residuals_[i], h, g);
+        continue;
       }
+      if (!reads_values) continue;
+      const Eigen::Map<const Vec8> v(d);
+      values_gram_.noalias() += (weight * v) * v.transpose();
+      values_gradient_.noalias() += (weight * residuals_[i]) * v;
+      values = true;
     }
-    if (rates) AddStateGram(w, first, h, g);
+    if (!values) return;
+    for (int a = 0; a < 4; ++a) {
+      (*g)[first + a].noalias() += w.value[a] * values_gradient_;
+      for (int c = 0; c <= a; ++c) h->at(first + a, first + c).noalias() += (w.value[a] * w.value[c]) * values_gram_;
+    }
   }
 
-  // The 22 x 22 Gram matrix and gradient in the state's fields into the knots: field f of channel ch(f) and
-  // derivative order o(f) moves with knot a by the weight W[o(f)][a].
-  void AddStateGram(const KnotWeights& w, int first, BlockBand* h, std::vector<Vec8>* g) const {
-    const std::array<const std::array<double, 4>*, 4> by_order = {&w.value, &w.d1, &w.d2, &w.d3};
-    const auto channel = [](int f) { return f < 2 * kChannels ? f % kChannels : (f - 2 * kChannels) % 3; };
-    const auto order = [](int f) { return f < kChannels ? 0 : f < 2 * kChannels ? 1 : f < 2 * kChannels + 3 ? 2 : 3; };
-    // K[a]: fields x channels, the weight of each field in knot a.
-    Eigen::Matrix<double, kStateFields, kChannels> k[4];
-    for (int a = 0; a < 4; ++a) {
-      k[a].setZero();
-      for (int f = 0; f < kStateFields; ++f) k[a](f, channel(f)) = (*by_order[order(f)])[a];
+  // One row in the state's fields d into the knots: its Jacobian in knot a, channel ch, is the sum over the
+  // fields of ch of the spline's weight of that field's derivative order in knot a times d (StateRowsToKnots).
+  static void AddRateRow(const KnotWeights& w, int first, const double* d, double weight, double residual, BlockBand* h,
+                         std::vector<Vec8>* g) {
+    int channels[kChannels], m = 0;
+    double u[4][kChannels];
+    for (int c = 0; c < kChannels; ++c) {
+      const double value = d[c], rate = d[kChannels + c];
+      const double accel = c < 3 ? d[2 * kChannels + c] : 0.0, jerk = c < 3 ? d[2 * kChannels + 3 + c] : 0.0;
+      if (value == 0 && rate == 0 && accel == 0 && jerk == 0) continue;
+      for (int a = 0; a < 4; ++a) u[a][m] = w.value[a] * value + w.d1[a] * rate + w.d2[a] * accel + w.d3[a] * jerk;
+      channels[m++] = c;
     }
-    for (int c = 0; c < 4; ++c) {
-      const Eigen::Matrix<double, kStateFields, kChannels> p = state_gram_ * k[c];
-      (*g)[first + c].noalias() += k[c].transpose() * state_gradient_;
-      for (int a = c; a < 4; ++a) h->at(first + a, first + c).noalias() += k[a].transpose() * p;
+    for (int a = 0; a < 4; ++a) {
+      Vec8& ga = (*g)[first + a];
+      for (int p = 0; p < m; ++p) ga[channels[p]] += weight * residual * u[a][p];
+      for (int c = 0; c <= a; ++c) {
+        Mat8& block = h->at(first + a, first + c);
+        for (int q = 0; q < m; ++q) {
+          const double wq = weight * u[c][q];
+          for (int p = 0; p < m; ++p) block(channels[p], channels[q]) += wq * u[a][p];
+        }
+      }
     }
   }
 
@@ -362,8 +365,6 @@ class Solver {
 
   Mat8 values_gram_;
   Vec8 values_gradient_;
-  Eigen::Matrix<double, kStateFields, kStateFields> state_gram_;
-  Eigen::Matrix<double, kStateFields, 1> state_gradient_;
   // Accumulate's work space: a block reads at most kMaxKnots knots.
   static constexpr int kMaxKnots = 4;
   Eigen::Matrix<double, kMaxKnots * kChannels, kMaxKnots * kChannels> gram_;

@@ -60,9 +60,12 @@ struct OptimizeOptions {
   double function_tolerance = 1e-8;  // Ceres: relative cost change that ends a round
   int visibility_rounds = 4;         // solve, re-check lines of sight, re-target the hidden frames, solve again
   int multiplier_rounds = 4;         // augmented Lagrangian: update the limits' multipliers, solve again
-  double clearance_margin_m = 3.0;   // distance to the mesh the drone keeps
-  double max_deviation_m = 5.0;      // default when a shot gives none
-  double limit_margin = 0.02;        // limits are aimed at (1 - margin) of their value, so they hold after
+  // The stiff stage's goals on the coarse grid (every few samples, weighted), its limits at every sample
+  // (docs/optimize.md, "Speed"): draft's trade of accuracy for time.
+  bool goals_on_coarse_grid = false;
+  double clearance_margin_m = 3.0;  // distance to the mesh the drone keeps
+  double max_deviation_m = 5.0;     // default when a shot gives none
+  double limit_margin = 0.02;       // limits are aimed at (1 - margin) of their value, so they hold after
   CostWeights weights;
   ExternalSolver external_solver;  // empty: Ceres (always, outside the fuzz target)
   // Set: in place of every solve, its penalty ramp and its multiplier rounds (always empty, outside the

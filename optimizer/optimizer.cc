@@ -340,7 +340,7 @@ class PlanOptimizer {
       return;
     }
     parts_[term].push_back({cost.get(), base.knots.first_knot});
-    sample_block_->Add(std::move(cost), IsStiff(term));
+    sample_block_->Add(std::move(cost), IsStiff(term), IsGoal(term));
   }
   // `sample`: the plan sample of a one-sample term (-1: a term of a segment or a knot), for the coarse grid.
   void AddBlock(const std::string& term, ceres::CostFunction* cost, int first_knot, int sample = -1) {
@@ -351,6 +351,7 @@ class PlanOptimizer {
     for (int j = 0; j < 4; ++j) blocks.push_back(knots_[first_knot + j].data());
     const ceres::ResidualBlockId id = problem_.AddResidualBlock(cost, loss, blocks);
     block_sample_[id] = sample;
+    ++problem_generation_;
     return id;
   }
   // A one-sample term inside its sample's block (SampleCostFunction owns it), with its four knots.
@@ -371,12 +372,20 @@ class PlanOptimizer {
   // by the stride, so that the sums still approximate the same integrals over time; built on first use.
   ceres::Problem* CoarseProblem();
   int CoarseStride() const;
+  // The coarse grid of goals (OptimizeOptions::goals_on_coarse_grid, docs/optimize.md, "Speed"): the stiff
+  // stage's problem with every sample's limits and the goals of every CoarseStride()-th sample only, weighted by
+  // the stride; rebuilt when the problem's blocks changed (limits joining, occlusion targets).
+  ceres::Problem* StiffProblem();
   void FixChannels(ceres::Problem* problem);
   std::map<ceres::ResidualBlockId, int> block_sample_;
   // Samples per knot segment the coarse grid keeps at least.
   static constexpr double kCoarseSamplesPerSegment = 5;
   // The drone's and the lens's limits: penalties whose weight is ramped up over the solve (Solve). The
   // clearance is at full weight from the start: a soft stage must not let the path ring into the ground.
+  // The objective's goals at a sample: what the coarse grid of goals weights (GoalWeightedSample).
+  static bool IsGoal(const std::string& term) {
+    return term == "framing" || term == "depth_of_field" || term == "background_blur";
+  }
   static bool IsStiff(const std::string& term) {
     return term == "limits" || term == "keep_out" || term == "separation" || term == "out_of_shot";
   }
@@ -399,6 +408,9 @@ class PlanOptimizer {
       std::make_unique<ceres::LossFunctionWrapper>(nullptr, ceres::TAKE_OWNERSHIP);
   ceres::Problem problem_{ProblemOptions()};
   std::unique_ptr<ceres::Problem> coarse_;  // CoarseProblem: problem_'s cost functions, destroyed before it
+  std::vector<std::unique_ptr<ceres::CostFunction>> stiff_costs_;  // stiff_'s weighted sample blocks
+  std::unique_ptr<ceres::Problem> stiff_;                          // StiffProblem, destroyed before both
+  int problem_generation_ = 0, stiff_generation_ = -1;             // blocks added to or removed from problem_
   static ceres::Problem::Options ProblemOptions() {
     ceres::Problem::Options o;
     o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -783,6 +795,7 @@ size_t PlanOptimizer::AddVisibilityTargets() {
     }
     if (occlusion_blocks_[k]) {
       problem_.RemoveResidualBlock(occlusion_blocks_[k]);
+      ++problem_generation_;
       auto& ids = terms_["occlusion"];
       ids.erase(std::find(ids.begin(), ids.end(), occlusion_blocks_[k]));
     }
@@ -833,7 +846,7 @@ void PlanOptimizer::Solve(bool ramp) {
       termination_ = "external solver";
       continue;
     }
-    ceres::Problem* problem = scale < 1.0 ? CoarseProblem() : &problem_;
+    ceres::Problem* problem = scale < 1.0 ? CoarseProblem() : StiffProblem();
     if (!options_.ceres_solver) {
       SolveBandedStage(problem);
       continue;
@@ -903,6 +916,40 @@ ceres::Problem* PlanOptimizer::CoarseProblem() {
   }
   FixChannels(coarse_.get());
   return coarse_.get();
+}
+
+ceres::Problem* PlanOptimizer::StiffProblem() {
+  const int stride = CoarseStride();
+  if (!options_.goals_on_coarse_grid || stride == 1) return &problem_;
+  if (stiff_ && stiff_generation_ == problem_generation_) return stiff_.get();
+  stiff_.reset();
+  stiff_costs_.clear();
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // problem_'s, and stiff_costs_
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  stiff_ = std::make_unique<ceres::Problem>(po);
+  std::vector<ceres::ResidualBlockId> ids;
+  problem_.GetResidualBlocks(&ids);  // in the order they were added
+  for (const ceres::ResidualBlockId id : ids) {
+    const ceres::CostFunction* cost = problem_.GetCostFunctionForResidualBlock(id);
+    std::vector<double*> blocks;
+    problem_.GetParameterBlocksForResidualBlock(id, &blocks);
+    const auto* sample_block = dynamic_cast<const SampleCostFunction*>(cost);
+    const auto found = block_sample_.find(id);
+    const int sample = found == block_sample_.end() ? -1 : found->second;
+    if (!sample_block || sample < 0) {  // segments, knots, limits that joined later, occlusion targets
+      stiff_->AddResidualBlock(const_cast<ceres::CostFunction*>(cost),
+                               const_cast<ceres::LossFunction*>(problem_.GetLossFunctionForResidualBlock(id)), blocks);
+      continue;
+    }
+    const bool on_grid = sample % stride == 0;
+    if (!on_grid && !sample_block->has_limits()) continue;
+    stiff_costs_.push_back(std::make_unique<GoalWeightedSample>(sample_block, on_grid ? stride : 0.0));
+    stiff_->AddResidualBlock(stiff_costs_.back().get(), nullptr, blocks);
+  }
+  FixChannels(stiff_.get());
+  stiff_generation_ = problem_generation_;
+  return stiff_.get();
 }
 
 void PlanOptimizer::VariableBlocks(std::vector<double*>* blocks, std::vector<std::vector<int>>* fixed) {
@@ -1476,6 +1523,7 @@ OptimizeResult RunLadder(const OptimizeInput& input, const OptimizeOptions& opti
       stage_options.function_tolerance = preset.function_tolerance;
       stage_options.visibility_rounds = preset.visibility_rounds;
       stage_options.multiplier_rounds = preset.multiplier_rounds;
+      stage_options.goals_on_coarse_grid = preset.goals_on_coarse_grid;
     }
     PlanOptimizer stage(input, i == 0 ? input.plan : kept.plan, stage_options, scene, targets ? &*targets : nullptr);
     OptimizeResult result = stage.Run();

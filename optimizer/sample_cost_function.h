@@ -31,14 +31,18 @@ class SampleCostFunction : public ceres::CostFunction, public StateBlock {
 
   // Stacks `part` (a cost function on the sample's four knots that is also a StatePart) below the others.
   // Only before the block joins a problem.
+  // `goal`: a goal of the objective (framing, depth of field, background blur), which a solve on the coarse grid
+  // of goals weights or leaves out (GoalWeightedSample); the rest are limits and stay at every sample.
   template <typename Part>
-  void Add(std::unique_ptr<Part> part, bool stiff) {
+  void Add(std::unique_ptr<Part> part, bool stiff, bool goal) {
     const int rows = part->num_residuals();
     const StatePart* state = part.get();
-    parts_.push_back({std::move(part), state, num_residuals(), stiff});
+    parts_.push_back({std::move(part), state, num_residuals(), stiff, goal});
     set_num_residuals(num_residuals() + rows);
+    has_limits_ = has_limits_ || !goal;
   }
   bool empty() const { return parts_.empty(); }
+  bool has_limits() const { return has_limits_; }  // a part that is not a goal
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     if (!jacobians) return EvaluateRows(parameters, residuals, nullptr, true);
@@ -62,18 +66,22 @@ class SampleCostFunction : public ceres::CostFunction, public StateBlock {
   bool EvaluateStateBlock(double const* const* parameters, double* residuals, double* state_rows) const override {
     return EvaluateRows(parameters, residuals, state_rows, true);
   }
-  const KnotWeights& knot_weights() const override { return base_.knots; }
-
- private:
-  // The parts' residuals (a stiff part's times sqrt(stiffness)) and state rows (scaled too when `scale_rows`).
-  bool EvaluateRows(double const* const* parameters, double* residuals, double* state_rows, bool scale_rows) const {
+  // The goals' rows times sqrt(goal_weight); at 0 they are not evaluated (zero rows).
+  bool EvaluateRows(double const* const* parameters, double* residuals, double* state_rows, bool scale_rows,
+                    double goal_weight = 1.0) const {
     const SampleState<double> s = EvaluateSample(base_, parameters);
-    const double scale = std::sqrt(*stiffness_);
+    const double stiff_scale = std::sqrt(*stiffness_), goal_scale = std::sqrt(goal_weight);
     for (const Part& p : parts_) {
       double* rows = state_rows ? state_rows + p.row * kStateFields : nullptr;
-      if (!p.state->EvaluateState(s, residuals + p.row, rows)) return false;
-      if (!p.stiff || scale == 1.0) continue;
       const int n = p.state->rows();
+      if (p.goal && goal_weight == 0) {
+        std::fill(residuals + p.row, residuals + p.row + n, 0.0);
+        if (rows) std::fill(rows, rows + n * kStateFields, 0.0);
+        continue;
+      }
+      if (!p.state->EvaluateState(s, residuals + p.row, rows)) return false;
+      const double scale = p.stiff ? stiff_scale : p.goal ? goal_scale : 1.0;
+      if (scale == 1.0) continue;
       for (int i = 0; i < n; ++i) residuals[p.row + i] *= scale;
       if (rows && scale_rows) {
         for (int i = 0; i < n * kStateFields; ++i) rows[i] *= scale;
@@ -81,12 +89,16 @@ class SampleCostFunction : public ceres::CostFunction, public StateBlock {
     }
     return true;
   }
+  const KnotWeights& knot_weights() const override { return base_.knots; }
+
+ private:
   struct Part {
     std::unique_ptr<ceres::CostFunction> cost;
     const StatePart* state;  // the same object as `cost`
     int row;                 // its first residual in the block
-    bool stiff;
+    bool stiff, goal;
   };
+  bool has_limits_ = false;
   // A buffer per thread for Evaluate's state rows (a block has no fixed row count).
   static std::vector<double>& StateRowsBuffer(int rows) {
     thread_local std::vector<double> buffer;
@@ -96,6 +108,32 @@ class SampleCostFunction : public ceres::CostFunction, public StateBlock {
   SampleBase base_;
   const double* stiffness_;
   std::vector<Part> parts_;
+};
+
+// A sample block on the coarse grid of goals (docs/optimize.md, "Speed"): its goals weighted by `goal_weight`
+// (the grid's stride, so that the goals' sums still approximate the same integrals over time; 0 off the
+// grid, where they are not evaluated), its limits as they are. Does not own the block.
+class GoalWeightedSample : public ceres::CostFunction, public StateBlock {
+ public:
+  GoalWeightedSample(const SampleCostFunction* block, double goal_weight) : block_(block), goal_weight_(goal_weight) {
+    set_num_residuals(block->num_residuals());
+    *mutable_parameter_block_sizes() = block->parameter_block_sizes();
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    if (!jacobians) return block_->EvaluateRows(parameters, residuals, nullptr, true, goal_weight_);
+    std::vector<double> state_rows(static_cast<size_t>(num_residuals()) * kStateFields);
+    if (!block_->EvaluateRows(parameters, residuals, state_rows.data(), true, goal_weight_)) return false;
+    StateRowsToKnots(block_->knot_weights(), state_rows.data(), num_residuals(), jacobians);
+    return true;
+  }
+  bool EvaluateStateBlock(double const* const* parameters, double* residuals, double* state_rows) const override {
+    return block_->EvaluateRows(parameters, residuals, state_rows, true, goal_weight_);
+  }
+  const KnotWeights& knot_weights() const override { return block_->knot_weights(); }
+
+ private:
+  const SampleCostFunction* block_;
+  double goal_weight_;
 };
 
 }  // namespace cinepath::optimizer

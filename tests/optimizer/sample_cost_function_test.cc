@@ -68,12 +68,12 @@ struct Terms {
   }
   std::unique_ptr<SampleCostFunction> Stacked(const double* stiffness) const {
     auto block = std::make_unique<SampleCostFunction>(base, stiffness);
-    block->Add(std::make_unique<StateCostFunction<FramingCost, kValues>>(new FramingCost(framing), 3), false);
-    block->Add(std::make_unique<StateCostFunction<SharpCost, kValues>>(new SharpCost(sharp), 1), false);
+    block->Add(std::make_unique<StateCostFunction<FramingCost, kValues>>(new FramingCost(framing), 3), false, true);
+    block->Add(std::make_unique<StateCostFunction<SharpCost, kValues>>(new SharpCost(sharp), 1), false, true);
     block->Add(std::make_unique<StateCostFunction<LimitsCost, kValuesAndRates>>(new LimitsCost(limits),
                                                                                 LimitsCost::kNumResiduals, 4),
-               true);
-    block->Add(std::make_unique<StateCostFunction<KeepOutCost, kValues>>(new KeepOutCost(keep_out), 1), true);
+               true, false);
+    block->Add(std::make_unique<StateCostFunction<KeepOutCost, kValues>>(new KeepOutCost(keep_out), 1), true, false);
     return block;
   }
 };
