@@ -139,7 +139,8 @@ std::shared_ptr<const SceneIndex> IndexScene(const OptimizeInput& input, const O
   }
   index->build_s = Seconds(start);
   if (background_goal && input.mesh->num_faces() > 0)
-    index->full_caster = std::make_unique<scene::RayCaster>(*input.mesh);
+    // (one ray per sample: a cheaper build pays)
+    index->full_caster = std::make_unique<scene::RayCaster>(*input.mesh, scene::RayCaster::BuildQuality::kLow);
   return index;
 }
 

@@ -28,7 +28,7 @@ namespace {
 
 }  // namespace
 
-RayCaster::RayCaster(const SceneMesh& mesh) : embree_(std::make_unique<Embree>()) {
+RayCaster::RayCaster(const SceneMesh& mesh, BuildQuality quality) : embree_(std::make_unique<Embree>()) {
   if (mesh.num_faces() == 0) throw InputError("ray caster: the mesh has no faces");
   bounds_ = mesh.Bounds();
   centre_enu_m_ = bounds_.center();
@@ -41,9 +41,13 @@ RayCaster::RayCaster(const SceneMesh& mesh) : embree_(std::make_unique<Embree>()
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device) throw RuntimeError("ray caster: cannot create an Embree device");
   embree_->scene = rtcNewScene(embree_->device);
-  rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
+  // kLow: the Morton builder Embree uses for dynamic scenes (a low scene quality, a low geometry quality).
+  rtcSetSceneFlags(embree_->scene, quality == BuildQuality::kHigh ? RTC_SCENE_FLAG_ROBUST
+                                                                  : RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(embree_->scene,
+                          quality == BuildQuality::kHigh ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_LOW);
   RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  if (quality == BuildQuality::kLow) rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_LOW);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), vertices_enu_m_.size()));
   auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,

@@ -29,8 +29,13 @@ struct RayHit {
 
 class RayCaster {
  public:
+  // How much the BVH build spends for faster queries: kHigh (Embree's SAH build with spatial splits) for
+  // casters that trace many rays (a render, the optimizer's corridor); kLow (its Morton build, several times
+  // cheaper to build) for a large mesh that answers a few thousand rays (the optimizer's background
+  // distances over the whole scene). The hits are the same: the triangle test is watertight either way.
+  enum class BuildQuality { kHigh, kLow };
   // InputError when the mesh has no faces or a non-finite vertex.
-  explicit RayCaster(const SceneMesh& mesh);
+  explicit RayCaster(const SceneMesh& mesh, BuildQuality quality = BuildQuality::kHigh);
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
