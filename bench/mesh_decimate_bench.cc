@@ -8,7 +8,8 @@
 //   mesh_decimate_bench --list-methods      (the names --methods takes, one per line)
 //   mesh_decimate_bench [--faces N] [--ratio R | --ratios R1,R2,...] [--samples S] [--methods a,b,...]
 //                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C] [--qem-rcond R]
-//                       [--qem-band-rings B] [--qem-band-cell-faces C] [--error-goals E1,E2,...]
+//                       [--qem-band-rings B] [--qem-band-cell-faces C] [--qem-area-floor F]
+//                       [--qem-distance-check D] [--qem-light-budget-keep K] [--error-goals E1,E2,...]
 //                       [--presets] [--export-raw FILE] [--import-raw FILE --label NAME]
 //                       [--end-to-end] [--defects] [--threads T]
 //
@@ -332,6 +333,12 @@ std::optional<int> ParseArgs(int argc, char** argv, BenchArgs& args) {
       qem.final_band_rings = std::stod(next());
     else if (arg == "--qem-band-cell-faces")
       qem.band_cell_faces = std::stod(next());
+    else if (arg == "--qem-area-floor")
+      qem.area_floor = std::stod(next());
+    else if (arg == "--qem-distance-check")
+      qem.distance_check = std::stod(next());
+    else if (arg == "--qem-light-budget-keep")
+      qem.light_budget_keep = std::stod(next());
     else if (arg == "--ratio")
       ratio = std::stod(next());
     else if (arg == "--samples")

@@ -50,6 +50,19 @@ struct QemOptions {
   // many faces; a band that would keep fewer than four times this, or 0, is simplified as one piece.
   // The cells' locked cuts cost some accuracy on small meshes (docs/mesh.md, bench/RESULTS.md).
   double band_cell_faces = 4000;
+  // Two terms for the light budgets, where the Hausdorff error comes down to a few spots of noisy ground
+  // (bench/RESULTS.md, "Decimation against the peers", 2026-11-28). Both apply with a face budget that
+  // keeps at least `light_budget_keep` of the faces; below it (and with error goals) neither does,
+  // since there they were measured to help on one mesh and to hurt on another.
+  double light_budget_keep = 0.6;
+  // Each face's plane weighs its area plus this many times the median face area of its tile, so that a
+  // vertex whose faces are small (close, noisy points) is not collapsed away for their small area
+  // alone; below 0: the budget's share of the faces. 0 = area only.
+  double area_floor = -1;
+  // A collapse costs at least this many times its planes' weight × the squared distance from the
+  // edge's two vertices to the faces around the new point (the quadric's cost is a mean over its
+  // planes; the Hausdorff error is a maximum). 0 = the quadric alone.
+  double distance_check = 0.6;
 };
 }  // namespace internal
 

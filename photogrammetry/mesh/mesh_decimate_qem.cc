@@ -222,10 +222,36 @@ Placed Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector
   return on_edge;
 }
 
+// The squared distance from p to the triangle (a, b, c) (C. Ericson, "Real-Time Collision Detection",
+// 5.1.5: the closest point by the Voronoi regions of the vertices, edges and face).
+double SquaredDistanceToTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                 const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.squaredNorm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (ap - d1 / (d1 - d3) * ab).squaredNorm();
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.squaredNorm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (ap - d2 / (d2 - d6) * ac).squaredNorm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    return (bp - (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b)).squaredNorm();
+  }
+  const double denom = 1 / (va + vb + vc);
+  return (ap - vb * denom * ab - vc * denom * ac).squaredNorm();
+}
+
 struct HeapEntry {
   float cost;
   uint32_t a, b;
   uint32_t stamps;                            // stamp[a] + stamp[b] when pushed: stamps only grow, so any change shows
+  uint32_t checked = 0;                       // the cost already holds the removed vertices' distance to the new faces
   bool operator<(const HeapEntry& o) const {  // the std heap functions make max-heaps: reversed
     if (cost != o.cost) return cost > o.cost;
     if (a != o.a) return a > o.a;
@@ -294,7 +320,13 @@ class QemSimplifier {
       const HeapEntry e = heap_.back();
       heap_.pop_back();
       if (!vertex_alive_[e.a] || !vertex_alive_[e.b] || stamp_[e.a] + stamp_[e.b] != e.stamps) continue;
-      const uint32_t kept = TryCollapse(e.a, e.b);
+      double checked_cost = -1;
+      const uint32_t kept = TryCollapse(e, &checked_cost);
+      if (checked_cost >= 0) {  // costlier than it was queued at: back in the heap at its true cost
+        heap_.push_back({static_cast<float>(checked_cost), e.a, e.b, e.stamps, 1});
+        std::push_heap(heap_.begin(), heap_.end());
+        continue;
+      }
       if (kept == kNone) continue;
       fresh.clear();
       ForNeighbours(kept, [&](uint32_t w) { Push(fresh, std::min(kept, w), std::max(kept, w)); });
@@ -421,9 +453,25 @@ class QemSimplifier {
     return ok;
   }
 
+  // The squared distance from x to the faces around keep and gone after the collapse to p (the two
+  // faces of the edge gone).
+  double FanSquaredDistance(const Eigen::Vector3d& x, uint32_t keep, uint32_t gone, const Eigen::Vector3d& p) {
+    double best = INFINITY;
+    const auto visit = [&](uint32_t f) {
+      const auto& t = faces_[f];
+      if (Contains(t, keep) && Contains(t, gone)) return;
+      const auto at = [&](uint32_t v) -> const Eigen::Vector3d& { return v == keep || v == gone ? p : pos_[v]; };
+      best = std::min(best, SquaredDistanceToTriangle(x, at(t[0]), at(t[1]), at(t[2])));
+    };
+    ForFaces(keep, visit);
+    ForFaces(gone, visit);
+    return best;
+  }
+
   // Collapses edge (a, b) if it is an interior, manifold edge whose collapse keeps the mesh a
   // manifold (the link condition) and folds no face. Returns the vertex kept, or kNone.
-  uint32_t TryCollapse(uint32_t a, uint32_t b) {
+  uint32_t TryCollapse(const HeapEntry& e, double* checked_cost) {
+    const uint32_t a = e.a, b = e.b;
     // The kept vertex: the locked one, otherwise the lower index (deterministic).
     uint32_t keep = a, gone = b;
     if (locked_[b]) std::swap(keep, gone);
@@ -462,6 +510,17 @@ class QemSimplifier {
     Eigen::Vector3d p;
     PlaceAndCost(a, b, &p);
     if (!KeepsOrientation(gone, keep, p) || !KeepsOrientation(keep, gone, p)) return kNone;
+    if (options_.distance_check > 0 && goal2_.empty() && !e.checked) {
+      // Hausdorff is a maximum: the quadric's cost is a mean over its planes, and a collapse can leave
+      // one of its own vertices farther from the new faces than that mean says.
+      const double d2 =
+          std::max(FanSquaredDistance(pos_[a], keep, gone, p), FanSquaredDistance(pos_[b], keep, gone, p));
+      const double fan_cost = options_.distance_check * (quadric_[a].Weight() + quadric_[b].Weight()) * d2;
+      if (static_cast<float>(fan_cost) > e.cost) {
+        *checked_cost = fan_cost;
+        return kNone;
+      }
+    }
     // Apply: the shared faces die, gone's other faces take keep, gone's corners join keep's list.
     uint32_t last = kNone;
     ForFaces(gone, [&](uint32_t f) {
@@ -506,12 +565,23 @@ class QemSimplifier {
   bool heap_built_ = false;
 };
 
-// Plane quadric of each of the first face_count faces added to its three corners (area-weighted, or one
-// per face).
+// Plane quadric of each of the first face_count faces added to its three corners, weighted by the face's
+// area plus `area_floor` × the median area of those faces (or one per face).
 std::vector<Quadric> FaceQuadrics(const std::vector<Eigen::Vector3d>& pos,
                                   const std::vector<std::array<uint32_t, 3>>& faces, size_t face_count,
-                                  bool area_weighted) {
+                                  bool area_weighted, double area_floor) {
   std::vector<Quadric> q(pos.size());
+  std::vector<double> areas(face_count);
+  for (size_t f = 0; f < face_count; ++f) {
+    const auto& t = faces[f];
+    areas[f] = 0.5 * (pos[t[1]] - pos[t[0]]).cross(pos[t[2]] - pos[t[0]]).norm();
+  }
+  double floor_m2 = 0;
+  if (area_weighted && area_floor > 0 && face_count > 0) {
+    std::vector<double> sorted = areas;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(face_count / 2), sorted.end());
+    floor_m2 = area_floor * sorted[face_count / 2];
+  }
   for (size_t f = 0; f < face_count; ++f) {
     const auto& t = faces[f];
     const Eigen::Vector3d n2 = (pos[t[1]] - pos[t[0]]).cross(pos[t[2]] - pos[t[0]]);
@@ -519,7 +589,7 @@ std::vector<Quadric> FaceQuadrics(const std::vector<Eigen::Vector3d>& pos,
     if (!(len > 0)) continue;
     const Eigen::Vector3d n = n2 / len;
     const double d = -n.dot(pos[t[0]]);
-    const double w = area_weighted ? 0.5 * len : 1.0;
+    const double w = area_weighted ? areas[f] + floor_m2 : 1.0;
     Quadric plane;
     plane.AddPlane(n, d, w);
     for (uint32_t v : t) q[v] += plane;
@@ -758,7 +828,7 @@ PieceJob PreparePiece(const std::vector<Eigen::Vector3d>& positions, const Quadr
     for (size_t k = 0; k < global.size(); ++k) local_q[k] = quadrics->values[quadrics->slot[global[k]]];
   } else {
     // From the piece's own faces (the halo's are its neighbours' to count).
-    local_q = FaceQuadrics(local_pos, local_faces, own_faces.size(), options.area_weighted);
+    local_q = FaceQuadrics(local_pos, local_faces, own_faces.size(), options.area_weighted, options.area_floor);
   }
   std::vector<char> locked = BorderVertices(global.size(), local_faces);
   for (size_t f = own_faces.size(); f < local_faces.size(); ++f) {
@@ -1254,8 +1324,8 @@ void SimplifyBand(const TileGrid& tiles, const std::vector<std::array<uint32_t, 
 
 }  // namespace
 
-TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions, const QemOptions& options,
-                              const std::vector<double>* goal_error_m) {
+TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions,
+                              const QemOptions& requested, const std::vector<double>* goal_error_m) {
   const size_t n = mesh.num_vertices();
   std::vector<double> goals2;  // squared, per vertex (empty: a face budget only)
   if (goal_error_m) {
@@ -1268,6 +1338,13 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   const TileGrid grid = MakeTileGrid(positions, mesh.faces, partitions);
   std::vector<std::vector<std::array<uint32_t, 3>>> tiles = FacesByTile(grid, positions, mesh.faces);
   double keep_ratio = static_cast<double>(target_faces) / std::max<size_t>(1, grid.valid_faces);
+  QemOptions options = requested;
+  if (goal_error_m || keep_ratio < options.light_budget_keep) {
+    options.area_floor = 0;
+    options.distance_check = 0;
+  } else if (options.area_floor < 0) {
+    options.area_floor = std::clamp(keep_ratio, 0.0, 1.0);
+  }
   // PreparePiece's scratch, one per thread (kUnmapped between calls).
   Scratches scratches(n, kUnmapped);
   std::vector<Piece> pieces(tiles.size());
