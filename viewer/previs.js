@@ -935,6 +935,13 @@ document.body.dataset.flights = String(flights.length);
 document.body.dataset.flightPaths = String(flightPaths);
 document.body.dataset.editCuts = String(team.edit.length);
 document.body.dataset.conflicts = String(team.conflicts.length);
+// Text that runs out of its place: a line of the HUD past the compass (into the panel), the readout past the
+// panel's width (tests/viewer/browser_team.sh asserts none).
+const compassLeft = $('compass').getBoundingClientRect().left;
+const hudOverflow = [...$('hud').querySelectorAll('h1, .line')].filter(
+  (e) => e.scrollWidth > e.clientWidth + 1 || e.getBoundingClientRect().right > compassLeft);
+const readout = $('readout');
+document.body.dataset.textOverflow = String(hudOverflow.length + (readout.scrollWidth > readout.clientWidth + 1 ? 1 : 0));
 document.body.dataset.errors = String(window.previsErrors.length);
 document.body.dataset.state = window.previsErrors.length ? 'error' : 'ready';
 document.title = `cinepath view: ${window.previsErrors.length ? 'error' : 'ready'}, ${triangles} triangles`;

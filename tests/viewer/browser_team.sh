@@ -33,6 +33,11 @@ state=$(attr data-state "$work/dom.html")
 errors=$(attr data-errors "$work/dom.html")
 [[ $state == ready && $errors == 0 ]] || fail "state '$state', $errors errors: $(grep -o '<title>[^<]*' "$work/dom.html")"
 [[ $(attr data-flights "$work/dom.html") == 2 ]] || fail "data-flights $(attr data-flights "$work/dom.html")"
+# The HUD's drone list wraps inside the 3D view, the readout inside the panel, at 1600 and at 1024 px.
+[[ $(attr data-text-overflow "$work/dom.html") == 0 ]] || fail "text overflow: $(attr data-text-overflow "$work/dom.html")"
+browse "file://$work/team.html#t=1.25" --window-size=1024,700 --dump-dom > "$work/dom_narrow.html"
+[[ $(attr data-text-overflow "$work/dom_narrow.html") == 0 ]] ||
+  fail "text overflow at 1024 px: $(attr data-text-overflow "$work/dom_narrow.html")"
 [[ $(attr data-flight-paths "$work/dom.html") == 2 ]] || fail "flight paths: $(attr data-flight-paths "$work/dom.html")"
 [[ $(attr data-edit-cuts "$work/dom.html") == 2 ]] || fail "edit cuts: $(attr data-edit-cuts "$work/dom.html")"
 [[ $(grep -o 'class="edit"' "$work/dom.html" | wc -l) == 2 ]] || fail "the timeline lacks the two cuts"
