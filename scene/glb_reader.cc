@@ -4,6 +4,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
@@ -456,10 +457,10 @@ SceneMesh GlbDecoder::Decode() {
 // "indices" (the decoder below takes the faces from the Draco mesh), in a GLB rebuilt with that JSON.
 // The container is checked first (core/glb_container.h): the header's total length is the file's, and
 // every chunk lies inside it — tinygltf (2.8, Debian 12) trusts the BIN chunk's length and copies past
-// the end of a truncated file.
-std::string WithoutDracoIndices(std::string_view glb, const std::string& source) {
+// the end of a truncated file. Empty when the GLB needs no change (it is then read as it is, not copied).
+std::optional<std::string> WithoutDracoIndices(std::string_view glb, const std::string& source) {
   const GlbChunks chunks = SplitGlb(glb, source);
-  if (chunks.json.find(kDracoExtension) == std::string_view::npos) return std::string(glb);
+  if (chunks.json.find(kDracoExtension) == std::string_view::npos) return std::nullopt;
   nlohmann::json doc = nlohmann::json::parse(chunks.json, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded() || !doc.is_object()) throw InputError(source + ": the GLB's JSON chunk is not valid JSON");
   bool changed = false;
@@ -473,7 +474,7 @@ std::string WithoutDracoIndices(std::string_view glb, const std::string& source)
       }
     }
   }
-  if (!changed) return std::string(glb);
+  if (!changed) return std::nullopt;
   return AssembleGlb(doc.dump(), chunks.bin);
 }
 
@@ -482,7 +483,8 @@ std::string WithoutDracoIndices(std::string_view glb, const std::string& source)
 SceneMesh ReadGlbBytes(std::string_view bytes, const std::string& source) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw InputError(source + ": larger than 4 GiB");
   if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF") throw InputError(source + ": not a binary glTF (GLB) file");
-  const std::string glb = WithoutDracoIndices(bytes, source);
+  const std::optional<std::string> rebuilt = WithoutDracoIndices(bytes, source);
+  const std::string_view glb = rebuilt ? std::string_view(*rebuilt) : bytes;
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&KeepEncodedImage, nullptr);
