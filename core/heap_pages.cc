@@ -35,6 +35,7 @@ HeapPreparation PrepareHeapForLargeBuffers(size_t reserve_bytes) {
   // The top chunk's first page holds its header (touched already): 2 MiB pages from the next boundary.
   const uintptr_t begin = (end - top + 4096 + kHugePage - 1) & ~(kHugePage - 1), stop = end & ~(kHugePage - 1);
   if (stop > begin && madvise(reinterpret_cast<void*>(begin), stop - begin, MADV_HUGEPAGE) == 0) {
+    done.advised_begin = reinterpret_cast<void*>(begin);
     done.advised_bytes = stop - begin;
   }
 #else

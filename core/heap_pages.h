@@ -9,7 +9,8 @@ namespace cinepath {
 
 // What PrepareHeapForLargeBuffers did (for -v and tests).
 struct HeapPreparation {
-  size_t advised_bytes = 0;  // heap asked for in 2 MiB pages (0: not available here, or refused)
+  void* advised_begin = nullptr;  // the heap's range asked for in 2 MiB pages, 2 MiB-aligned
+  size_t advised_bytes = 0;       // its size (0: not available here, e.g. under a sanitizer's allocator)
 };
 
 // Call once, early, on the main thread, before the large allocations. It:
