@@ -18,9 +18,6 @@ HeapPreparation PrepareHeapForLargeBuffers(size_t reserve_bytes) {
   // 32 MiB is glibc's largest mmap threshold on 64-bit; larger allocations (an 8192² atlas) stay mmaps.
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  // One arena for every thread, the main one: the other threads' buffers (the GLB's, the frame's
-  // encoders') come from the advised heap too, rather than from arenas of their own in 4 KiB pages.
-  mallopt(M_ARENA_MAX, 1);
   mallopt(M_TOP_PAD, int(reserve_bytes));
   // The heap's free top, [end - keepcost, end), is where the next allocations of the main thread go.
   // When it is smaller than the reserve, one allocation larger than it makes malloc extend the heap (by
@@ -29,9 +26,7 @@ HeapPreparation PrepareHeapForLargeBuffers(size_t reserve_bytes) {
     void* volatile grow = std::malloc(top + 4096);  // volatile: the compiler may not drop the pair
     std::free(grow);
   }
-  // Later growth (a large mesh's BVH, built by every thread at once in the one arena) in 32 MiB steps,
-  // not glibc's default 128 KiB: each step is a brk under the arena's lock, and in small steps the
-  // 1 M-face scene's build spent 0.3-0.9 s of system time in them (0.05-0.08 s in large steps).
+  // Later growth in 32 MiB steps, not glibc's default 128 KiB: fewer brk calls (a large mesh's arrays).
   mallopt(M_TOP_PAD, 32 << 20);
   const uintptr_t end = reinterpret_cast<uintptr_t>(sbrk(0)), top = mallinfo2().keepcost;
   if (end == uintptr_t(-1) || top > end) return done;
