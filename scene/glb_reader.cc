@@ -32,7 +32,8 @@ bool KeepEncodedImage(tinygltf::Image* image, const int, std::string*, std::stri
 
 class GlbDecoder {
  public:
-  GlbDecoder(const tinygltf::Model& model, std::string source) : model_(model), source_(std::move(source)) {}
+  // Takes the encoded images' bytes out of `model` (moved into the SceneMesh, not copied).
+  GlbDecoder(tinygltf::Model& model, std::string source) : model_(model), source_(std::move(source)) {}
 
   SceneMesh Decode();
 
@@ -59,7 +60,7 @@ class GlbDecoder {
   void Visit(int node_index, const Eigen::Matrix4d& parent, int depth, SceneMesh* out);
   int MaterialIndex(int gltf_material, SceneMesh* out);
 
-  const tinygltf::Model& model_;
+  tinygltf::Model& model_;
   std::string source_;
   std::vector<int> material_map_;  // glTF material -> SceneMesh material
   std::vector<int> image_map_;     // glTF image -> SceneMesh image
@@ -337,7 +338,7 @@ int GlbDecoder::MaterialIndex(int gltf_material, SceneMesh* out) {
       Fail(Element("textures", texture), "source out of range");
     if (image_map_[image] < 0 && !model_.images[image].image.empty()) {
       image_map_[image] = static_cast<int>(out->images.size());
-      out->images.push_back({model_.images[image].mimeType, model_.images[image].image});
+      out->images.push_back({model_.images[image].mimeType, std::move(model_.images[image].image)});
     }
     material.base_color_image = image_map_[image];
   }
