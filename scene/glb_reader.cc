@@ -4,6 +4,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
@@ -31,7 +32,8 @@ bool KeepEncodedImage(tinygltf::Image* image, const int, std::string*, std::stri
 
 class GlbDecoder {
  public:
-  GlbDecoder(const tinygltf::Model& model, std::string source) : model_(model), source_(std::move(source)) {}
+  // Takes the encoded images' bytes out of `model` (moved into the SceneMesh, not copied).
+  GlbDecoder(tinygltf::Model& model, std::string source) : model_(model), source_(std::move(source)) {}
 
   SceneMesh Decode();
 
@@ -58,7 +60,7 @@ class GlbDecoder {
   void Visit(int node_index, const Eigen::Matrix4d& parent, int depth, SceneMesh* out);
   int MaterialIndex(int gltf_material, SceneMesh* out);
 
-  const tinygltf::Model& model_;
+  tinygltf::Model& model_;
   std::string source_;
   std::vector<int> material_map_;  // glTF material -> SceneMesh material
   std::vector<int> image_map_;     // glTF image -> SceneMesh image
@@ -336,7 +338,7 @@ int GlbDecoder::MaterialIndex(int gltf_material, SceneMesh* out) {
       Fail(Element("textures", texture), "source out of range");
     if (image_map_[image] < 0 && !model_.images[image].image.empty()) {
       image_map_[image] = static_cast<int>(out->images.size());
-      out->images.push_back({model_.images[image].mimeType, model_.images[image].image});
+      out->images.push_back({model_.images[image].mimeType, std::move(model_.images[image].image)});
     }
     material.base_color_image = image_map_[image];
   }
@@ -456,10 +458,10 @@ SceneMesh GlbDecoder::Decode() {
 // "indices" (the decoder below takes the faces from the Draco mesh), in a GLB rebuilt with that JSON.
 // The container is checked first (core/glb_container.h): the header's total length is the file's, and
 // every chunk lies inside it — tinygltf (2.8, Debian 12) trusts the BIN chunk's length and copies past
-// the end of a truncated file.
-std::string WithoutDracoIndices(std::string_view glb, const std::string& source) {
+// the end of a truncated file. Empty when the GLB needs no change (it is then read as it is, not copied).
+std::optional<std::string> WithoutDracoIndices(std::string_view glb, const std::string& source) {
   const GlbChunks chunks = SplitGlb(glb, source);
-  if (chunks.json.find(kDracoExtension) == std::string_view::npos) return std::string(glb);
+  if (chunks.json.find(kDracoExtension) == std::string_view::npos) return std::nullopt;
   nlohmann::json doc = nlohmann::json::parse(chunks.json, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded() || !doc.is_object()) throw InputError(source + ": the GLB's JSON chunk is not valid JSON");
   bool changed = false;
@@ -473,7 +475,7 @@ std::string WithoutDracoIndices(std::string_view glb, const std::string& source)
       }
     }
   }
-  if (!changed) return std::string(glb);
+  if (!changed) return std::nullopt;
   return AssembleGlb(doc.dump(), chunks.bin);
 }
 
@@ -482,7 +484,8 @@ std::string WithoutDracoIndices(std::string_view glb, const std::string& source)
 SceneMesh ReadGlbBytes(std::string_view bytes, const std::string& source) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw InputError(source + ": larger than 4 GiB");
   if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF") throw InputError(source + ": not a binary glTF (GLB) file");
-  const std::string glb = WithoutDracoIndices(bytes, source);
+  const std::optional<std::string> rebuilt = WithoutDracoIndices(bytes, source);
+  const std::string_view glb = rebuilt ? std::string_view(*rebuilt) : bytes;
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&KeepEncodedImage, nullptr);

@@ -43,17 +43,30 @@ fi
 # texels and OpenImageIO's ~260 libraries, 30 MB without them (2026-11-27, 2 cores); the bound (twice that)
 # catches a return of either: float texels alone would add 50 MB. Not under the sanitizers, whose shadow memory
 # is counted too.
+# Page faults of one 640 px draft frame (the kernel's traps on first touching a page, getrusage's ru_minflt):
+# 8,400-8,700 with the heap in 4 KiB pages and its large blocks mmapped afresh, 2,100-2,600 with the main
+# heap asked for in 2 MiB pages (core/heap_pages.h; 2026-11-28). The bound, 5,000, catches a return to small
+# pages; it needs the kernel's transparent huge pages ("always" or "madvise"), so it is skipped without them.
 if [[ -z ${ASAN_OPTIONS:-} ]]; then
-  peak_mb=$(python3 - "${render[@]:0:5}" "$work/memory" <<'PY'
+  read -r peak_mb faults < <(python3 - "${render[@]:0:5}" "$work/memory" <<'PY'
 import resource, subprocess, sys
 cinepath, command, plan, scene_flag, scene, out = sys.argv[1:7]
 subprocess.run([cinepath, command, plan, scene_flag, scene, "--frames", "0", "--width-px", "96", "--spp", "1",
                 "-o", out], check=True)
-print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss // 1024)
+peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss // 1024
+before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_minflt
+subprocess.run([cinepath, command, plan, scene_flag, scene, "--frames", "0", "--width-px", "640", "--quality",
+                "draft", "-o", out], check=True)
+print(peak_mb, resource.getrusage(resource.RUSAGE_CHILDREN).ru_minflt - before)
 PY
-)
+  )
   [[ $peak_mb -lt 64 ]] || fail "render of one frame peaked at $peak_mb MB (bound 64 MB: textures held as floats again?)"
   echo "memory: one frame peaked at $peak_mb MB"
+  thp=/sys/kernel/mm/transparent_hugepage/enabled
+  if [[ -r $thp ]] && ! grep -q '\[never\]' "$thp"; then
+    [[ $faults -lt 5000 ]] || fail "one 640 px draft frame took $faults page faults (bound 5,000: the heap in 4 KiB pages again?)"
+    echo "page faults: one 640 px draft frame took $faults"
+  fi
 fi
 
 # The GNU parallel example (docs/scale-out.md).
