@@ -587,8 +587,9 @@ if (several) {
   if (team.edit.length) add('edit', 'edit (live drone)', null);
   team.flights.forEach((f, i) => add(i, f.name, f.colour));
   $('hud').appendChild(box);
-  $('hud-plan').textContent += ` · ${team.flights.length} drones: ` +
-    team.flights.map((f, i) => `${f.name} (${f.drone}, ${flights[i].n} samples)`).join(', ');
+  // (a no-break space keeps the count with its word where the line wraps)
+  $('hud-plan').textContent += ` · ${team.flights.length}\u00a0drones: ` +
+    team.flights.map((f, i) => `${f.name} (${f.drone}, ${flights[i].n}\u00a0samples)`).join(', ');
   $('legend').style.display = 'none';  // the paths are in the drones' colours, not by speed
 }
 {
