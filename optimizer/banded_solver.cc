@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -109,7 +110,10 @@ class Solver {
       b.rows = b.cost->num_residuals();
       int lo = n_, hi = -1;
       for (double* p : b.params) {
-        const int k = static_cast<int>((p - knots_) / kChannels);
+        const std::ptrdiff_t offset = p - knots_;
+        if (offset < 0 || offset >= std::ptrdiff_t(n_) * kChannels || offset % kChannels != 0)
+          throw RuntimeError("banded solver: a parameter block is not one of the knots");
+        const int k = static_cast<int>(offset / kChannels);
         b.knot.push_back(k);
         lo = std::min(lo, k);
         hi = std::max(hi, k);
@@ -137,6 +141,10 @@ class Solver {
     double lambda = o.initial_damping, nu = 2;
     summary.message = "iteration cap";
     while (summary.iterations < o.max_iterations) {
+      if (lambda > kMaxDamping) {  // (Ceres' smallest trust region, 1e-32)
+        summary.message = "no step lowers the cost";
+        break;
+      }
       if (GradientNorm(g) <= o.gradient_tolerance) {
         summary.message = "gradient tolerance";
         break;
@@ -187,6 +195,7 @@ class Solver {
   }
 
  private:
+  static constexpr double kMaxDamping = 1e32;
   // dx from (H + lambda diag(H)) dx = -g, the fixed channels held; false when the system cannot be factored.
   bool Step(const BlockBand& h, const std::vector<Vec8>& g, double lambda, BlockBand* damped,
             std::vector<Vec8>* dx) const {

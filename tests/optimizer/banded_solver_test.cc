@@ -235,5 +235,15 @@ TEST(BandedSolver, ABlockOnMoreThanFourKnotsIsRefused) {
   EXPECT_ANY_THROW(SolveBanded(&problem, knots.front().data(), 5, fixed, BandedSolverOptions()));
 }
 
+TEST(BandedSolver, AParameterBlockOutsideTheKnotsIsRefused) {
+  std::vector<Knot> knots(4, Knot{});
+  Knot stray{};
+  ceres::Problem problem;
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<KnotPull, kNumChannels, kNumChannels>(new KnotPull{1}),
+                           nullptr, stray.data());
+  std::vector<std::array<bool, 8>> fixed(4);
+  EXPECT_ANY_THROW(SolveBanded(&problem, knots.front().data(), 4, fixed, BandedSolverOptions()));
+}
+
 }  // namespace
 }  // namespace cinepath::optimizer
