@@ -31,8 +31,9 @@ class SampleCostFunction : public ceres::CostFunction, public StateBlock {
 
   // Stacks `part` (a cost function on the sample's four knots that is also a StatePart) below the others.
   // Only before the block joins a problem.
-  // `goal`: a goal of the objective (framing, depth of field, background blur), which a solve on the coarse grid
-  // of goals weights or leaves out (GoalWeightedSample); the rest are limits and stay at every sample.
+  // `goal`: a smooth goal of the objective (framing, background blur), which a solve on the coarse grid of goals
+  // weights or leaves out (GoalWeightedSample); the rest (the limits, and the depth of field's hinge) stay at
+  // every sample.
   template <typename Part>
   void Add(std::unique_ptr<Part> part, bool stiff, bool goal) {
     const int rows = part->num_residuals();
