@@ -383,14 +383,14 @@ class PlanOptimizer {
   static constexpr double kCoarseSamplesPerSegment = 5;
   // The drone's and the lens's limits: penalties whose weight is ramped up over the solve (Solve). The
   // clearance is at full weight from the start: a soft stage must not let the path ring into the ground.
+  static bool IsStiff(const std::string& term) {
+    return term == "limits" || term == "keep_out" || term == "separation" || term == "out_of_shot";
+  }
   // The objective's goals at a sample that the coarse grid of goals may weight (GoalWeightedSample): the
   // smooth ones. The depth of field is a hinge, zero where the actor is sharp, that binds sample by sample as a
   // limit does: on the grid alone the focus slipped off the walker between grid samples (the bundled sample's
   // draft objective 1,339.9 against 1,325.7), so it stays at every sample.
   static bool IsGoal(const std::string& term) { return term == "framing" || term == "background_blur"; }
-  static bool IsStiff(const std::string& term) {
-    return term == "limits" || term == "keep_out" || term == "separation" || term == "out_of_shot";
-  }
   void AddTeamTerms(size_t k, double max_deviation_m);
   void AddClearanceTerm(const SampleBase& base, const Eigen::Vector3d& position, int shot, double max_deviation_m);
   void AddAdherenceTerms();
