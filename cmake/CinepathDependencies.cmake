@@ -6,6 +6,8 @@ find_package(PkgConfig REQUIRED)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(OpenMesh CONFIG REQUIRED)
 find_package(nlohmann_json 3.11 REQUIRED)
+# The JSON parser under core/json.cc (nlohmann keeps the DOM, the writer and the located errors).
+find_package(simdjson 3 REQUIRED)
 find_package(fmt 9 REQUIRED)
 find_package(CLI11 2.1 REQUIRED)
 find_package(TBB REQUIRED)

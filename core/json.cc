@@ -5,6 +5,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include <simdjson.h>
+
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/number_format.h"
@@ -92,9 +94,73 @@ class LocatedDomParser : public nlohmann::detail::json_sax_dom_parser<Json> {
   const std::string& source_;
 };
 
+// simdjson's DOM copied into nlohmann's, node for node, as nlohmann's own parser would have built it:
+// integers without a sign as unsigned, with one as signed, any other number a double, a key met twice
+// keeping its first place and its last value. False where the two parsers could disagree, so that
+// nlohmann reads the text itself: a "-0" (simdjson reads it as the double -0.0, nlohmann as the integer
+// 0) and a string that is not valid UTF-8 (an escaped lone surrogate).
+bool CopyDom(const simdjson::dom::element& from, Json* to) {
+  using Type = simdjson::dom::element_type;
+  switch (from.type()) {
+    case Type::ARRAY: {
+      const simdjson::dom::array array = from.get_array().value_unsafe();
+      *to = Json::array();
+      auto& elements = to->get_ref<Json::array_t&>();
+      elements.reserve(array.size());
+      for (const simdjson::dom::element element : array) {
+        if (!CopyDom(element, &elements.emplace_back())) return false;
+      }
+      return true;
+    }
+    case Type::OBJECT: {
+      const simdjson::dom::object object = from.get_object().value_unsafe();
+      *to = Json::object();
+      auto& members = to->get_ref<Json::object_t&>();
+      for (const simdjson::dom::key_value_pair member : object) {
+        if (!simdjson::validate_utf8(member.key.data(), member.key.size())) return false;
+        if (!CopyDom(member.value, &members[std::string(member.key)])) return false;
+      }
+      return true;
+    }
+    case Type::INT64: {
+      const int64_t value = from.get_int64().value_unsafe();
+      *to = value >= 0 ? Json(Json::number_unsigned_t(value)) : Json(Json::number_integer_t(value));
+      return true;
+    }
+    case Type::UINT64: *to = Json::number_unsigned_t(from.get_uint64().value_unsafe()); return true;
+    case Type::DOUBLE: {
+      const double value = from.get_double().value_unsafe();
+      if (value == 0.0 && std::signbit(value)) return false;
+      *to = value;
+      return true;
+    }
+    case Type::STRING: {
+      const std::string_view value = from.get_string().value_unsafe();
+      if (!simdjson::validate_utf8(value.data(), value.size())) return false;
+      *to = std::string(value);
+      return true;
+    }
+    case Type::BOOL: *to = from.get_bool().value_unsafe(); return true;
+    case Type::NULL_VALUE: *to = nullptr; return true;
+  }
+  return false;
+}
+
 }  // namespace
 
+// simdjson parses (several times nlohmann's speed: a 1 MB plan.json is most of a render's start-up
+// otherwise, docs/dependencies.md) and its DOM is copied into nlohmann's. Any text simdjson does not take,
+// or that the copy cannot vouch for, is parsed again by nlohmann, whose verdict stands: its result, or its
+// error with the line and the column.
 Json ParseJsonText(std::string_view text, const std::string& source_name) {
+  {
+    simdjson::dom::parser fast;
+    simdjson::dom::element root;
+    Json result;
+    if (fast.parse(text.data(), text.size()).get(root) == simdjson::SUCCESS && CopyDom(root, &result)) {
+      return result;
+    }
+  }
   Json result;
   LocatedDomParser parser(result, text, source_name);
   Json::sax_parse(text.begin(), text.end(), &parser);
