@@ -35,6 +35,38 @@ T SafeNorm2(const T& x, const T& y) {
   return sqrt(x * x + y * y + T(1e-12));
 }
 
+// CameraPoint in doubles with its derivatives in the state's position (columns 0-2), yaw (3) and tilt (4), for the
+// goals' gradients by hand (their Gradients below): p = Rx(-tilt) M Rz(-yaw) (point - position), so
+// dp/dposition = -Rx(-tilt) M Rz(-yaw), dp/dyaw = Rx(-tilt) M (u_y, -u_x, 0) with u = Rz(-yaw) (point - position),
+// and dp/dtilt = (0, p_z, -p_y). The point is the same number as CameraPoint<double> gives (the same operations).
+struct CameraPointJacobian {
+  Eigen::Vector3d p;
+  Eigen::Matrix<double, 3, 5> d;
+};
+inline CameraPointJacobian CameraPointWithJacobian(const SampleBase& b, const SampleState<double>& s,
+                                                   const Eigen::Vector3d& point_enu_m) {
+  const Eigen::Vector3d v = point_enu_m - s.position;
+  const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
+  const Eigen::Vector3d u(cy * v[0] + sy * v[1], -sy * v[0] + cy * v[1], v[2]);
+  const Eigen::Vector3d c = b.camera_from_world * u;
+  const double ct = std::cos(s.tilt), st = std::sin(s.tilt);
+  CameraPointJacobian out;
+  out.p = Eigen::Vector3d(c[0], ct * c[1] + st * c[2], -st * c[1] + ct * c[2]);
+  Eigen::Matrix3d tilt_m;  // Rx(-tilt) M
+  tilt_m.row(0) = b.camera_from_world.row(0);
+  tilt_m.row(1) = ct * b.camera_from_world.row(1) + st * b.camera_from_world.row(2);
+  tilt_m.row(2) = -st * b.camera_from_world.row(1) + ct * b.camera_from_world.row(2);
+  Eigen::Matrix3d yaw;  // Rz(-yaw)
+  yaw << cy, sy, 0, -sy, cy, 0, 0, 0, 1;
+  out.d.leftCols<3>() = -tilt_m * yaw;
+  out.d.col(3) = tilt_m * Eigen::Vector3d(u[1], -u[0], 0);
+  out.d.col(4) = Eigen::Vector3d(0, out.p[2], -out.p[1]);
+  return out;
+}
+
+// A goal's gradient rows in the eight channel values (the state's kValues fields, Channel order).
+using ValueGradient = double[kNumChannels];
+
 // Where the subject's aim point falls on screen ([0, 1] x right, y down) and the fraction of the frame
 // height the subject fills (its height over the frame's height at its distance, as `plan` frames it).
 template <typename T>
@@ -81,6 +113,35 @@ struct FramingCost {
     r[2] = target_fraction > 0 ? weight * log(m.height_fraction / target_fraction) : T(0);
     return true;
   }
+  // The residuals (the same numbers as Residuals) and their gradients in the channel values, written out
+  // (tests/optimizer/cost_terms_test.cc checks them against automatic differentiation).
+  void Gradients(const SampleState<double>& s, double* r, ValueGradient* g) const {
+    const CameraPointJacobian cp = CameraPointWithJacobian(base, s, aim_enu_m);
+    const Eigen::Vector3d& p = cp.p;
+    const bool clamped = !(p[2] > 1e-3);
+    const double depth = clamped ? 1e-3 : p[2];
+    const double f_mm = FocalLengthMm(base, s);
+    const Eigen::Vector3d to_aim = aim_enu_m - s.position;
+    const double distance = SafeNorm(to_aim);
+    const double height_fraction = subject_height_m * f_mm / (distance * image_height_mm);
+    const double extent[2] = {image_width_mm, image_height_mm}, target[2] = {target_x, target_y};
+    for (int i = 0; i < 2; ++i) {
+      // screen = 0.5 + q, q = f p_i / depth / extent: dq = (f / (depth extent)) dp_i - (q / depth) ddepth + q dlog_f
+      const double q = f_mm * p[i] / depth / extent[i];
+      r[i] = weight * (0.5 + q - target[i]);
+      const double along = weight * f_mm / (depth * extent[i]), across = clamped ? 0.0 : weight * q / depth;
+      for (int f = 0; f < 5; ++f) g[i][f] = along * cp.d(i, f) - across * cp.d(2, f);
+      g[i][kLogFocal] = weight * q;
+      g[i][kDioptre] = g[i][kStops] = 0;
+    }
+    std::fill(g[2], g[2] + kNumChannels, 0.0);
+    r[2] = 0;
+    if (!(target_fraction > 0)) return;
+    // log(h f / (|aim - position| extent)): d/dlog_f = 1, d/dposition = (aim - position) / |.|^2
+    r[2] = weight * std::log(height_fraction / target_fraction);
+    for (int c = 0; c < 3; ++c) g[2][c] = weight * to_aim[c] / (distance * distance);
+    g[2][kLogFocal] = weight;
+  }
 };
 
 // depth of field: an actor that must be sharp lies inside [near, far]; residual = the dioptres outside,
@@ -113,6 +174,37 @@ struct SharpCost {
     r[0] = weight * depth * Hinge(abs(T(1) / depth - s.dioptre) - half);
     return true;
   }
+  // The residual (the same number as Residuals) and its gradient in the channel values, written out
+  // (tests/optimizer/cost_terms_test.cc checks it against automatic differentiation).
+  void Gradients(const SampleState<double>& s, double* r, ValueGradient* g) const {
+    const CameraPointJacobian cp = CameraPointWithJacobian(base, s, aim_enu_m);
+    const bool clamped = !(cp.p[2] > 0.05);
+    const double depth = clamped ? 0.05 : cp.p[2];
+    double d_depth[5];  // depth's gradient in position, yaw, tilt
+    for (int f = 0; f < 5; ++f) d_depth[f] = clamped ? 0.0 : cp.d(2, f);
+    std::fill(g[0], g[0] + kNumChannels, 0.0);
+    if (follow) {
+      r[0] = weight * (depth * s.dioptre - 1.0);
+      for (int f = 0; f < 5; ++f) g[0][f] = weight * s.dioptre * d_depth[f];
+      g[0][kDioptre] = weight * depth;
+      return;
+    }
+    const double focal_m = FocalLengthMm(base, s) * 1e-3, f_number = FNumber(base, s);
+    const double half = DepthOfFieldHalfWidthDioptres(focal_m, f_number, s.dioptre, coc_m);
+    const double off = 1.0 / depth - s.dioptre;  // dioptres from the focus to the actor
+    const double x = std::abs(off) - half;
+    r[0] = weight * depth * Hinge(x);
+    if (!(x > 0)) return;  // sharp: zero, with zero derivatives
+    // half = N c0 / f^2 (1 - f D): d/dlog_f = -2 half - N c0 D / f, d/dstops = half ln2 / 2, d/dD = -N c0 / f
+    const double sign = std::copysign(1.0, off);
+    const double d_half_log_focal = -2.0 * half - f_number * coc_m * s.dioptre / focal_m;
+    const double d_half_stops = half * 0.5 * std::log(2.0), d_half_dioptre = -f_number * coc_m / focal_m;
+    // r = w depth x: dr = w (x ddepth + depth dx), dx = sign (-ddepth / depth^2 - dD) - dhalf
+    for (int f = 0; f < 5; ++f) g[0][f] = weight * (x - sign / depth) * d_depth[f];
+    g[0][kLogFocal] = -weight * depth * d_half_log_focal;
+    g[0][kDioptre] = weight * depth * (-sign - d_half_dioptre);
+    g[0][kStops] = -weight * depth * d_half_stops;
+  }
 };
 
 // background blur: the blur circle of the background behind the subject (at background_behind_m beyond
@@ -142,6 +234,37 @@ struct BackgroundBlurCost {
   bool Residuals(const SampleState<T>& s, T* r) const {
     r[0] = weight * Hinge((T(goal_px) - BlurPx(s)) / goal_px);
     return true;
+  }
+  // The residual (the same number as Residuals) and its gradient in the channel values, written out
+  // (tests/optimizer/cost_terms_test.cc checks it against automatic differentiation).
+  void Gradients(const SampleState<double>& s, double* r, ValueGradient* g) const {
+    const CameraPointJacobian cp = CameraPointWithJacobian(base, s, aim_enu_m);
+    const bool clamped = !(cp.p[2] > 0.05);
+    const double depth = clamped ? 0.05 : cp.p[2];
+    const bool at_infinity = std::isinf(background_behind_m);
+    const double background_dioptre = at_infinity ? 0.0 : 1.0 / (depth + background_behind_m);
+    const double focal_m = FocalLengthMm(base, s) * 1e-3, f_number = FNumber(base, s);
+    const double blur_px =
+        BlurCircleDiameterM(focal_m, f_number, s.dioptre, background_dioptre) * pixels_per_m;  // as BlurPx
+    const double missing = (goal_px - blur_px) / goal_px;
+    r[0] = weight * Hinge(missing);
+    std::fill(g[0], g[0] + kNumChannels, 0.0);
+    if (!(missing > 0)) return;  // blurred enough: zero, with zero derivatives
+    // blur = f^2 / N |D - B| / (1 - f D) (pixels): d/dlog_f = blur (2 + f D / (1 - f D)), d/dstops = -blur ln2 / 2,
+    // d/dD = f^2 / N / (1 - f D) (sign + |D - B| f / (1 - f D)), d/dB = -f^2 / N / (1 - f D) sign
+    const double across = s.dioptre - background_dioptre, sign = std::copysign(1.0, across);
+    const double denominator = 1.0 - focal_m * s.dioptre;
+    const double scale = focal_m * focal_m / f_number / denominator * pixels_per_m;
+    const double d_log_focal = blur_px * (2.0 + focal_m * s.dioptre / denominator);
+    const double d_stops = -blur_px * 0.5 * std::log(2.0);
+    const double d_dioptre = scale * (sign + std::abs(across) * focal_m / denominator);
+    // B = 1 / (depth + behind): dB/ddepth = -B^2
+    const double d_depth = clamped || at_infinity ? 0.0 : -scale * sign * -(background_dioptre * background_dioptre);
+    const double w = -weight / goal_px;  // r = w' (goal - blur) / goal
+    for (int f = 0; f < 5; ++f) g[0][f] = w * d_depth * cp.d(2, f);
+    g[0][kLogFocal] = w * d_log_focal;
+    g[0][kDioptre] = w * d_dioptre;
+    g[0][kStops] = w * d_stops;
   }
 };
 

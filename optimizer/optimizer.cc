@@ -27,6 +27,7 @@
 #include "optimizer/clearance_cost.h"
 #include "optimizer/cost_terms.h"
 #include "optimizer/limit_guard.h"
+#include "optimizer/linear_cost_function.h"
 #include "optimizer/plan_samples.h"
 #include "optimizer/retime.h"
 #include "optimizer/sample_cost_function.h"
@@ -610,9 +611,8 @@ void PlanOptimizer::AddTerms() {
   for (const SampleGroup& g : split_.groups) {
     for (int seg = 0; seg < g.spline.num_segments(); ++seg) {
       auto* f = new SmoothnessCost{g.spline.segment_s(), w.smoothness};
-      AddBlock("smoothness",
-               new ceres::AutoDiffCostFunction<SmoothnessCost, SmoothnessCost::kNumResiduals, kNumChannels,
-                                               kNumChannels, kNumChannels, kNumChannels>(f),
+      // Linear in the knots: its Jacobian, a constant, is taken once (optimizer/linear_cost_function.h).
+      AddBlock("smoothness", new LinearCostFunction<SmoothnessCost, SmoothnessCost::kNumResiduals>(f),
                g.first_knot + seg);
     }
   }

@@ -84,6 +84,34 @@ SampleState<T> EvaluateSample(const SampleBase& b, const T* const* k) {
   return s;
 }
 
+// The same in doubles, each derivative order of the eight channels at once (the same sums in the same order as
+// Blend's, so the same numbers; the solver evaluates every sample's state twice per iteration).
+inline SampleState<double> EvaluateSample(const SampleBase& b, const double* const* k) {
+  using Vec8 = Eigen::Matrix<double, kNumChannels, 1>;
+  const KnotWeights& w = b.knots;
+  const Eigen::Map<const Vec8> k0(k[0]), k1(k[1]), k2(k[2]), k3(k[3]);
+  const auto blend = [&](const std::array<double, 4>& x) -> Vec8 {
+    return x[0] * k0 + x[1] * k1 + x[2] * k2 + x[3] * k3;
+  };
+  const Vec8 value = blend(w.value), d1 = blend(w.d1), d2 = blend(w.d2), d3 = blend(w.d3);
+  SampleState<double> s;
+  s.position = b.position_enu_m + value.head<3>();
+  s.velocity = d1.head<3>();
+  s.acceleration = d2.head<3>();
+  s.jerk = d3.head<3>();
+  s.yaw = value[kYaw];
+  s.yaw_rate = d1[kYaw];
+  s.tilt = value[kTilt];
+  s.tilt_rate = d1[kTilt];
+  s.log_focal = value[kLogFocal];
+  s.log_focal_rate = d1[kLogFocal];
+  s.dioptre = b.dioptre + value[kDioptre];
+  s.dioptre_rate = d1[kDioptre];
+  s.stops = value[kStops];
+  s.stops_rate = d1[kStops];
+  return s;
+}
+
 // A world point in the changed camera's frame (x right, y down, z forward):
 // camera_from_world = Rx(-tilt) * camera_from_world0 * Rz(-yaw).
 template <typename T>

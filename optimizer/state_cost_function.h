@@ -9,7 +9,8 @@
 // channel values (kValues) for the framing, depth of field, keep-out, occlusion and team terms, and
 // with them the eight first derivatives and the path's acceleration and jerk (kValuesAndRates, 22) for
 // the limits, whose active hinges, as hinges (`rows` below), give their gradients in those 22 fields
-// themselves (LimitsCost::ActiveGradients, no Jets). The residuals are the same numbers as with
+// themselves (LimitsCost::ActiveGradients, no Jets), as do the goals (framing, depth of field, background
+// blur: their Gradients, in the eight channel values). The residuals are the same numbers as with
 // `ceres::AutoDiffCostFunction` over the knots (the state is evaluated by the same code), only the
 // Jacobian's rounding differs.
 #pragma once
@@ -83,6 +84,14 @@ concept AnalyticHinges = requires(const Functor& f, const SampleState<double>& s
   f.ActiveGradients(s, only, g);
 };
 
+// A functor that writes its residuals and their gradients in the eight channel values itself (the goals:
+// FramingCost::Gradients, SharpCost's, BackgroundBlurCost's), without Jets.
+template <typename Functor>
+concept AnalyticValueGradients = requires(const Functor& f, const SampleState<double>& s, double* r,
+                                          double (*g)[kNumChannels]) {
+  f.Gradients(s, r, g);
+};
+
 // Functor: has `base` (SampleBase) and `template <T> bool Residuals(const SampleState<T>&, T*) const`
 // that reads only the fields `kFields` seeds. Owns the functor.
 //
@@ -127,6 +136,18 @@ class StateCostFunction : public ceres::CostFunction, public StatePart, public S
         bool active[kMaxResiduals];  // the hinges nonzero at s, the only ones differentiated
         for (int i = 0; i < functor_rows_; ++i) active[i] = full_values[i] != 0.0;
         if (hinges_) return HingeRows(s, full_values, active, residuals, state_rows);
+      }
+    }
+    if constexpr (kFields == kValues && AnalyticValueGradients<Functor>) {
+      if (!hinges_ && num_residuals() == functor_rows_) {
+        double g[kMaxResiduals][kNumChannels];
+        functor_->Gradients(s, residuals, g);
+        for (int i = 0; i < num_residuals(); ++i) {
+          double* row = state_rows + i * kStateFields;
+          std::copy(g[i], g[i] + kNumChannels, row);
+          std::fill(row + kNumChannels, row + kStateFields, 0.0);
+        }
+        return true;
       }
     }
     using Jet = ceres::Jet<double, kFields>;

@@ -3,12 +3,15 @@
 // hinge is active, so that the checked derivative is not zero by construction.
 #include "optimizer/cost_terms.h"
 
+#include <algorithm>
 #include <random>
 
 #include <ceres/autodiff_cost_function.h>
+#include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include "optimizer/clearance_cost.h"
+#include "optimizer/linear_cost_function.h"
 #include "scene/surface_distance.h"
 #include "tests/optimizer/test_samples.h"
 
@@ -184,6 +187,21 @@ TEST(CostTerms, SmoothnessAndClearViewGradient) {
       new ceres::AutoDiffCostFunction<SmoothnessCost, SmoothnessCost::kNumResiduals, kNumChannels, kNumChannels,
                                       kNumChannels, kNumChannels>(new SmoothnessCost{0.5, 1}));
   ExpectGradientsMatch(smooth.get(), RandomKnots(8, 1));
+  // With its Jacobian taken once (optimizer/linear_cost_function.h): against finite differences, and the same
+  // numbers as automatic differentiation at a point away from the one it was taken at.
+  LinearCostFunction<SmoothnessCost, SmoothnessCost::kNumResiduals> linear(new SmoothnessCost{0.5, 1});
+  ExpectGradientsMatch(&linear, RandomKnots(8, 1));
+  std::vector<Knot> knots = RandomKnots(14, 2);
+  const double* at[4] = {knots[0].data(), knots[1].data(), knots[2].data(), knots[3].data()};
+  constexpr int kRows = SmoothnessCost::kNumResiduals;
+  std::array<std::array<double, kRows * kNumChannels>, 4> ja, jl;
+  double* pa[4] = {ja[0].data(), ja[1].data(), ja[2].data(), ja[3].data()};
+  double* pl[4] = {jl[0].data(), jl[1].data(), jl[2].data(), jl[3].data()};
+  std::array<double, kRows> ra, rl;
+  ASSERT_TRUE(smooth->Evaluate(at, ra.data(), pa));
+  ASSERT_TRUE(linear.Evaluate(at, rl.data(), pl));
+  for (int i = 0; i < kRows; ++i) EXPECT_NEAR(ra[i], rl[i], 1e-13 * std::fabs(ra[i]));  // Jets round their .a apart
+  EXPECT_EQ(ja, jl);
   std::unique_ptr<ceres::CostFunction> view(
       Auto<ClearViewCost, 3>(new ClearViewCost{MakeBase(), Eigen::Vector3d(2, 3, 14), 30}));
   ExpectGradientsMatch(view.get(), RandomKnots(9, 1));
@@ -204,6 +222,79 @@ TEST(CostTerms, ClearanceGradientIsExact) {
   const scene::SurfaceDistance surface(mesh);
   ClearanceCost cost(MakeBase(), &surface, 3.0, 100);
   ExpectGradientsMatch(&cost, RandomKnots(10, 0.3));
+}
+
+// The goals' gradients by hand (FramingCost::Gradients, SharpCost's, BackgroundBlurCost's) against automatic
+// differentiation in the eight channel values, at 200 random states per functor: the same residuals, and every
+// derivative within 1e-6 of the Jets' (relative, or of the row's size where the derivative is near zero), and
+// the residuals exactly the functor's own in doubles. A wrong
+// derivative of any field fails it; the hinges must be active at enough of the states to be checked.
+template <typename Functor>
+void ExpectGradientsByHandMatchJets(const Functor& f, int residuals, unsigned seed, int at_least_active) {
+  using Jet = ceres::Jet<double, kNumChannels>;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int active = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    SampleState<double> s{};
+    s.position = f.base.position_enu_m + 5.0 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    s.velocity = s.acceleration = s.jerk = Eigen::Vector3d::Zero();
+    s.yaw = 0.5 * u(rng);
+    s.tilt = 0.3 * u(rng);
+    s.log_focal = 0.5 * u(rng);
+    s.dioptre = f.base.dioptre + 0.05 * u(rng);
+    s.stops = 2.0 * u(rng);
+    s.yaw_rate = s.tilt_rate = s.log_focal_rate = s.dioptre_rate = s.stops_rate = 0;
+    SampleState<Jet> j;
+    for (int c = 0; c < 3; ++c) {
+      j.position[c] = Jet(s.position[c], c);
+      j.velocity[c] = j.acceleration[c] = j.jerk[c] = Jet(0.0);
+    }
+    j.yaw = Jet(s.yaw, kYaw);
+    j.tilt = Jet(s.tilt, kTilt);
+    j.log_focal = Jet(s.log_focal, kLogFocal);
+    j.dioptre = Jet(s.dioptre, kDioptre);
+    j.stops = Jet(s.stops, kStops);
+    j.yaw_rate = j.tilt_rate = j.log_focal_rate = j.dioptre_rate = j.stops_rate = Jet(0.0);
+    Jet automatic[3];
+    ASSERT_TRUE(f.Residuals(j, automatic));
+    double r[3];
+    double g[3][kNumChannels];
+    f.Gradients(s, r, g);
+    double plain[3];
+    ASSERT_TRUE(f.Residuals(s, plain));
+    for (int i = 0; i < residuals; ++i) {
+      // The Jets' values round apart from doubles (a Jet divides by multiplying with the inverse).
+      EXPECT_NEAR(r[i], automatic[i].a, 1e-12 * std::fabs(automatic[i].a)) << "trial " << trial << " residual " << i;
+      EXPECT_EQ(r[i], plain[i]) << "trial " << trial << " residual " << i;
+      const double row = automatic[i].v.norm();
+      if (row > 0) ++active;
+      for (int c = 0; c < kNumChannels; ++c) {
+        EXPECT_LE(std::fabs(g[i][c] - automatic[i].v[c]), 1e-6 * std::max(std::fabs(automatic[i].v[c]), 1e-6 * row))
+            << "trial " << trial << " residual " << i << " channel " << c << ": " << g[i][c] << " by hand, "
+            << automatic[i].v[c] << " by the Jets";
+      }
+    }
+  }
+  EXPECT_GE(active, at_least_active) << "too few states exercise the term";
+}
+
+TEST(CostTerms, TheGoalsGradientsByHandMatchAutomaticDifferentiationAtRandomStates) {
+  const SampleBase b = MakeBase();
+  ExpectGradientsByHandMatchJets(FramingCost{b, Eigen::Vector3d(5, 30, 2), 1.8, 24.89, 14.0, 0.4, 0.6, 0.2, 20.0}, 3,
+                                 21, 600);
+  ExpectGradientsByHandMatchJets(FramingCost{b, Eigen::Vector3d(5, 30, 2), 1.8, 24.89, 14.0, 0.5, 0.5, 0.0, 1.0}, 3, 22,
+                                 400);  // no size goal: the third row is zero
+  ExpectGradientsByHandMatchJets(SharpCost{b, Eigen::Vector3d(3, 40, 0), 3e-5, false, 10}, 1, 23, 100);
+  ExpectGradientsByHandMatchJets(SharpCost{b, Eigen::Vector3d(3, 40, 0), 3e-5, true, 10}, 1, 24, 200);
+  ExpectGradientsByHandMatchJets(BackgroundBlurCost{b, Eigen::Vector3d(3, 14, 6), 50.0, 500.0, 154000, 5}, 1, 25, 100);
+  ExpectGradientsByHandMatchJets(
+      BackgroundBlurCost{b, Eigen::Vector3d(3, 14, 6), std::numeric_limits<double>::infinity(), 500.0, 154000, 5}, 1,
+      26, 100);
+  // The camera's depth clamped (the aim point behind the camera): the depth's derivatives vanish.
+  ExpectGradientsByHandMatchJets(
+      SharpCost{b, b.position_enu_m - 30.0 * (b.world_from_camera * Eigen::Vector3d::UnitZ()), 3e-5, false, 10}, 1, 27,
+      100);
 }
 
 TEST(CostTerms, ZeroChangeIsZeroCostForAPlanThatKeepsEverything) {
