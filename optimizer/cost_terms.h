@@ -46,10 +46,10 @@ struct CameraPointJacobian {
 inline CameraPointJacobian CameraPointWithJacobian(const SampleBase& b, const SampleState<double>& s,
                                                    const Eigen::Vector3d& point_enu_m) {
   const Eigen::Vector3d v = point_enu_m - s.position;
-  const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
+  const CameraTrig trig = StateTrig(s);  // shared by the sample's terms
+  const double cy = trig.cy, sy = trig.sy, ct = trig.ct, st = trig.st;
   const Eigen::Vector3d u(cy * v[0] + sy * v[1], -sy * v[0] + cy * v[1], v[2]);
   const Eigen::Vector3d c = b.camera_from_world * u;
-  const double ct = std::cos(s.tilt), st = std::sin(s.tilt);
   CameraPointJacobian out;
   out.p = Eigen::Vector3d(c[0], ct * c[1] + st * c[2], -st * c[1] + ct * c[2]);
   Eigen::Matrix3d tilt_m;  // Rx(-tilt) M

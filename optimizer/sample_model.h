@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -54,6 +55,17 @@ struct SampleState {
   Vec3T<T> position, velocity, acceleration, jerk;  // velocity... are the change's derivatives only
   T yaw, yaw_rate, tilt, tilt_rate;
   T log_focal, log_focal_rate, dioptre, dioptre_rate, stops, stops_rate;
+  // In doubles, the state's exponentials and sines as FocalLengthMm, FNumber and CameraPoint below first compute
+  // them, kept with the inputs they came from: the terms of one sample share them (docs/optimize.md, "Speed"),
+  // and a field changed afterwards (or another base) misses the memo and computes afresh, so every result is
+  // the same number as without it. Unused by Jets.
+  struct Memo {
+    double log_focal = std::numeric_limits<double>::quiet_NaN(), base_focal_mm = 0, focal_mm = 0;
+    double stops = std::numeric_limits<double>::quiet_NaN(), base_f_number = 0, f_number = 0;
+    double yaw = std::numeric_limits<double>::quiet_NaN(), cos_yaw = 0, sin_yaw = 0;
+    double tilt = std::numeric_limits<double>::quiet_NaN(), cos_tilt = 0, sin_tilt = 0;
+  };
+  mutable Memo memo;
 };
 
 template <typename T>
@@ -136,6 +148,53 @@ template <typename T>
 T FNumber(const SampleBase& b, const SampleState<T>& s) {
   using std::exp;
   return b.f_number * exp(s.stops * (0.5 * std::log(2.0)));
+}
+
+// The same in doubles through the state's memo (the same operations, so the same numbers).
+inline double FocalLengthMm(const SampleBase& b, const SampleState<double>& s) {
+  SampleState<double>::Memo& m = s.memo;
+  if (!(m.log_focal == s.log_focal && m.base_focal_mm == b.focal_length_mm)) {
+    m.focal_mm = b.focal_length_mm * std::exp(s.log_focal);
+    m.log_focal = s.log_focal;
+    m.base_focal_mm = b.focal_length_mm;
+  }
+  return m.focal_mm;
+}
+inline double FNumber(const SampleBase& b, const SampleState<double>& s) {
+  SampleState<double>::Memo& m = s.memo;
+  if (!(m.stops == s.stops && m.base_f_number == b.f_number)) {
+    m.f_number = b.f_number * std::exp(s.stops * (0.5 * std::log(2.0)));
+    m.stops = s.stops;
+    m.base_f_number = b.f_number;
+  }
+  return m.f_number;
+}
+// cos and sin of the state's yaw and tilt, through its memo.
+struct CameraTrig {
+  double cy, sy, ct, st;
+};
+inline CameraTrig StateTrig(const SampleState<double>& s) {
+  SampleState<double>::Memo& m = s.memo;
+  if (!(m.yaw == s.yaw)) {
+    m.cos_yaw = std::cos(s.yaw);
+    m.sin_yaw = std::sin(s.yaw);
+    m.yaw = s.yaw;
+  }
+  if (!(m.tilt == s.tilt)) {
+    m.cos_tilt = std::cos(s.tilt);
+    m.sin_tilt = std::sin(s.tilt);
+    m.tilt = s.tilt;
+  }
+  return {m.cos_yaw, m.sin_yaw, m.cos_tilt, m.sin_tilt};
+}
+// The same in doubles, its sines and cosines through the state's memo.
+inline Eigen::Vector3d CameraPoint(const SampleBase& b, const SampleState<double>& s,
+                                   const Eigen::Vector3d& point_enu_m) {
+  const Eigen::Vector3d v = point_enu_m - s.position;
+  const CameraTrig t = StateTrig(s);
+  const Eigen::Vector3d u(t.cy * v[0] + t.sy * v[1], -t.sy * v[0] + t.cy * v[1], v[2]);
+  const Eigen::Vector3d c = b.camera_from_world * u;
+  return Eigen::Vector3d(c[0], t.ct * c[1] + t.st * c[2], -t.st * c[1] + t.ct * c[2]);
 }
 
 // The changed camera orientation, for the output (doubles).
