@@ -147,13 +147,16 @@ Eigen::Vector3d PathSpline::Velocity(double time_s) const {
       return (p_[i + 1] - p_[i]) / h + (h / 6.0) * (-(3 * a * a - 1) * m_[i] + (3 * u * u - 1) * m_[i + 1]);
     }
     case PathInterpolation::kCatmullRom: {
-      // dC/ds by a central difference in s (C is a cubic per segment; exact to rounding), times ds/dt.
+      // dC/ds by a central difference in s, times ds/dt. C is one cubic per segment, defined past the
+      // segment's ends too, so the difference stays central at a key: (C(s+e) - C(s-e)) / 2e = C'(s) +
+      // e^2 C'''/6, exact to ~1e-8 relative. A difference clamped to the segment turned one-sided there
+      // (error e C''/2): the direction of travel jumped by ~1e-4 rad across each key, a chase or flyby
+      // placed from it by a millimetre, and a blend that matched velocities by differencing across that
+      // jump started at 16 m/s (bug 2026-11-29: a flyby ending at an actor's key).
       double ds_dt = 0;
       const double s = KnotParameter(i, time_s, &ds_dt);
-      const double k1 = cr_knots_[i + 1], k2 = cr_knots_[i + 2];
-      const double e = 1e-4 * (k2 - k1);
-      const double lo = std::max(k1, s - e), hi = std::min(k2, s + e);
-      return (CatmullRom(i, hi) - CatmullRom(i, lo)) / (hi - lo) * ds_dt;
+      const double e = 1e-4 * (cr_knots_[i + 2] - cr_knots_[i + 1]);
+      return (CatmullRom(i, s + e) - CatmullRom(i, s - e)) / (2 * e) * ds_dt;
     }
   }
   return Eigen::Vector3d::Zero();

@@ -269,6 +269,30 @@ TEST(PlanTransitions, ContinuousInPositionAndOrientation) {
   EXPECT_GT((cut.samples[120].position_enu_m - cut.samples[119].position_enu_m).norm(), 10.0);
 }
 
+// A continuous join whose previous shot ends at a moving actor's key (bug 2026-11-29): a FLYBY past a
+// walker ends at t = 6 s, the walker's second key, and a CHASE blends in from it. The join matches the
+// flyby's velocity: the first step of the chase is a normal frame step, not the 16 m/s dash the blend took
+// when the actor's direction of travel jumped by a millimetre's worth at its key.
+TEST(PlanTransitions, ABlendFromAShotEndingAtAnActorsKeyKeepsItsVelocity) {
+  const std::string walker = R"([{"name": "walker", "height_m": 1.75, "interpolation": "catmull_rom", "keyframes": [
+      {"time_s": 0, "position_enu_m": [-20, -12, 0]}, {"time_s": 6, "position_enu_m": [-8, -12, 0]},
+      {"time_s": 12, "position_enu_m": [4, -10, 0]}, {"time_s": 18, "position_enu_m": [12, -2, 0]}]}])";
+  const Trajectory plan = Plan(R"([
+      {"name": "a", "type": "FLYBY", "subject": "walker", "duration_s": 6, "closest_distance_m": 9, "side": "right",
+       "height_m": 3, "speed_m_s": 3},
+      {"name": "b", "type": "CHASE", "subject": "walker", "duration_s": 6, "distance_m": 8, "height_m": 3,
+       "lateral_m": 2, "blend_s": 3}])",
+                               walker);
+  ASSERT_EQ(plan.samples[180].shot, "b");
+  const double dt = 1.0 / 30;
+  const Vector3d v_before = (plan.samples[179].position_enu_m - plan.samples[178].position_enu_m) / dt;
+  for (size_t i = 180; i <= 182; ++i) {
+    const Vector3d v = (plan.samples[i].position_enu_m - plan.samples[i - 1].position_enu_m) / dt;
+    EXPECT_LT((v - v_before).norm(), 0.2)
+        << "sample " << i << ": " << v.transpose() << " after " << v_before.transpose();
+  }
+}
+
 TEST(PlanLens, RackFocusInDioptresAndApertureInStops) {
   const std::string actors = R"([{"name": "near", "height_m": 1.8, "position_enu_m": [0, 10, 0]},
                                  {"name": "far", "height_m": 1.8, "position_enu_m": [0, 40, 0]}])";

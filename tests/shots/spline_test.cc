@@ -46,6 +46,27 @@ TEST(PathSpline, CatmullRomIsC1InTime) {
   }
 }
 
+// Velocity() itself, at each inner key and just either side of it: the same vector to ~1e-8 relative, and
+// the central difference of Position(). Bug 2026-11-29: a difference clamped to the segment turned
+// one-sided at a key, off by ~1e-4 relative, and a chase placed from the direction of travel jumped a
+// millimetre there (a blend differencing across that jump started at 16 m/s).
+TEST(PathSpline, CatmullRomVelocityIsContinuousAtEveryKey) {
+  const PathSpline s(kTimes, kPoints, PathInterpolation::kCatmullRom);
+  for (size_t i = 1; i + 1 < kTimes.size(); ++i) {
+    const Vector3d at = s.Velocity(kTimes[i]);
+    const Vector3d before = s.Velocity(std::nextafter(kTimes[i], -1.0));
+    const Vector3d after = s.Velocity(std::nextafter(kTimes[i], 100.0));
+    const double tol = 1e-8 * at.norm();
+    EXPECT_LT((at - before).norm(), tol) << "key " << i;
+    EXPECT_LT((at - after).norm(), tol) << "key " << i;
+    // Across a key the acceleration jumps (Catmull-Rom is not C2): this difference is off by h/4 times
+    // that jump, hence the small h.
+    const double h = 1e-7;
+    const Vector3d central = (s.Position(kTimes[i] + h) - s.Position(kTimes[i] - h)) / (2 * h);
+    EXPECT_LT((at - central).norm(), 1e-5 * at.norm()) << "key " << i;
+  }
+}
+
 TEST(PathSpline, LinearIsNotC1) {
   // The check above can fail: a linear path has a kink at its inner keys.
   const PathSpline s(kTimes, kPoints, PathInterpolation::kLinear);
