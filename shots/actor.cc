@@ -17,6 +17,36 @@ Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline p
     : Actor(std::move(name), height_m, heading_deg, std::move(path)) {
   ground_ = ground;
   above_ground_m_ = above_ground_m;
+  // The smoothed height CameraBaseAt reads: at steps of at most 0.5 s over the keys' time span, the
+  // ground-kept height averaged with triangular weights over the step on either side (17 points), then a
+  // natural cubic spline through those values (C2: the camera's vertical jerk stays finite). A walker's
+  // half second is under a metre: the trend of the ground is kept, its centimetre noise is not.
+  const std::vector<double>& times = path_.times();
+  if (times.size() < 2 || !(times.back() > times.front())) return;
+  constexpr double kStepS = 0.5;
+  const double span_s = times.back() - times.front();
+  const int steps = static_cast<int>(std::ceil(span_s / kStepS));
+  const double step_s = span_s / steps;
+  std::vector<double> grid_s;
+  std::vector<Eigen::Vector3d> heights;
+  for (int j = 0; j <= steps; ++j) {
+    const double t = times.front() + j * step_s;
+    double sum = 0, weights = 0;
+    for (int k = -8; k <= 8; ++k) {
+      const double w = 9 - std::abs(k);
+      sum += w * PositionAt(t + k * step_s / 8).z();
+      weights += w;
+    }
+    grid_s.push_back(t);
+    heights.emplace_back(0, 0, sum / weights);
+  }
+  smooth_base_up_m_.emplace(std::move(grid_s), std::move(heights), PathInterpolation::kCubicBSpline);
+}
+
+Eigen::Vector3d Actor::CameraBaseAt(double time_s) const {
+  Eigen::Vector3d p = PositionAt(time_s);
+  if (smooth_base_up_m_) p.z() = smooth_base_up_m_->Position(time_s).z();
+  return p;
 }
 
 Eigen::Vector3d Actor::PositionAt(double time_s) const {

@@ -40,6 +40,12 @@ class Actor {
   double height_m() const { return height_m_; }
 
   Eigen::Vector3d PositionAt(double time_s) const;
+  // Where shots place the camera from: PositionAt, but for an actor kept on the ground that moves, the
+  // height is the ground's smoothed in time (a C2 spline through the ground height averaged over 0.5 s
+  // steps): a camera flies a steady height over the ground's trend instead of copying each kink and
+  // bump of a photogrammetry mesh under the actor's feet (those made jerk spikes of thousands of
+  // m/s^3). Framing and focus still use PositionAt.
+  Eigen::Vector3d CameraBaseAt(double time_s) const;
   Eigen::Vector3d VelocityAt(double time_s) const { return path_.Velocity(time_s); }
   // Where cameras aim: the base raised by half the actor's height.
   Eigen::Vector3d AimPointAt(double time_s) const;
@@ -56,6 +62,7 @@ class Actor {
   PathSpline path_;
   const Ground* ground_ = nullptr;  // set: on the ground at every time
   double above_ground_m_ = 0;
+  std::optional<PathSpline> smooth_base_up_m_;  // the ground-kept height, smoothed (z of each point)
 };
 
 // Parses one element of shots.json "actors" (docs/plan.md): a position or timed keyframes, and

@@ -24,9 +24,9 @@ struct SubjectFrame {
     return HorizontalFromBearing(shot.travel_bearing_deg ? *shot.travel_bearing_deg
                                                          : actor->TravelHeadingDegAt(time_s));
   }
-  // The subject's base the camera is placed from.
+  // The subject's base the camera is placed from (its height smoothed over the ground, Actor::CameraBaseAt).
   Eigen::Vector3d Base(double time_s) {
-    const Eigen::Vector3d p = actor->PositionAt(time_s);
+    const Eigen::Vector3d p = actor->CameraBaseAt(time_s);
     base_up_m = p.z();
     return p;
   }
