@@ -102,6 +102,13 @@ class BlockBand {
   std::vector<Mat8> inverse_;  // of L's diagonal blocks (Factor)
 };
 
+// A trial step's verdict from its cost so far (Solver::Run): rejected when rho = (cost - trial) / predicted is
+// not above the least relative decrease, the same expression Run takes with the whole trial cost.
+struct Rejection {
+  double cost, predicted, min_relative_decrease;
+  bool Rejects(double trial) const { return !(predicted > 0 && (cost - trial) / predicted > min_relative_decrease); }
+};
+
 class Solver {
  public:
   Solver(ceres::Problem* problem, double* knots, int num_knots, const std::vector<std::array<bool, 8>>& fixed)
@@ -129,6 +136,7 @@ class Solver {
       band_ = std::max(band_, hi - lo);
       most_rows_ = std::max(most_rows_, b.rows);
       most_params_ = std::max(most_params_, static_cast<int>(b.params.size()));
+      nonnegative_ = nonnegative_ && (!b.loss || LinearAndNonNegative(*b.loss));
       b.constant = b.loss ? nullptr : dynamic_cast<const ConstantJacobian*>(b.cost);
       if (b.constant) TakeConstantGram(&b);
       blocks_.push_back(std::move(b));
@@ -179,10 +187,16 @@ class Solver {
       for (int i = 0; i < n_; ++i) {
         for (int c = 0; c < kChannels; ++c) knots_[i * kChannels + c] += dx[i][c];
       }
-      const double trial = Evaluate(nullptr, nullptr);
+      // The step is kept when rho = (cost - trial) / predicted > min_relative_decrease. With costs that are sums
+      // of non-negative terms (nonnegative_), a partial sum of the trial's cost only grows in floating point
+      // too: once rho from a partial sum says no, so does the whole sum's, and the evaluation stops there (a
+      // rejected trial's cost is not used). The same steps are kept.
+      const Rejection rejection{cost, predicted, o.min_relative_decrease};
+      const double trial = Evaluate(nullptr, nullptr, nonnegative_ ? &rejection : nullptr);
       const double rho = (cost - trial) / predicted;
       if (trace_)
-        std::fprintf(stderr, "%4d %.6e -> %.6e rho %.3f lambda %.2e\n", summary.iterations, cost, trial, rho, lambda);
+        std::fprintf(stderr, "%4d %.6e -> %s%.6e rho %.3f lambda %.2e\n", summary.iterations, cost,
+                     stopped_early_ ? "(stopped at) " : "", trial, rho, lambda);
       if (!(std::isfinite(trial) && predicted > 0 && rho > o.min_relative_decrease)) {
         std::copy(saved.begin(), saved.end(), knots_);
         lambda *= nu;
@@ -205,6 +219,14 @@ class Solver {
 
  private:
   static constexpr double kMaxDamping = 1e32;
+  // A loss rho(s) = a s with a >= 0 (the optimizer's: scaled by a stride or a stiffness): rho(0) = 0, rho(1) >= 0,
+  // no curvature at either. Then every block's cost is non-negative.
+  static bool LinearAndNonNegative(const ceres::LossFunction& loss) {
+    double at0[3], at1[3];
+    loss.Evaluate(0.0, at0);
+    loss.Evaluate(1.0, at1);
+    return at0[0] == 0 && at1[0] >= 0 && at1[1] == at1[0] && at0[2] == 0 && at1[2] == 0;
+  }
   // dx from (H + lambda diag(H)) dx = -g, the fixed channels held; false when the system cannot be factored.
   bool Step(const BlockBand& h, const std::vector<Vec8>& g, double lambda, BlockBand* damped,
             std::vector<Vec8>* dx) const {
@@ -251,7 +273,10 @@ class Solver {
   // The cost 1/2 sum rho(|r|^2); with `h`, also the Gauss-Newton matrix J^T J and the gradient J^T r
   // (each block's rows and Jacobian scaled by sqrt(rho'), exact for losses without curvature). Not finite
   // when a block cannot be evaluated.
-  double Evaluate(BlockBand* h, std::vector<Vec8>* g) {
+  // With `rejection` (no `h`), it stops as soon as the cost so far rejects the step, returning that partial sum.
+  double Evaluate(BlockBand* h, std::vector<Vec8>* g, const Rejection* rejection = nullptr) {
+    stopped_early_ = rejection && rejection->Rejects(0);
+    if (stopped_early_) return 0;
     if (h) {
       h->SetZero();
       g->assign(n_, Vec8::Zero());
@@ -275,6 +300,10 @@ class Solver {
       if (b.loss) b.loss->Evaluate(squared, rho);
       cost += 0.5 * rho[0];
       if (!std::isfinite(cost)) return cost;
+      if (rejection && rejection->Rejects(cost)) {
+        stopped_early_ = true;
+        return cost;
+      }
       if (!h || rho[1] <= 0) continue;
       if (b.state) {
         StateAccumulate(b, rho[1], h, g);
@@ -455,6 +484,8 @@ class Solver {
   const std::vector<std::array<bool, 8>>& fixed_;
   std::vector<Block> blocks_;
   int band_ = 0, most_rows_ = 0, most_params_ = 0;
+  bool nonnegative_ = true;     // every block's cost >= 0: no loss, or LinearAndNonNegative
+  bool stopped_early_ = false;  // the last Evaluate, by its rejection
   std::vector<double> residuals_, jacobians_;
 };
 
