@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "core/error.h"
+#include "optimizer/linear_cost_function.h"
 #include "optimizer/state_cost_function.h"
 
 namespace cinepath::optimizer {
@@ -28,6 +29,12 @@ struct Block {
   std::vector<double*> params;
   std::vector<int> knot;  // of each parameter block
   int rows;
+  // A block without a loss whose Jacobian is a constant (ConstantJacobian): its rows and their Gram matrix
+  // J^T J, taken once (Solver::TakeConstantGram), as Accumulate would take them at every evaluation.
+  const ConstantJacobian* constant = nullptr;
+  std::vector<double> constant_rows;  // rows x (8 x params), each row as Accumulate gathers it
+  std::vector<Mat8> constant_gram;    // its knot pairs' blocks: (a, c) at a x params + c
+  bool constant_any = false;          // a row that is not zero
 };
 
 // The lower band of a symmetric block matrix over knots: block (i, i - d) for d = 0..band.
@@ -95,6 +102,13 @@ class BlockBand {
   std::vector<Mat8> inverse_;  // of L's diagonal blocks (Factor)
 };
 
+// A trial step's verdict from its cost so far (Solver::Run): rejected when rho = (cost - trial) / predicted is
+// not above the least relative decrease, the same expression Run takes with the whole trial cost.
+struct Rejection {
+  double cost, predicted, min_relative_decrease;
+  bool Rejects(double trial) const { return !(predicted > 0 && (cost - trial) / predicted > min_relative_decrease); }
+};
+
 class Solver {
  public:
   Solver(ceres::Problem* problem, double* knots, int num_knots, const std::vector<std::array<bool, 8>>& fixed)
@@ -122,6 +136,9 @@ class Solver {
       band_ = std::max(band_, hi - lo);
       most_rows_ = std::max(most_rows_, b.rows);
       most_params_ = std::max(most_params_, static_cast<int>(b.params.size()));
+      nonnegative_ = nonnegative_ && (!b.loss || LinearAndNonNegative(*b.loss));
+      b.constant = b.loss ? nullptr : dynamic_cast<const ConstantJacobian*>(b.cost);
+      if (b.constant) TakeConstantGram(&b);
       blocks_.push_back(std::move(b));
     }
   }
@@ -170,10 +187,16 @@ class Solver {
       for (int i = 0; i < n_; ++i) {
         for (int c = 0; c < kChannels; ++c) knots_[i * kChannels + c] += dx[i][c];
       }
-      const double trial = Evaluate(nullptr, nullptr);
+      // The step is kept when rho = (cost - trial) / predicted > min_relative_decrease. With costs that are sums
+      // of non-negative terms (nonnegative_), a partial sum of the trial's cost only grows in floating point
+      // too: once rho from a partial sum says no, so does the whole sum's, and the evaluation stops there (a
+      // rejected trial's cost is not used). The same steps are kept.
+      const Rejection rejection{cost, predicted, o.min_relative_decrease};
+      const double trial = Evaluate(nullptr, nullptr, nonnegative_ ? &rejection : nullptr);
       const double rho = (cost - trial) / predicted;
       if (trace_)
-        std::fprintf(stderr, "%4d %.6e -> %.6e rho %.3f lambda %.2e\n", summary.iterations, cost, trial, rho, lambda);
+        std::fprintf(stderr, "%4d %.6e -> %s%.6e rho %.3f lambda %.2e\n", summary.iterations, cost,
+                     stopped_early_ ? "(stopped at) " : "", trial, rho, lambda);
       if (!(std::isfinite(trial) && predicted > 0 && rho > o.min_relative_decrease)) {
         std::copy(saved.begin(), saved.end(), knots_);
         lambda *= nu;
@@ -196,6 +219,14 @@ class Solver {
 
  private:
   static constexpr double kMaxDamping = 1e32;
+  // A loss rho(s) = a s with a >= 0 (the optimizer's: scaled by a stride or a stiffness): rho(0) = 0, rho(1) >= 0,
+  // no curvature at either. Then every block's cost is non-negative.
+  static bool LinearAndNonNegative(const ceres::LossFunction& loss) {
+    double at0[3], at1[3];
+    loss.Evaluate(0.0, at0);
+    loss.Evaluate(1.0, at1);
+    return at0[0] == 0 && at1[0] >= 0 && at1[1] == at1[0] && at0[2] == 0 && at1[2] == 0;
+  }
   // dx from (H + lambda diag(H)) dx = -g, the fixed channels held; false when the system cannot be factored.
   bool Step(const BlockBand& h, const std::vector<Vec8>& g, double lambda, BlockBand* damped,
             std::vector<Vec8>* dx) const {
@@ -242,7 +273,10 @@ class Solver {
   // The cost 1/2 sum rho(|r|^2); with `h`, also the Gauss-Newton matrix J^T J and the gradient J^T r
   // (each block's rows and Jacobian scaled by sqrt(rho'), exact for losses without curvature). Not finite
   // when a block cannot be evaluated.
-  double Evaluate(BlockBand* h, std::vector<Vec8>* g) {
+  // With `rejection` (no `h`), it stops as soon as the cost so far rejects the step, returning that partial sum.
+  double Evaluate(BlockBand* h, std::vector<Vec8>* g, const Rejection* rejection = nullptr) {
+    stopped_early_ = rejection && rejection->Rejects(0);
+    if (stopped_early_) return 0;
     if (h) {
       h->SetZero();
       g->assign(n_, Vec8::Zero());
@@ -254,9 +288,11 @@ class Solver {
     for (const Block& b : blocks_) {
       const int np = static_cast<int>(b.params.size());
       for (int j = 0; j < np; ++j) jacobian_ptrs[j] = jacobians_.data() + static_cast<size_t>(j) * b.rows * kChannels;
+      const bool jacobian = h && !b.constant;
       const bool ok =
-          b.state ? b.state->EvaluateStateBlock(b.params.data(), residuals_.data(), h ? jacobians_.data() : nullptr)
-                  : b.cost->Evaluate(b.params.data(), residuals_.data(), h ? jacobian_ptrs.data() : nullptr);
+          b.state
+              ? b.state->EvaluateStateBlock(b.params.data(), residuals_.data(), jacobian ? jacobians_.data() : nullptr)
+              : b.cost->Evaluate(b.params.data(), residuals_.data(), jacobian ? jacobian_ptrs.data() : nullptr);
       if (!ok) return std::numeric_limits<double>::quiet_NaN();
       double squared = 0;
       for (int i = 0; i < b.rows; ++i) squared += residuals_[i] * residuals_[i];
@@ -264,9 +300,15 @@ class Solver {
       if (b.loss) b.loss->Evaluate(squared, rho);
       cost += 0.5 * rho[0];
       if (!std::isfinite(cost)) return cost;
+      if (rejection && rejection->Rejects(cost)) {
+        stopped_early_ = true;
+        return cost;
+      }
       if (!h || rho[1] <= 0) continue;
       if (b.state) {
         StateAccumulate(b, rho[1], h, g);
+      } else if (b.constant) {
+        ConstantAccumulate(b, h, g);
       } else {
         Accumulate(b, jacobian_ptrs.data(), rho[1], h, g);
       }
@@ -343,15 +385,7 @@ class Solver {
     gradient_.head(n).setZero();
     bool any = false;
     for (int i = 0; i < b.rows; ++i) {
-      bool zero = true;
-      for (int j = 0; j < np; ++j) {
-        for (int c = 0; c < kChannels; ++c) {
-          const double v = jacobians[j][i * kChannels + c];
-          row_[j * kChannels + c] = v;
-          zero = zero && v == 0;
-        }
-      }
-      if (zero) continue;
+      if (!GatherRow(jacobians, np, i)) continue;
       any = true;
       gradient_.head(n) += (weight * residuals_[i]) * row_.head(n);
       for (int q = 0; q < n; ++q) {
@@ -363,13 +397,78 @@ class Solver {
     for (int q = 0; q < n; ++q) {  // the lower triangle mirrored
       for (int p = q + 1; p < n; ++p) gram_(q, p) = gram_(p, q);
     }
+    Scatter(b, h, g);
+  }
+
+  // Row i of the block's Jacobians into row_; false when it is zero.
+  bool GatherRow(const double* const* jacobians, int np, int i) {
+    bool zero = true;
+    for (int j = 0; j < np; ++j) {
+      for (int c = 0; c < kChannels; ++c) {
+        const double v = jacobians[j][i * kChannels + c];
+        row_[j * kChannels + c] = v;
+        zero = zero && v == 0;
+      }
+    }
+    return !zero;
+  }
+
+  // The block's gradient_ and its Gram matrix (over its knots' channels: gram_, or a constant block's) into
+  // the band.
+  void Scatter(const Block& b, BlockBand* h, std::vector<Vec8>* g) const {
+    const int np = static_cast<int>(b.params.size());
     for (int a = 0; a < np; ++a) {
       (*g)[b.knot[a]] += gradient_.segment<kChannels>(a * kChannels);
       for (int c = 0; c < np; ++c) {
         if (b.knot[c] > b.knot[a]) continue;
-        h->at(b.knot[a], b.knot[c]) += gram_.block<kChannels, kChannels>(a * kChannels, c * kChannels);
+        if (b.constant) {
+          h->at(b.knot[a], b.knot[c]) += b.constant_gram[a * np + c];
+        } else {
+          h->at(b.knot[a], b.knot[c]) += gram_.block<kChannels, kChannels>(a * kChannels, c * kChannels);
+        }
       }
     }
+  }
+
+  // A constant block's rows and Gram matrix, once: Accumulate's at weight 1 (a block without a loss), so the
+  // same numbers as Accumulate at every evaluation.
+  void TakeConstantGram(Block* b) {
+    const int np = static_cast<int>(b->params.size());
+    const int n = np * kChannels;
+    std::vector<const double*> jacobians(np);
+    for (int j = 0; j < np; ++j) jacobians[j] = b->constant->constant_jacobian(j);
+    b->constant_rows.assign(static_cast<size_t>(b->rows) * n, 0.0);
+    gram_.topLeftCorner(n, n).setZero();
+    for (int i = 0; i < b->rows; ++i) {
+      if (!GatherRow(jacobians.data(), np, i)) continue;
+      b->constant_any = true;
+      std::copy(row_.data(), row_.data() + n, b->constant_rows.data() + static_cast<size_t>(i) * n);
+      for (int q = 0; q < n; ++q) {
+        if (row_[q] == 0) continue;
+        gram_.col(q).segment(q, n - q) += (1.0 * row_[q]) * row_.segment(q, n - q);
+      }
+    }
+    for (int q = 0; q < n; ++q) {
+      for (int p = q + 1; p < n; ++p) gram_(q, p) = gram_(p, q);
+    }
+    for (int a = 0; a < np; ++a) {
+      for (int c = 0; c < np; ++c)
+        b->constant_gram.push_back(gram_.block<kChannels, kChannels>(a * kChannels, c * kChannels));
+    }
+  }
+
+  // A constant block (weight 1): its gradient from its rows, its Gram matrix as taken once.
+  void ConstantAccumulate(const Block& b, BlockBand* h, std::vector<Vec8>* g) {
+    if (!b.constant_any) return;
+    const int n = static_cast<int>(b.params.size()) * kChannels;
+    gradient_.head(n).setZero();
+    for (int i = 0; i < b.rows; ++i) {
+      const double* row = b.constant_rows.data() + static_cast<size_t>(i) * n;
+      if (std::all_of(row, row + n, [](double v) { return v == 0; })) continue;
+      const double scale = 1.0 * residuals_[i];
+      for (int q = 0; q < n; ++q) gradient_[q] += scale * row[q];
+    }
+    Scatter(b, h, g);
   }
 
   Mat8 values_gram_;
@@ -385,6 +484,8 @@ class Solver {
   const std::vector<std::array<bool, 8>>& fixed_;
   std::vector<Block> blocks_;
   int band_ = 0, most_rows_ = 0, most_params_ = 0;
+  bool nonnegative_ = true;     // every block's cost >= 0: no loss, or LinearAndNonNegative
+  bool stopped_early_ = false;  // the last Evaluate, by its rejection
   std::vector<double> residuals_, jacobians_;
 };
 

@@ -17,9 +17,19 @@
 
 namespace cinepath::optimizer {
 
+// A cost function whose Jacobian is the same at every point: the banded solver (optimizer/banded_solver.h) takes
+// its Gauss-Newton matrix J^T J once and evaluates only its residuals after.
+class ConstantJacobian {
+ public:
+  virtual ~ConstantJacobian() = default;
+  // The Jacobian in parameter block j, row-major (residuals x the block's size), as Evaluate writes it.
+  virtual const double* constant_jacobian(int j) const = 0;
+};
+
 template <typename Functor, int kResiduals>
 class LinearCostFunction
-    : public ceres::SizedCostFunction<kResiduals, kNumChannels, kNumChannels, kNumChannels, kNumChannels> {
+    : public ceres::SizedCostFunction<kResiduals, kNumChannels, kNumChannels, kNumChannels, kNumChannels>,
+      public ConstantJacobian {
  public:
   explicit LinearCostFunction(Functor* functor) : functor_(functor) {
     const ceres::AutoDiffCostFunction<Functor, kResiduals, kNumChannels, kNumChannels, kNumChannels, kNumChannels>
@@ -40,6 +50,7 @@ class LinearCostFunction
     }
     return true;
   }
+  const double* constant_jacobian(int j) const override { return jacobian_[j].data(); }
 
  private:
   std::unique_ptr<Functor> functor_;

@@ -105,12 +105,16 @@ inline SampleState<double> EvaluateSample(const SampleBase& b, const double* con
   const auto blend = [&](const std::array<double, 4>& x) -> Vec8 {
     return x[0] * k0 + x[1] * k1 + x[2] * k2 + x[3] * k3;
   };
-  const Vec8 value = blend(w.value), d1 = blend(w.d1), d2 = blend(w.d2), d3 = blend(w.d3);
+  // The second and third derivatives of the position's three channels only (the state has no others).
+  const auto blend3 = [&](const std::array<double, 4>& x) -> Eigen::Vector3d {
+    return x[0] * k0.head<3>() + x[1] * k1.head<3>() + x[2] * k2.head<3>() + x[3] * k3.head<3>();
+  };
+  const Vec8 value = blend(w.value), d1 = blend(w.d1);
   SampleState<double> s;
   s.position = b.position_enu_m + value.head<3>();
   s.velocity = d1.head<3>();
-  s.acceleration = d2.head<3>();
-  s.jerk = d3.head<3>();
+  s.acceleration = blend3(w.d2);
+  s.jerk = blend3(w.d3);
   s.yaw = value[kYaw];
   s.yaw_rate = d1[kYaw];
   s.tilt = value[kTilt];

@@ -10,7 +10,9 @@
 #include <ceres/ceres.h>
 #include <gtest/gtest.h>
 
+#include "optimizer/cost_terms.h"
 #include "optimizer/knot_spline.h"
+#include "optimizer/linear_cost_function.h"
 #include "optimizer/sample_model.h"
 #include "optimizer/state_cost_function.h"
 
@@ -114,6 +116,14 @@ struct Problem {
                                new ceres::ScaledLoss(nullptr, 0.5, ceres::TAKE_OWNERSHIP), knots[s].data(),
                                knots[s + 1].data(), knots[s + 2].data(), knots[s + 3].data());
     }
+    // Linear blocks with a constant Jacobian (the smoothness), whose J^T J the band takes once; every other one
+    // under a scaled loss, which the band takes row by row.
+    for (int s = 0; s < spline.num_segments(); ++s) {
+      problem.AddResidualBlock(
+          new LinearCostFunction<SmoothnessCost, SmoothnessCost::kNumResiduals>(new SmoothnessCost{1.0, 0.3}),
+          s % 2 ? nullptr : new ceres::ScaledLoss(nullptr, 2.0, ceres::TAKE_OWNERSHIP), knots[s].data(),
+          knots[s + 1].data(), knots[s + 2].data(), knots[s + 3].data());
+    }
     for (size_t i = 0; i < knots.size(); ++i) {
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<KnotPull, kNumChannels, kNumChannels>(
                                    new KnotPull{0.1 * static_cast<double>(i)}),
@@ -197,7 +207,8 @@ TEST(BandedSolver, HeldChannelsStayAndTheRestReachTheSameMinimum) {
 }
 
 // On a linear problem one undamped step is the exact minimum, only if the Gauss-Newton matrix and the gradient
-// the band accumulates (the value Gram matrix, the rates' one, the knot rows, the one-knot blocks) are exact.
+// the band accumulates (the value Gram matrix, the rates' one, the knot rows, the constant blocks' Gram matrix
+// taken once, the one-knot blocks) are exact.
 TEST(BandedSolver, OneUndampedStepSolvesALinearProblem) {
   for (const bool rates : {false, true}) {
     const std::vector<Knot> expected = SolvedByCeres(8, rates, {}, true);
