@@ -63,6 +63,11 @@ struct QemOptions {
   // edge's two vertices to the faces around the new point (the quadric's cost is a mean over its
   // planes; the Hausdorff error is a maximum). 0 = the quadric alone.
   double distance_check = 0.6;
+  // The spike pass, with a face budget that keeps less than `light_budget_keep` of the faces: once the
+  // budget is met, the input vertices the output left farther than this share of the largest such
+  // distance are pinned (locked as the cuts are), and the tiles that hold one run again with the band
+  // pass, so that other collapses meet the budget (bench/RESULTS.md, run M). 0 = off.
+  double spike_pass = 0.8;
 };
 }  // namespace internal
 

@@ -279,6 +279,8 @@ class QemSimplifier {
     const size_t n = pos_.size();
     face_alive_.assign(faces_.size(), 1);
     vertex_alive_.assign(n, 1);
+    merged_into_.resize(n);
+    for (uint32_t v = 0; v < n; ++v) merged_into_[v] = v;
     stamp_.assign(n, 0);
     mark_.assign(n, 0);
     // Each vertex's corners as a singly linked list (corner c: slot c % 3 of face c / 3); corners of
@@ -349,6 +351,8 @@ class QemSimplifier {
   std::vector<Quadric> TakeQuadrics() { return std::move(quadric_); }
   const std::vector<double>& goals2() const { return goal2_; }
   const std::vector<char>& vertex_alive() const { return vertex_alive_; }
+  // Each removed vertex's: the vertex it collapsed into (itself while alive).
+  const std::vector<uint32_t>& merged_into() const { return merged_into_; }
   // Surviving faces, in their input order.
   std::vector<std::array<uint32_t, 3>> AliveFaces() const {
     std::vector<std::array<uint32_t, 3>> out;
@@ -543,6 +547,7 @@ class QemSimplifier {
     }
     head_[gone] = kNone;
     vertex_alive_[gone] = 0;
+    merged_into_[gone] = keep;
     quadric_[keep] += quadric_[gone];
     if (!goal2_.empty()) goal2_[keep] = std::min(goal2_[keep], goal2_[gone]);
     pos_[keep] = p;
@@ -557,6 +562,7 @@ class QemSimplifier {
   std::vector<double> goal2_;
   QemOptions options_;
   std::vector<char> face_alive_, vertex_alive_;
+  std::vector<uint32_t> merged_into_;
   std::vector<uint32_t> stamp_, mark_;
   uint32_t epoch_ = 0;
   std::vector<uint32_t> head_, next_;
@@ -710,12 +716,21 @@ QuadricStore SumQuadrics(const std::vector<Piece>& pieces, const std::vector<std
   return store;
 }
 
+// The spike pass's state: the vertices pinned (locked as the cuts are), or the collapses recorded
+// (each removed vertex's parent, by global id: the vertex it merged into).
+struct SpikeContext {
+  const std::vector<char>* pinned = nullptr;
+  std::vector<uint32_t>* parent = nullptr;
+};
+
 // One piece of the mesh (a tile, or a cell of the band) in local vertex ids, ready to simplify.
 struct PieceJob {
   std::vector<uint32_t> global;  // local → global vertex id
   // The simplifier's faces are the piece's own, then `halo_faces` of its neighbours' (never changed).
   std::unique_ptr<QemSimplifier> simplifier;
   int64_t halo_faces = 0;
+  int64_t touching_cuts = 0;                // faces with a corner on the piece's cuts or borders (the halo's included)
+  std::vector<uint32_t>* parent = nullptr;  // when set: each removed vertex's global parent is written there
   int64_t own_faces_alive() const { return simplifier->faces_alive() - halo_faces; }
 };
 
@@ -776,7 +791,7 @@ std::vector<std::vector<std::array<uint32_t, 3>>> Halos(const std::vector<std::v
 PieceJob PreparePiece(const std::vector<Eigen::Vector3d>& positions, const QuadricStore* quadrics,
                       const std::vector<std::array<uint32_t, 3>>& own_faces,
                       const std::vector<std::array<uint32_t, 3>>& halo, const std::vector<double>& goals2,
-                      const QemOptions& options, std::vector<uint32_t>& scratch) {
+                      const QemOptions& options, std::vector<uint32_t>& scratch, const SpikeContext* spikes) {
   PieceJob job;
   job.halo_faces = static_cast<int64_t>(halo.size());
   // The simplifier's faces: the piece's own, then the halo's.
@@ -834,6 +849,12 @@ PieceJob PreparePiece(const std::vector<Eigen::Vector3d>& positions, const Quadr
   for (size_t f = own_faces.size(); f < local_faces.size(); ++f) {
     for (uint32_t v : local_faces[f]) locked[v] = 1;
   }
+  // The faces at the piece's cuts and borders, before the pinned vertices (SimplifyTiles' target).
+  for (const auto& t : local_faces) job.touching_cuts += (locked[t[0]] || locked[t[1]] || locked[t[2]]) ? 1 : 0;
+  if (spikes && spikes->pinned) {
+    for (size_t k = 0; k < global.size(); ++k) locked[k] = locked[k] || (*spikes->pinned)[global[k]];
+  }
+  if (spikes) job.parent = spikes->parent;
   std::vector<double> local_goal2;
   if (!goals2.empty()) {
     local_goal2.resize(global.size());
@@ -861,6 +882,11 @@ Piece FinishPiece(PieceJob& job, int64_t target_faces) {
     }
   }
   const bool goals = !simplifier.goals2().empty();
+  if (job.parent) {  // the piece's vertices are its own (a cut vertex never dies): no two pieces write one
+    for (size_t k = 0; k < job.global.size(); ++k) {
+      if (!simplifier.vertex_alive()[k]) (*job.parent)[job.global[k]] = job.global[simplifier.merged_into()[k]];
+    }
+  }
   for (size_t k = 0; k < job.global.size(); ++k) {
     if (!used[k]) continue;
     piece.vertices.push_back(job.global[k]);
@@ -1002,28 +1028,35 @@ void SplitCutBand(const std::vector<Piece>& pieces, size_t n, int rings, std::ve
 
 using Scratches = tbb::enumerable_thread_specific<std::vector<uint32_t>>;
 
+// One tile simplified on its own, its cut vertices locked.
+Piece SimplifyTile(const std::vector<Eigen::Vector3d>& positions, const std::vector<std::array<uint32_t, 3>>& tile,
+                   const std::vector<double>& goals2, const QemOptions& options, double keep_ratio,
+                   std::vector<uint32_t>& scratch, const SpikeContext* spikes) {
+  // No halo: the tiles cut the input mesh, whose faces around a cut vertex close no short loop
+  // that a collapse could turn into a doubled edge (the band cells, cut from a thinned mesh, do).
+  PieceJob job = PreparePiece(positions, nullptr, tile, {}, goals2, options, scratch, spikes);
+  int64_t tile_target = 0;  // with error goals: as far as they allow
+  if (goals2.empty()) {
+    // The faces that touch a locked (cut) vertex stay for the band pass, which simplifies them
+    // with the others near the cut; the rest are kept in proportion.
+    const int64_t touching = job.touching_cuts - job.halo_faces;
+    const int64_t rest = static_cast<int64_t>(tile.size()) - touching;
+    tile_target = touching + static_cast<int64_t>(std::llround(keep_ratio * static_cast<double>(rest)));
+  }
+  return FinishPiece(job, tile_target);
+}
+
 // The first pass: each tile simplified on its own (in parallel), its cut vertices locked.
 std::vector<Piece> SimplifyTiles(const std::vector<Eigen::Vector3d>& positions,
                                  const std::vector<std::vector<std::array<uint32_t, 3>>>& tiles,
                                  const std::vector<double>& goals2, const QemOptions& options, double keep_ratio,
-                                 Scratches& scratches) {
+                                 Scratches& scratches, const SpikeContext* spikes) {
   std::vector<Piece> pieces(tiles.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<uint32_t>& scratch = scratches.local();
     for (size_t t = range.begin(); t != range.end(); ++t) {
-      if (tiles[t].empty()) continue;
-      // No halo: the tiles cut the input mesh, whose faces around a cut vertex close no short loop
-      // that a collapse could turn into a doubled edge (the band cells, cut from a thinned mesh, do).
-      PieceJob job = PreparePiece(positions, nullptr, tiles[t], {}, goals2, options, scratch);
-      int64_t tile_target = 0;  // with error goals: as far as they allow
-      if (goals2.empty()) {
-        // The faces that touch a locked (cut) vertex stay for the band pass, which simplifies them
-        // with the others near the cut; the rest are kept in proportion.
-        const int64_t touching = job.simplifier->FacesTouchingLocked() - job.halo_faces;
-        const int64_t rest = static_cast<int64_t>(tiles[t].size()) - touching;
-        tile_target = touching + static_cast<int64_t>(std::llround(keep_ratio * static_cast<double>(rest)));
-      }
-      pieces[t] = FinishPiece(job, tile_target);
+      if (!tiles[t].empty())
+        pieces[t] = SimplifyTile(positions, tiles[t], goals2, options, keep_ratio, scratch, spikes);
     }
   });
   return pieces;
@@ -1034,7 +1067,7 @@ std::vector<Piece> SimplifyTiles(const std::vector<Eigen::Vector3d>& positions,
 // its cells: add up what each cell added.
 void PassAroundCellCuts(size_t n, int rings, int64_t target_faces, const std::vector<double>& goals2,
                         const QemOptions& options, std::vector<Eigen::Vector3d>& positions, QuadricStore& quadrics,
-                        std::vector<uint32_t>& scratch, std::vector<Piece>& band_pieces) {
+                        std::vector<uint32_t>& scratch, std::vector<Piece>& band_pieces, const SpikeContext* spikes) {
   const std::vector<Quadric> base = quadrics.values;
   for (const Piece& piece : band_pieces) {
     for (size_t k = 0; k < piece.vertices.size(); ++k) {
@@ -1047,7 +1080,7 @@ void PassAroundCellCuts(size_t n, int rings, int64_t target_faces, const std::ve
   SplitCutBand(band_pieces, n, rings, &around_cuts, &rest);
   const int64_t around_target = target_faces - static_cast<int64_t>(rest.size());
   if (around_target > 0) {
-    PieceJob job = PreparePiece(positions, &quadrics, around_cuts, {}, goals2, options, scratch);
+    PieceJob job = PreparePiece(positions, &quadrics, around_cuts, {}, goals2, options, scratch, spikes);
     Piece last = FinishPiece(job, around_target);
     for (size_t k = 0; k < last.vertices.size(); ++k) positions[last.vertices[k]] = last.positions[k];
     band_pieces.assign(1, Piece{});
@@ -1273,14 +1306,14 @@ std::vector<std::vector<std::array<uint32_t, 3>>> BandCells(const TileGrid& tile
 std::vector<Piece> SimplifyCells(const std::vector<std::vector<std::array<uint32_t, 3>>>& cells, size_t n,
                                  const std::vector<Eigen::Vector3d>& positions, const QuadricStore& quadrics,
                                  const std::vector<double>& goals2, const QemOptions& options, int64_t target_faces,
-                                 Scratches& scratches) {
+                                 Scratches& scratches, const SpikeContext* spikes) {
   const std::vector<std::vector<std::array<uint32_t, 3>>> halos = Halos(cells, n);
   std::vector<PieceJob> jobs(cells.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cells.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<uint32_t>& cell_scratch = scratches.local();
     for (size_t c = range.begin(); c != range.end(); ++c) {
       if (cells[c].empty()) continue;
-      jobs[c] = PreparePiece(positions, &quadrics, cells[c], halos[c], goals2, options, cell_scratch);
+      jobs[c] = PreparePiece(positions, &quadrics, cells[c], halos[c], goals2, options, cell_scratch, spikes);
       if (goals2.empty()) jobs[c].simplifier->BuildHeap();
     }
   });
@@ -1301,25 +1334,116 @@ std::vector<Piece> SimplifyCells(const std::vector<std::vector<std::array<uint32
 void SimplifyBand(const TileGrid& tiles, const std::vector<std::array<uint32_t, 3>>& merged, size_t n, int rings,
                   double keep_ratio, int64_t target_faces, const std::vector<double>& goals2, const QemOptions& options,
                   std::vector<Eigen::Vector3d>& positions, QuadricStore& quadrics, Scratches& scratches,
-                  std::vector<uint32_t>& scratch, std::vector<std::array<uint32_t, 3>>& kept) {
+                  std::vector<uint32_t>& scratch, std::vector<std::array<uint32_t, 3>>& kept,
+                  const SpikeContext* spikes) {
   const double band_out =
       goals2.empty() ? static_cast<double>(target_faces) : keep_ratio * static_cast<double>(merged.size());
   const std::vector<std::vector<std::array<uint32_t, 3>>> cells =
       BandCells(tiles, positions, merged, band_out, options);
   std::vector<Piece> band_pieces =
-      SimplifyCells(cells, n, positions, quadrics, goals2, options, target_faces, scratches);
+      SimplifyCells(cells, n, positions, quadrics, goals2, options, target_faces, scratches, spikes);
   int64_t band_kept = 0;
   for (const Piece& piece : band_pieces) {
     for (size_t k = 0; k < piece.vertices.size(); ++k) positions[piece.vertices[k]] = piece.positions[k];
     band_kept += static_cast<int64_t>(piece.faces.size());
   }
   if (goals2.empty() && band_kept > target_faces && band_pieces.size() > 1) {
-    PassAroundCellCuts(n, rings, target_faces, goals2, options, positions, quadrics, scratch, band_pieces);
+    PassAroundCellCuts(n, rings, target_faces, goals2, options, positions, quadrics, scratch, band_pieces, spikes);
   }
   size_t kept_faces = kept.size();
   for (const Piece& piece : band_pieces) kept_faces += piece.faces.size();
   kept.reserve(kept_faces);  // one allocation, not a doubling and a copy
   for (const Piece& piece : band_pieces) kept.insert(kept.end(), piece.faces.begin(), piece.faces.end());
+}
+
+// The input vertices farther from the output than `share` × the largest such distance (the in→out
+// side of the Hausdorff distance), and that largest distance (`largest_m`). Each input vertex is measured against the
+// faces around the output vertex it merged into (`parent`: the vertex each removed one collapsed into), then, when that
+// is far enough to matter, against the faces around that vertex's neighbours as well: distances to some of the output's
+// faces, so never below the true distance. Deterministic: no order of threads enters.
+std::vector<char> SpikesToPin(const std::vector<Eigen::Vector3d>& input, const std::vector<Eigen::Vector3d>& output,
+                              const std::vector<std::array<uint32_t, 3>>& kept, std::vector<uint32_t>& parent,
+                              const std::vector<char>& used, double share, double* largest_m) {
+  const size_t n = input.size();
+  // Each removed vertex's root: the output vertex it ended in (chains point to later collapses).
+  for (size_t v = 0; v < n; ++v) {
+    uint32_t r = parent[v];
+    while (parent[r] != r) r = parent[r];
+    for (uint32_t w = static_cast<uint32_t>(v); parent[w] != r;) {
+      const uint32_t next = parent[w];
+      parent[w] = r;
+      w = next;
+    }
+  }
+  // The output's faces around each vertex.
+  std::vector<uint32_t> start(n + 1, 0);
+  for (const auto& t : kept) {
+    for (uint32_t v : t) ++start[v + 1];
+  }
+  for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> around(start[n]);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t f = 0; f < kept.size(); ++f) {
+      for (uint32_t v : kept[f]) around[fill[v]++] = f;
+    }
+  }
+  const auto to_face = [&](const Eigen::Vector3d& x, uint32_t f) {
+    const auto& t = kept[f];
+    return SquaredDistanceToTriangle(x, output[t[0]], output[t[1]], output[t[2]]);
+  };
+  const auto one_ring = [&](size_t v) {
+    double best = INFINITY;
+    const uint32_t r = parent[v];
+    for (uint32_t k = start[r]; k < start[r + 1]; ++k) best = std::min(best, to_face(input[v], around[k]));
+    return std::isfinite(best) ? best : 0.0;  // (no face around it: not measured)
+  };
+  const auto two_rings = [&](size_t v) {
+    double best = INFINITY;
+    const uint32_t r = parent[v];
+    for (uint32_t k = start[r]; k < start[r + 1]; ++k) {
+      for (uint32_t w : kept[around[k]]) {
+        for (uint32_t j = start[w]; j < start[w + 1]; ++j) best = std::min(best, to_face(input[v], around[j]));
+      }
+    }
+    return std::isfinite(best) ? best : 0.0;
+  };
+  std::vector<double> near2(n, 0.0);  // squared, an upper bound
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t v = range.begin(); v != range.end(); ++v) {
+      if (used[v]) near2[v] = one_ring(v);
+    }
+  });
+  const double largest_bound2 = *std::max_element(near2.begin(), near2.end());
+  std::vector<char> pinned(n, 0);
+  *largest_m = 0;
+  if (!(largest_bound2 > 0)) return pinned;
+  // Refined from the largest bound down, until the next bound is within share × the largest refined
+  // distance: what is left can neither be pinned nor raise the largest.
+  const double share2 = share * share;
+  double floor2 = 0.25 * largest_bound2;
+  std::vector<std::pair<double, uint32_t>> order;
+  std::vector<double> refined2;
+  double largest2 = 0;
+  for (;;) {
+    order.clear();
+    for (size_t v = 0; v < n; ++v) {
+      if (near2[v] > floor2) order.push_back({-near2[v], static_cast<uint32_t>(v)});
+    }
+    std::sort(order.begin(), order.end());
+    refined2.resize(order.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, order.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t k = range.begin(); k != range.end(); ++k) refined2[k] = two_rings(order[k].second);
+    });
+    largest2 = 0;
+    size_t k = 0;
+    for (; k < order.size() && -order[k].first > share2 * largest2; ++k) largest2 = std::max(largest2, refined2[k]);
+    if (k < order.size() || share2 * largest2 >= floor2 || floor2 == 0) break;
+    floor2 = floor2 > 1e-6 * largest_bound2 ? 0.25 * floor2 : 0;  // the walk reached the floor: lower it
+  }
+  for (size_t k = 0; k < order.size(); ++k) pinned[order[k].second] = refined2[k] > share2 * largest2 ? 1 : 0;
+  *largest_m = std::sqrt(largest2);
+  return pinned;
 }
 
 }  // namespace
@@ -1334,7 +1458,8 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   }
   // Work relative to the bounding-box centre (better conditioned quadrics).
   const Eigen::Vector3d center = BoundingBoxCenter(mesh.vertices_m);
-  std::vector<Eigen::Vector3d> positions = CenteredPositions(mesh.vertices_m, center);
+  const std::vector<Eigen::Vector3d> input = CenteredPositions(mesh.vertices_m, center);
+  std::vector<Eigen::Vector3d> positions = input;
   const TileGrid grid = MakeTileGrid(positions, mesh.faces, partitions);
   std::vector<std::vector<std::array<uint32_t, 3>>> tiles = FacesByTile(grid, positions, mesh.faces);
   double keep_ratio = static_cast<double>(target_faces) / std::max<size_t>(1, grid.valid_faces);
@@ -1345,36 +1470,95 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   } else if (options.area_floor < 0) {
     options.area_floor = std::clamp(keep_ratio, 0.0, 1.0);
   }
+  // Not at light budgets: there it made 80 % worse (bench/RESULTS.md, run M).
+  const bool spike_pass = goals2.empty() && options.spike_pass > 0 && keep_ratio < options.light_budget_keep;
+  SpikeContext spikes;
+  std::vector<uint32_t> parent;
+  if (spike_pass) {
+    parent.resize(n);
+    for (size_t v = 0; v < n; ++v) parent[v] = static_cast<uint32_t>(v);
+    spikes.parent = &parent;
+  }
   // PreparePiece's scratch, one per thread (kUnmapped between calls).
   Scratches scratches(n, kUnmapped);
-  std::vector<Piece> pieces(tiles.size());
-  std::vector<std::array<uint32_t, 3>> merged;  // the faces of the last pass
-  if (tiles.size() > 1) {
-    pieces = SimplifyTiles(positions, tiles, goals2, options, keep_ratio, scratches);
-    const size_t tile_faces = MergeTilePieces(pieces, positions, goals2);
-    // With error goals the band's width follows the share of the faces the tiles kept.
-    if (!goals2.empty()) keep_ratio = static_cast<double>(tile_faces) / std::max<size_t>(1, grid.valid_faces);
-  } else {
-    merged = std::move(tiles[0]);
-  }
-  std::vector<std::array<uint32_t, 3>> outside;
-  const int rings =
-      static_cast<int>(std::ceil(std::max(1.0, options.final_band_rings) / std::sqrt(std::max(keep_ratio, 1e-4))));
-  QuadricStore quadrics;  // those of the last pass's vertices
-  if (tiles.size() > 1) {
-    merged = LastPassFaces(pieces, n, rings, options, !goals2.empty(), target_faces, outside);
-    quadrics = SumQuadrics(pieces, merged, n);
-  }
-  std::vector<std::array<uint32_t, 3>> kept = std::move(outside);
   std::vector<uint32_t> scratch(n, kUnmapped);
-  if (tiles.size() == 1) {
-    PieceJob job = PreparePiece(positions, nullptr, merged, {}, goals2, options, scratch);
-    Piece whole = FinishPiece(job, target_faces);
-    for (size_t k = 0; k < whole.vertices.size(); ++k) positions[whole.vertices[k]] = whole.positions[k];
-    kept = std::move(whole.faces);
-  } else {
-    SimplifyBand(grid, merged, n, rings, keep_ratio, target_faces, goals2, options, positions, quadrics, scratches,
-                 scratch, kept);
+  std::vector<Piece> pieces(tiles.size());
+  if (tiles.size() > 1) pieces = SimplifyTiles(input, tiles, goals2, options, keep_ratio, scratches, &spikes);
+  const std::vector<uint32_t> tile_parent = parent;  // the collapses of the tiles alone
+  const int64_t budget = target_faces;
+  // The pass after the tiles (or the one pass over a single tile): `positions` from the input's, the
+  // faces kept in `kept`.
+  const auto last_pass = [&](std::vector<std::array<uint32_t, 3>>& kept) {
+    int64_t target = budget;
+    std::vector<std::array<uint32_t, 3>> merged;  // the faces of the last pass
+    if (tiles.size() > 1) {
+      const size_t tile_faces = MergeTilePieces(pieces, positions, goals2);
+      // With error goals the band's width follows the share of the faces the tiles kept.
+      if (!goals2.empty()) keep_ratio = static_cast<double>(tile_faces) / std::max<size_t>(1, grid.valid_faces);
+    } else {
+      merged = tiles[0];
+    }
+    std::vector<std::array<uint32_t, 3>> outside;
+    const int rings =
+        static_cast<int>(std::ceil(std::max(1.0, options.final_band_rings) / std::sqrt(std::max(keep_ratio, 1e-4))));
+    QuadricStore quadrics;  // those of the last pass's vertices
+    if (tiles.size() > 1) {
+      merged = LastPassFaces(pieces, n, rings, options, !goals2.empty(), target, outside);
+      quadrics = SumQuadrics(pieces, merged, n);
+    }
+    kept = std::move(outside);
+    if (tiles.size() == 1) {
+      PieceJob job = PreparePiece(positions, nullptr, merged, {}, goals2, options, scratch, &spikes);
+      Piece whole = FinishPiece(job, target);
+      for (size_t k = 0; k < whole.vertices.size(); ++k) positions[whole.vertices[k]] = whole.positions[k];
+      kept = std::move(whole.faces);
+    } else {
+      SimplifyBand(grid, merged, n, rings, keep_ratio, target, goals2, options, positions, quadrics, scratches, scratch,
+                   kept, &spikes);
+    }
+  };
+  std::vector<std::array<uint32_t, 3>> kept;
+  last_pass(kept);
+  if (spike_pass && !kept.empty()) {
+    // The spike pass: the input vertices the output left farthest (single noisy points, which the
+    // quadrics' mean lets go) are pinned, and the tiles that hold one run again with the band: the
+    // budget is met by other collapses, the cheapest left.
+    std::vector<char> used(n, 0);
+    for (const auto& t : mesh.faces) {
+      if (IsValidFace(t)) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+    }
+    double first_m = 0, second_m = 0;
+    const std::vector<char> pinned = SpikesToPin(input, positions, kept, parent, used, options.spike_pass, &first_m);
+    std::vector<std::array<uint32_t, 3>> first_kept = std::move(kept);
+    std::vector<Eigen::Vector3d> first_positions = positions;
+    // The second run records its collapses as the first did: the tiles it reuses keep theirs.
+    parent = tile_parent;
+    spikes.pinned = &pinned;
+    positions = input;
+    if (tiles.size() > 1) {
+      std::vector<char> rerun(tiles.size(), 0);
+      for (size_t t = 0; t < tiles.size(); ++t) {
+        for (const auto& f : tiles[t]) rerun[t] = rerun[t] || pinned[f[0]] || pinned[f[1]] || pinned[f[2]];
+        if (!rerun[t]) continue;
+        for (const auto& f : tiles[t]) {
+          for (uint32_t v : f) parent[v] = v;  // (a cut vertex never dies in a tile: it is v already)
+        }
+      }
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<uint32_t>& tile_scratch = scratches.local();
+        for (size_t t = range.begin(); t != range.end(); ++t) {
+          if (rerun[t]) pieces[t] = SimplifyTile(input, tiles[t], goals2, options, keep_ratio, tile_scratch, &spikes);
+        }
+      });
+    }
+    last_pass(kept);
+    // The second run is kept only when its farthest input vertex is nearer than the first's (measured
+    // the same way): the collapses it makes instead can leave other points farther.
+    SpikesToPin(input, positions, kept, parent, used, options.spike_pass, &second_m);
+    if (!(second_m < first_m)) {
+      kept = std::move(first_kept);
+      positions = std::move(first_positions);
+    }
   }
 
   // The surviving vertices in their input order, then the faces.

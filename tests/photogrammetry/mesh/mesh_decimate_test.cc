@@ -425,5 +425,45 @@ TEST(QemTiled, AtLightBudgetsOnNoisyGroundIsAsAccurateAsCgal) {
   EXPECT_EQ(serial.vertices_m, out.vertices_m);
 }
 
+// The spike pass (below light budgets): once the budget is met, the input vertices the output left
+// farthest are pinned and the tiles that hold them run again, and the second result is kept only when
+// its farthest input vertex is nearer. On noisy ground with walls at 40 % and 10 % of the faces: the
+// distance from the input to the output never grows (at 40 % the first result is kept: the second
+// left another point farther, 0.0544 against 0.0484 m), at 10 % the second result is kept and halves
+// the symmetric error; the budget holds, the mesh stays manifold with its outer border whole, and the
+// bytes are the same on one thread.
+TEST(QemTiled, TheSpikePassBringsTheFarthestInputPointsCloser) {
+  const int side = 161;
+  TriangleMesh terrain = TerrainWithBuildings(side);  // 51,200 faces
+  for (size_t k = 0; k < terrain.vertices_m.size(); ++k) terrain.vertices_m[k].z() += 0.035 * HashUnit(k, 3);
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = 400000;
+  for (double ratio : {0.4, 0.1}) {
+    DecimateOptions spikes, none;
+    spikes.method = none.method = DecimationMethod::kQemTiled;
+    spikes.target_faces = none.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
+    spikes.qem.tiles = none.qem.tiles = 16;
+    none.qem.spike_pass = 0;
+    const TriangleMesh out = DecimateMesh(terrain, spikes);
+    const TriangleMesh without = DecimateMesh(terrain, none);
+    EXPECT_LE(static_cast<int64_t>(out.num_faces()), spikes.target_faces) << ratio;
+    EXPECT_GE(static_cast<int64_t>(out.num_faces()), spikes.target_faces - 2) << ratio;
+    const HausdorffDistance with_pass = ApproximateHausdorff(terrain, out, hausdorff);
+    const HausdorffDistance without_pass = ApproximateHausdorff(terrain, without, hausdorff);
+    std::printf("%.0f %%: in->out %.4f m with the spike pass, %.4f m without (symmetric %.4f / %.4f m)\n", 100 * ratio,
+                with_pass.a_to_b_m, without_pass.a_to_b_m, with_pass.symmetric_m, without_pass.symmetric_m);
+    EXPECT_LE(with_pass.a_to_b_m, without_pass.a_to_b_m) << ratio;
+    if (ratio < 0.2) {  // here the second run was kept
+      EXPECT_NE(out.faces, without.faces);
+      EXPECT_LT(with_pass.symmetric_m, 0.5 * without_pass.symmetric_m);
+    }
+    EXPECT_EQ(BorderEdgesOrMinusOneIfNotManifold(out), 4 * (side - 1)) << ratio;
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);  // the same bytes on one thread
+    const TriangleMesh serial = DecimateMesh(terrain, spikes);
+    EXPECT_EQ(serial.faces, out.faces) << ratio;
+    EXPECT_EQ(serial.vertices_m, out.vertices_m) << ratio;
+  }
+}
+
 }  // namespace
 }  // namespace cinepath::photogrammetry
