@@ -30,8 +30,9 @@ struct ShotState {
   Eigen::Vector3d position_offset = Eigen::Vector3d::Zero();
   Eigen::Vector3d velocity_offset = Eigen::Vector3d::Zero();  // m/s, matched at the join
   Eigen::Quaterniond rotation_offset = Eigen::Quaterniond::Identity();
-  double log_focal_offset = 0;  // zoom continuity: log(previous end focal / this shot's start focal)
-  double blend_s = 0;           // 0 = no offset
+  double log_focal_offset = 0;     // zoom continuity: log(previous end focal / this shot's start focal)
+  double log_f_number_offset = 0;  // aperture continuity, the same in stops (a step was 30 stops/s)
+  double blend_s = 0;              // 0 = no offset
   KeyframesShot keyframes;
 };
 
@@ -144,6 +145,7 @@ void Planner::Prepare() {
       v_raw = (Evaluate(i, h, heading).sample.position_enu_m - raw_start.sample.position_enu_m) / h;
     st.velocity_offset = v_prev - v_raw;
     st.log_focal_offset = std::log(prev_end.request.focal_length_mm / raw_start.request.focal_length_mm);
+    st.log_f_number_offset = std::log(prev_end.request.f_number / raw_start.request.f_number);
     st.blend_s = saved_blend;
     // Then the rotation: the aim from the shifted start, without a rotation offset.
     const Evaluated aimed_start = Evaluate(i, 0.0, heading, /*apply_rotation_offset=*/false);
@@ -379,6 +381,7 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
   } else if (!shot.lens.f_number.empty()) {
     out.request.f_number = InterpolateLensKeys(shot.lens.f_number, tau, LensQuantity::kFNumber);
   }
+  out.request.f_number *= std::exp(blend.blend_w * st.log_f_number_offset);
   s.f_number = std::clamp(out.request.f_number, cam.min_f_number, cam.max_f_number);
   s.shutter_s = shot.lens.shutter_s.empty() ? 1.0 / (2.0 * list_.frame_rate_hz)
                                             : InterpolateLensKeys(shot.lens.shutter_s, tau, LensQuantity::kShutter);

@@ -293,6 +293,34 @@ TEST(PlanTransitions, ABlendFromAShotEndingAtAnActorsKeyKeepsItsVelocity) {
   }
 }
 
+// A continuous join between shots at f/2.8 and f/4 eases the aperture over the blend (in stops) and ends
+// on the shot's own f-number; a cut steps. Before 2026-11-29 the continuous join stepped one stop in a frame
+// (30 stops/s against a lens's 3).
+TEST(PlanTransitions, AContinuousJoinEasesTheApertureInStops) {
+  const std::string shots = R"([
+      {"name": "a", "type": "ORBIT", "subject": "hero", "duration_s": 4, "radius_m": 20, "height_m": 5, "turns": 0.25,
+       "lens": {"focal_length_mm": 35, "f_number": 2.8}},
+      {"name": "b", "type": "ORBIT", "subject": "hero", "duration_s": 4, "radius_m": 20, "height_m": 5, "turns": 0.25,
+       "start_bearing_deg": 90, "blend_s": 2, "TRANSITION" "lens": {"focal_length_mm": 35, "f_number": 4}}])";
+  auto with = [&](const std::string& transition) {
+    std::string s = shots;
+    s.replace(s.find("\"TRANSITION\" "), 13, transition);
+    return Plan(s);
+  };
+  const Trajectory plan = with("");
+  double worst_stops_per_frame = 0;
+  for (size_t i = 1; i < plan.samples.size(); ++i) {
+    worst_stops_per_frame = std::max(worst_stops_per_frame,
+                                     std::fabs(2 * std::log2(plan.samples[i].f_number / plan.samples[i - 1].f_number)));
+  }
+  EXPECT_NEAR(plan.samples[119].f_number, 2.8, 1e-9);
+  EXPECT_LT(worst_stops_per_frame * 30, 1.0);  // 1.03 stops eased over 2 s: at most 0.97 stops/s
+  EXPECT_NEAR(plan.samples[180].f_number, 4.0, 1e-9);
+  const Trajectory cut = with(R"("transition": "cut", )");
+  EXPECT_NEAR(cut.samples[119].f_number, 2.8, 1e-9);
+  EXPECT_NEAR(cut.samples[120].f_number, 4.0, 1e-9);
+}
+
 TEST(PlanLens, RackFocusInDioptresAndApertureInStops) {
   const std::string actors = R"([{"name": "near", "height_m": 1.8, "position_enu_m": [0, 10, 0]},
                                  {"name": "far", "height_m": 1.8, "position_enu_m": [0, 40, 0]}])";
