@@ -17,15 +17,16 @@ Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline p
     : Actor(std::move(name), height_m, heading_deg, std::move(path)) {
   ground_ = ground;
   above_ground_m_ = above_ground_m;
-  // The smoothed height CameraBaseAt reads: at steps of at most 0.5 s over the keys' time span, the
-  // ground-kept height averaged with triangular weights over the step on either side (17 points), then a
-  // natural cubic spline through those values (C2: the camera's vertical jerk stays finite). A walker's
-  // half second is under a metre: the trend of the ground is kept, its centimetre noise is not.
+  // The smoothed height CameraBaseAt reads: at steps of 0.5 s (longer past 20,000 steps) over the keys'
+  // span, the ground-kept height averaged with triangular weights over the step on either side (17 points),
+  // then a natural cubic spline through those values (C2: the camera's vertical jerk stays finite). A
+  // walker's half second is under a metre: the trend of the ground is kept, its centimetre noise is not.
   const std::vector<double>& times = path_.times();
   if (times.size() < 2 || !(times.back() > times.front())) return;
   constexpr double kStepS = 0.5;
   const double span_s = times.back() - times.front();
-  const int steps = static_cast<int>(std::ceil(span_s / kStepS));
+  // At most 20,000 steps: over a span longer than ~2.8 h of keys the steps grow (and smooth more).
+  const int steps = static_cast<int>(std::min(std::ceil(span_s / kStepS), 20000.0));
   const double step_s = span_s / steps;
   std::vector<double> grid_s;
   std::vector<Eigen::Vector3d> heights;
