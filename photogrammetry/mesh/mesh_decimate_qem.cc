@@ -1446,6 +1446,30 @@ std::vector<char> SpikesToPin(const std::vector<Eigen::Vector3d>& input, const s
   return pinned;
 }
 
+// The spike pass's second run of the tiles: each tile holding a pinned vertex is simplified again (its
+// vertices' collapse records reset first; a cut vertex never dies in a tile, so it is its own already),
+// the others keep their first result.
+void ResimplifyPinnedTiles(const std::vector<Eigen::Vector3d>& input,
+                           const std::vector<std::vector<std::array<uint32_t, 3>>>& tiles,
+                           const std::vector<double>& goals2, const QemOptions& options, double keep_ratio,
+                           const std::vector<char>& pinned, Scratches& scratches, SpikeContext* spikes,
+                           std::vector<uint32_t>& parent, std::vector<Piece>& pieces) {
+  std::vector<char> rerun(tiles.size(), 0);
+  for (size_t t = 0; t < tiles.size(); ++t) {
+    for (const auto& f : tiles[t]) rerun[t] = rerun[t] || pinned[f[0]] || pinned[f[1]] || pinned[f[2]];
+    if (!rerun[t]) continue;
+    for (const auto& f : tiles[t]) {
+      for (uint32_t v : f) parent[v] = v;
+    }
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<uint32_t>& tile_scratch = scratches.local();
+    for (size_t t = range.begin(); t != range.end(); ++t) {
+      if (rerun[t]) pieces[t] = SimplifyTile(input, tiles[t], goals2, options, keep_ratio, tile_scratch, spikes);
+    }
+  });
+}
+
 }  // namespace
 
 TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions,
@@ -1536,20 +1560,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     spikes.pinned = &pinned;
     positions = input;
     if (tiles.size() > 1) {
-      std::vector<char> rerun(tiles.size(), 0);
-      for (size_t t = 0; t < tiles.size(); ++t) {
-        for (const auto& f : tiles[t]) rerun[t] = rerun[t] || pinned[f[0]] || pinned[f[1]] || pinned[f[2]];
-        if (!rerun[t]) continue;
-        for (const auto& f : tiles[t]) {
-          for (uint32_t v : f) parent[v] = v;  // (a cut vertex never dies in a tile: it is v already)
-        }
-      }
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-        std::vector<uint32_t>& tile_scratch = scratches.local();
-        for (size_t t = range.begin(); t != range.end(); ++t) {
-          if (rerun[t]) pieces[t] = SimplifyTile(input, tiles[t], goals2, options, keep_ratio, tile_scratch, &spikes);
-        }
-      });
+      ResimplifyPinnedTiles(input, tiles, goals2, options, keep_ratio, pinned, scratches, &spikes, parent, pieces);
     }
     last_pass(kept);
     // The second run is kept only when its farthest input vertex is nearer than the first's (measured
