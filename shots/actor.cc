@@ -45,8 +45,9 @@ Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline p
 }
 
 Eigen::Vector3d Actor::CameraBaseAt(double time_s) const {
-  Eigen::Vector3d p = PositionAt(time_s);
-  if (smooth_base_up_m_) p.z() = smooth_base_up_m_->Position(time_s).z();
+  if (!smooth_base_up_m_) return PositionAt(time_s);
+  Eigen::Vector3d p = path_.Position(time_s);  // PositionAt's east and north, without its ground ray
+  p.z() = smooth_base_up_m_->Position(time_s).z();
   return p;
 }
 
