@@ -1,6 +1,7 @@
 #include "optimizer/banded_solver.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -8,7 +9,9 @@
 #include <limits>
 
 #include <ceres/ceres.h>
-#include <Eigen/Cholesky>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <Eigen/Core>
 
 #include "core/error.h"
@@ -37,26 +40,37 @@ struct Block {
   bool constant_any = false;          // a row that is not zero
 };
 
-// The lower band of a symmetric block matrix over knots: block (i, i - d) for d = 0..band.
+// The lower band of a symmetric block matrix over knots: block (i, i - d) for d = 0..band. A part of one (a chunk's,
+// Solver::Evaluate) holds the rows [first, first + n) only, and the blocks whose two knots are both among them.
 class BlockBand {
  public:
-  BlockBand(int n, int band) : n_(n), band_(band), blocks_(static_cast<size_t>(n) * (band + 1), Mat8::Zero()) {}
+  BlockBand(int n, int band, int first = 0)
+      : n_(n), band_(band), first_(first), blocks_(static_cast<size_t>(n) * (band + 1), Mat8::Zero()) {}
   int size() const { return n_; }
   int band() const { return band_; }
-  Mat8& at(int i, int j) { return blocks_[static_cast<size_t>(i) * (band_ + 1) + (i - j)]; }  // j in [i - band, i]
-  const Mat8& at(int i, int j) const { return blocks_[static_cast<size_t>(i) * (band_ + 1) + (i - j)]; }
+  int first() const { return first_; }
+  Mat8& at(int i, int j) {
+    return blocks_[static_cast<size_t>(i - first_) * (band_ + 1) + (i - j)];
+  }  // j in [i - band, i]
+  const Mat8& at(int i, int j) const { return blocks_[static_cast<size_t>(i - first_) * (band_ + 1) + (i - j)]; }
   void SetZero() {
     for (Mat8& m : blocks_) m.setZero();
+  }
+  // Adds a part's blocks (rows [part.first(), part.first() + part.size()) of this band).
+  void Add(const BlockBand& part) {
+    for (int i = part.first(); i < part.first() + part.size(); ++i) {
+      for (int j = std::max(part.first(), i - band_); j <= i; ++j) at(i, j) += part.at(i, j);
+    }
   }
 
   // y = A x (A symmetric, its lower band stored).
   void Multiply(const std::vector<Vec8>& x, std::vector<Vec8>* y) const {
     y->assign(n_, Vec8::Zero());
     for (int i = 0; i < n_; ++i) {
-      (*y)[i] += at(i, i) * x[i];
+      (*y)[i].noalias() += at(i, i).lazyProduct(x[i]);
       for (int j = std::max(0, i - band_); j < i; ++j) {
-        (*y)[i] += at(i, j) * x[j];
-        (*y)[j] += at(i, j).transpose() * x[i];
+        (*y)[i].noalias() += at(i, j).lazyProduct(x[j]);
+        (*y)[j].noalias() += at(i, j).transpose().lazyProduct(x[i]);
       }
     }
   }
@@ -73,11 +87,9 @@ class BlockBand {
           at(i, j) = s.lazyProduct(inverse_[j].transpose());
           continue;
         }
-        Eigen::LLT<Mat8> llt(s);
-        if (llt.info() != Eigen::Success) return false;
-        at(i, i) = llt.matrixL();
-        inverse_[i].setIdentity();
-        at(i, i).triangularView<Eigen::Lower>().solveInPlace(inverse_[i]);
+        if (!Cholesky(&s)) return false;
+        at(i, i) = s;
+        inverse_[i] = LowerInverse(s);
       }
     }
     return true;
@@ -87,19 +99,96 @@ class BlockBand {
   void Solve(std::vector<Vec8>* b) const {
     std::vector<Vec8>& x = *b;
     for (int i = 0; i < n_; ++i) {
-      for (int k = std::max(0, i - band_); k < i; ++k) x[i].noalias() -= at(i, k) * x[k];
-      x[i] = inverse_[i] * x[i];
+      for (int k = std::max(0, i - band_); k < i; ++k) x[i].noalias() -= at(i, k).lazyProduct(x[k]);
+      x[i] = inverse_[i].lazyProduct(x[i]).eval();
     }
     for (int i = n_ - 1; i >= 0; --i) {
-      for (int k = i + 1; k <= std::min(n_ - 1, i + band_); ++k) x[i].noalias() -= at(k, i).transpose() * x[k];
-      x[i] = inverse_[i].transpose() * x[i];
+      for (int k = i + 1; k <= std::min(n_ - 1, i + band_); ++k)
+        x[i].noalias() -= at(k, i).transpose().lazyProduct(x[k]);
+      x[i] = inverse_[i].transpose().lazyProduct(x[i]).eval();
     }
   }
 
+  // In place: the Cholesky factor L of a symmetric positive definite block (A = L L^T, its upper triangle zero);
+  // false when a pivot is not positive. Sizes known at compile time: Eigen's LLT and triangular solve take
+  // their general paths for a block this small.
+  static bool Cholesky(Mat8* a) {
+    Mat8& m = *a;
+    for (int j = 0; j < kChannels; ++j) {
+      double d = m(j, j);
+      for (int k = 0; k < j; ++k) d -= m(j, k) * m(j, k);
+      if (!(d > 0)) return false;
+      m(j, j) = std::sqrt(d);
+      for (int i = j + 1; i < kChannels; ++i) {
+        double s = m(i, j);
+        for (int k = 0; k < j; ++k) s -= m(i, k) * m(j, k);
+        m(i, j) = s / m(j, j);
+      }
+    }
+    for (int j = 1; j < kChannels; ++j) m.col(j).head(j).setZero();
+    return true;
+  }
+  // The inverse of a lower triangular block with a positive diagonal, by forward substitution.
+  static Mat8 LowerInverse(const Mat8& l) {
+    Mat8 inverse = Mat8::Zero();
+    for (int c = 0; c < kChannels; ++c) {
+      inverse(c, c) = 1.0 / l(c, c);
+      for (int r = c + 1; r < kChannels; ++r) {
+        double s = 0;
+        for (int k = c; k < r; ++k) s -= l(r, k) * inverse(k, c);
+        inverse(r, c) = s / l(r, r);
+      }
+    }
+    return inverse;
+  }
+
  private:
-  int n_, band_;
+  int n_, band_, first_;
   std::vector<Mat8> blocks_;
   std::vector<Mat8> inverse_;  // of L's diagonal blocks (Factor)
+};
+
+// The scratch space of one chunk's evaluation (Solver::EvaluateChunk): a block reads at most kMaxKnots knots.
+constexpr int kMaxKnots = 4;
+struct Workspace {
+  using Column = Eigen::Matrix<double, kMaxKnots * kChannels, 1>;
+  Workspace(int most_rows, int most_params)
+      : residuals(most_rows),
+        jacobians(static_cast<size_t>(most_rows) * std::max(kChannels * most_params, kStateFields)),
+        jacobian_ptrs(most_params) {}
+  std::vector<double> residuals, jacobians;
+  std::vector<double*> jacobian_ptrs;
+  Eigen::Matrix<double, kMaxKnots * kChannels, kMaxKnots * kChannels> gram;
+  Column gradient, row;
+  Mat8 values_gram;
+  Vec8 values_gradient;
+};
+
+// The gradient's entries of the knots [first, first + size) (a chunk's part of J^T r), indexed by knot.
+class Gradient {
+ public:
+  Gradient(int first, int size) : first_(first), entries_(size, Vec8::Zero()) {}
+  Vec8& operator[](int knot) { return entries_[knot - first_]; }
+  const Vec8& operator[](int knot) const { return entries_[knot - first_]; }
+  int first() const { return first_; }
+  int size() const { return static_cast<int>(entries_.size()); }
+  void SetZero() { std::fill(entries_.begin(), entries_.end(), Vec8::Zero()); }
+
+ private:
+  int first_;
+  std::vector<Vec8> entries_;
+};
+
+// Consecutive residual blocks [begin, end) evaluated together, on one thread, into their own sums over the knots
+// [lo, hi] they read.
+struct Chunk {
+  Chunk(size_t begin, size_t end, int lo, int hi, int band, int most_rows, int most_params)
+      : begin(begin), end(end), h(hi - lo + 1, band, lo), g(lo, hi - lo + 1), work(most_rows, most_params) {}
+  size_t begin, end;
+  double cost = 0;
+  BlockBand h;
+  Gradient g;
+  Workspace work;
 };
 
 // A trial step's verdict from its cost so far (Solver::Run): rejected when rho = (cost - trial) / predicted is
@@ -111,7 +200,8 @@ struct Rejection {
 
 class Solver {
  public:
-  Solver(ceres::Problem* problem, double* knots, int num_knots, const std::vector<std::array<bool, 8>>& fixed)
+  Solver(ceres::Problem* problem, double* knots, int num_knots, const std::vector<std::array<bool, 8>>& fixed,
+         int max_chunks)
       : knots_(knots), n_(num_knots), fixed_(fixed) {
     std::vector<ceres::ResidualBlockId> ids;
     problem->GetResidualBlocks(&ids);  // in the order they were added: a fixed order of sums
@@ -138,13 +228,18 @@ class Solver {
       most_params_ = std::max(most_params_, static_cast<int>(b.params.size()));
       nonnegative_ = nonnegative_ && (!b.loss || LinearAndNonNegative(*b.loss));
       b.constant = b.loss ? nullptr : dynamic_cast<const ConstantJacobian*>(b.cost);
-      if (b.constant) TakeConstantGram(&b);
       blocks_.push_back(std::move(b));
     }
+    Workspace ws(most_rows_, most_params_);
+    for (Block& b : blocks_) {
+      if (b.constant) TakeConstantGram(&b, &ws);
+    }
+    MakeChunks(max_chunks);
   }
 
   BandedSolverSummary Run(const BandedSolverOptions& o) {
     BandedSolverSummary summary;
+    summary.chunks = static_cast<int>(chunks_.size());
     BlockBand h(n_, band_), damped(n_, band_);
     std::vector<Vec8> g(n_), dx(n_), hdx(n_);
     std::vector<double> saved(knots_, knots_ + n_ * kChannels);
@@ -274,84 +369,153 @@ class Solver {
   // (each block's rows and Jacobian scaled by sqrt(rho'), exact for losses without curvature). Not finite
   // when a block cannot be evaluated.
   // With `rejection` (no `h`), it stops as soon as the cost so far rejects the step, returning that partial sum.
+  //
+  // The blocks are evaluated in chunks (MakeChunks: fixed by the problem, never by the machine), each summing
+  // its own blocks in their order into its own cost, band and gradient, on as many threads as TBB has; the chunks'
+  // sums are then added in chunk order. So the numbers are the same on any number of threads.
   double Evaluate(BlockBand* h, std::vector<Vec8>* g, const Rejection* rejection = nullptr) {
     stopped_early_ = rejection && rejection->Rejects(0);
     if (stopped_early_) return 0;
-    if (h) {
-      h->SetZero();
-      g->assign(n_, Vec8::Zero());
+    std::atomic<bool> rejected{false};
+    const auto run = [&](size_t c) { EvaluateChunk(&chunks_[c], h != nullptr, rejection, &rejected); };
+    if (chunks_.size() == 1) {
+      run(0);
+    } else {
+      tbb::parallel_for(
+          tbb::blocked_range<size_t>(0, chunks_.size(), 1),
+          [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t c = r.begin(); c != r.end(); ++c) run(c);
+          },
+          tbb::simple_partitioner());
     }
-    residuals_.resize(most_rows_);
-    jacobians_.resize(static_cast<size_t>(most_rows_) * std::max(kChannels * most_params_, kStateFields));
     double cost = 0;
-    std::vector<double*> jacobian_ptrs(most_params_);
-    for (const Block& b : blocks_) {
-      const int np = static_cast<int>(b.params.size());
-      for (int j = 0; j < np; ++j) jacobian_ptrs[j] = jacobians_.data() + static_cast<size_t>(j) * b.rows * kChannels;
-      const bool jacobian = h && !b.constant;
-      const bool ok =
-          b.state
-              ? b.state->EvaluateStateBlock(b.params.data(), residuals_.data(), jacobian ? jacobians_.data() : nullptr)
-              : b.cost->Evaluate(b.params.data(), residuals_.data(), jacobian ? jacobian_ptrs.data() : nullptr);
-      if (!ok) return std::numeric_limits<double>::quiet_NaN();
-      double squared = 0;
-      for (int i = 0; i < b.rows; ++i) squared += residuals_[i] * residuals_[i];
-      double rho[3] = {squared, 1, 0};
-      if (b.loss) b.loss->Evaluate(squared, rho);
-      cost += 0.5 * rho[0];
-      if (!std::isfinite(cost)) return cost;
-      if (rejection && rejection->Rejects(cost)) {
-        stopped_early_ = true;
-        return cost;
-      }
-      if (!h || rho[1] <= 0) continue;
-      if (b.state) {
-        StateAccumulate(b, rho[1], h, g);
-      } else if (b.constant) {
-        ConstantAccumulate(b, h, g);
-      } else {
-        Accumulate(b, jacobian_ptrs.data(), rho[1], h, g);
-      }
+    for (const Chunk& chunk : chunks_) cost += chunk.cost;
+    stopped_early_ = rejected.load();
+    if (!h || stopped_early_ || !std::isfinite(cost)) return cost;
+    h->SetZero();
+    g->assign(n_, Vec8::Zero());
+    for (const Chunk& chunk : chunks_) {
+      h->Add(chunk.h);
+      for (int i = chunk.g.first(); i < chunk.g.first() + chunk.g.size(); ++i) (*g)[i] += chunk.g[i];
     }
     return cost;
   }
 
-  // A block whose Jacobian came in its sample's state (jacobians_: rows x kStateFields). Most rows read the
+  // One chunk's blocks: their cost into chunk->cost, and with `jacobian` their J^T J and J^T r into its band and
+  // gradient. With `rejection`, it stops once its own cost rejects the step (the whole cost, a sum of it and other
+  // non-negative costs, is not less in floating point either), or once another chunk has.
+  void EvaluateChunk(Chunk* chunk, bool jacobian_wanted, const Rejection* rejection, std::atomic<bool>* rejected) {
+    Workspace& ws = chunk->work;
+    chunk->cost = 0;
+    if (jacobian_wanted) {
+      chunk->h.SetZero();
+      chunk->g.SetZero();
+    }
+    double& cost = chunk->cost;
+    for (size_t k = chunk->begin; k < chunk->end; ++k) {
+      const Block& b = blocks_[k];
+      const int np = static_cast<int>(b.params.size());
+      for (int j = 0; j < np; ++j)
+        ws.jacobian_ptrs[j] = ws.jacobians.data() + static_cast<size_t>(j) * b.rows * kChannels;
+      const bool jacobian = jacobian_wanted && !b.constant;
+      const bool ok = b.state ? b.state->EvaluateStateBlock(b.params.data(), ws.residuals.data(),
+                                                            jacobian ? ws.jacobians.data() : nullptr)
+                              : b.cost->Evaluate(b.params.data(), ws.residuals.data(),
+                                                 jacobian ? ws.jacobian_ptrs.data() : nullptr);
+      if (!ok) {
+        cost = std::numeric_limits<double>::quiet_NaN();
+        return;
+      }
+      double squared = 0;
+      for (int i = 0; i < b.rows; ++i) squared += ws.residuals[i] * ws.residuals[i];
+      double rho[3] = {squared, 1, 0};
+      if (b.loss) b.loss->Evaluate(squared, rho);
+      cost += 0.5 * rho[0];
+      if (!std::isfinite(cost)) return;
+      if (rejection) {
+        if (rejection->Rejects(cost)) {
+          rejected->store(true);
+          return;
+        }
+        if (rejected->load(std::memory_order_relaxed)) return;
+      }
+      if (!jacobian_wanted || rho[1] <= 0) continue;
+      if (b.state) {
+        StateAccumulate(b, rho[1], &ws, &chunk->h, &chunk->g);
+      } else if (b.constant) {
+        ConstantAccumulate(b, &ws, &chunk->h, &chunk->g);
+      } else {
+        Accumulate(b, rho[1], &ws, &chunk->h, &chunk->g);
+      }
+    }
+  }
+
+  // The chunks of MakeChunks: consecutive blocks of about equal work, at most max_chunks, at least
+  // kLeastChunkWork each (a small problem is one chunk).
+  void MakeChunks(int max_chunks) {
+    const auto work = [](const Block& b) { return b.constant ? 2.0 : b.state ? 4.0 * b.rows + 8 : b.rows + 4.0; };
+    double total = 0;
+    for (const Block& b : blocks_) total += work(b);
+    const int count =
+        static_cast<int>(std::clamp(std::floor(total / kLeastChunkWork), 1.0, double(std::max(1, max_chunks))));
+    double done = 0;
+    size_t begin = 0;
+    for (int c = 0; c < count; ++c) {
+      size_t end = begin;
+      const double until = total * (c + 1) / count;
+      while (end < blocks_.size() && (c == count - 1 || done + work(blocks_[end]) / 2 <= until))
+        done += work(blocks_[end++]);
+      if (end == begin) continue;
+      int lo = n_, hi = -1;
+      for (size_t k = begin; k < end; ++k) {
+        for (const int knot : blocks_[k].knot) {
+          lo = std::min(lo, knot);
+          hi = std::max(hi, knot);
+        }
+      }
+      if (hi < lo) lo = hi = 0;
+      chunks_.emplace_back(begin, end, lo, hi, band_, most_rows_, most_params_);
+      begin = end;
+    }
+    if (chunks_.empty()) chunks_.emplace_back(0, 0, 0, 0, band_, most_rows_, most_params_);
+  }
+
+  // A block whose Jacobian came in its sample's state (ws->jacobians: rows x kStateFields). Most rows read the
   // eight channel values only (the goals, keep-out, clearance): their Gram matrix in those, 8 x 8, goes to
   // the knot pair (a, c) times value_a value_c, the spline's weights. A row that reads rates (a limit's active
   // hinge, one to three fields) goes to the knots on its own, over the few channels it reads.
-  void StateAccumulate(const Block& b, double weight, BlockBand* h, std::vector<Vec8>* g) {
+  static void StateAccumulate(const Block& b, double weight, Workspace* ws, BlockBand* h, Gradient* g) {
     const KnotWeights& w = b.state->knot_weights();
     const int first = b.knot[0];
-    values_gram_.setZero();
-    values_gradient_.setZero();
+    ws->values_gram.setZero();
+    ws->values_gradient.setZero();
     bool values = false;
     for (int i = 0; i < b.rows; ++i) {
-      const double* d = jacobians_.data() + i * kStateFields;
+      const double* d = ws->jacobians.data() + i * kStateFields;
       bool reads_rates, reads_values;
       reads_rates = (Eigen::Map<const Eigen::Array<double, kStateFields - kChannels, 1>>(d + kChannels) != 0).any();
       reads_values = (Eigen::Map<const Eigen::Array<double, kChannels, 1>>(d) != 0).any();
       if (reads_rates) {
-        AddRateRow(w, first, d, weight, residuals_[i], h, g);
+        AddRateRow(w, first, d, weight, ws->residuals[i], h, g);
         continue;
       }
       if (!reads_values) continue;
       const Eigen::Map<const Vec8> v(d);
-      values_gram_.noalias() += (weight * v) * v.transpose();
-      values_gradient_.noalias() += (weight * residuals_[i]) * v;
+      ws->values_gram.noalias() += (weight * v) * v.transpose();
+      ws->values_gradient.noalias() += (weight * ws->residuals[i]) * v;
       values = true;
     }
     if (!values) return;
     for (int a = 0; a < 4; ++a) {
-      (*g)[first + a].noalias() += w.value[a] * values_gradient_;
-      for (int c = 0; c <= a; ++c) h->at(first + a, first + c).noalias() += (w.value[a] * w.value[c]) * values_gram_;
+      (*g)[first + a].noalias() += w.value[a] * ws->values_gradient;
+      for (int c = 0; c <= a; ++c) h->at(first + a, first + c).noalias() += (w.value[a] * w.value[c]) * ws->values_gram;
     }
   }
 
   // One row in the state's fields d into the knots: its Jacobian in knot a, channel ch, is the sum over the
   // fields of ch of the spline's weight of that field's derivative order in knot a times d (StateRowsToKnots).
   static void AddRateRow(const KnotWeights& w, int first, const double* d, double weight, double residual, BlockBand* h,
-                         std::vector<Vec8>* g) {
+                         Gradient* g) {
     int channels[kChannels], m = 0;
     double u[4][kChannels];
     for (int c = 0; c < kChannels; ++c) {
@@ -378,53 +542,53 @@ class Solver {
   // matrix over its knots' channels, a rank-one update per row over the columns that row reads, then into
   // the band. A row whose Jacobian is zero (a hinge of
   // a limit that holds: most rows of a plan) costs nothing.
-  void Accumulate(const Block& b, double* const* jacobians, double weight, BlockBand* h, std::vector<Vec8>* g) {
+  static void Accumulate(const Block& b, double weight, Workspace* ws, BlockBand* h, Gradient* g) {
     const int np = static_cast<int>(b.params.size());
     const int n = np * kChannels;
-    gram_.topLeftCorner(n, n).setZero();
-    gradient_.head(n).setZero();
+    ws->gram.topLeftCorner(n, n).setZero();
+    ws->gradient.head(n).setZero();
     bool any = false;
     for (int i = 0; i < b.rows; ++i) {
-      if (!GatherRow(jacobians, np, i)) continue;
+      if (!GatherRow(ws->jacobian_ptrs.data(), np, i, &ws->row)) continue;
       any = true;
-      gradient_.head(n) += (weight * residuals_[i]) * row_.head(n);
+      ws->gradient.head(n) += (weight * ws->residuals[i]) * ws->row.head(n);
       for (int q = 0; q < n; ++q) {
-        if (row_[q] == 0) continue;
-        gram_.col(q).segment(q, n - q) += (weight * row_[q]) * row_.segment(q, n - q);
+        if (ws->row[q] == 0) continue;
+        ws->gram.col(q).segment(q, n - q) += (weight * ws->row[q]) * ws->row.segment(q, n - q);
       }
     }
     if (!any) return;
     for (int q = 0; q < n; ++q) {  // the lower triangle mirrored
-      for (int p = q + 1; p < n; ++p) gram_(q, p) = gram_(p, q);
+      for (int p = q + 1; p < n; ++p) ws->gram(q, p) = ws->gram(p, q);
     }
-    Scatter(b, h, g);
+    Scatter(b, *ws, h, g);
   }
 
-  // Row i of the block's Jacobians into row_; false when it is zero.
-  bool GatherRow(const double* const* jacobians, int np, int i) {
+  // Row i of the block's Jacobians into row; false when it is zero.
+  static bool GatherRow(const double* const* jacobians, int np, int i, Workspace::Column* row) {
     bool zero = true;
     for (int j = 0; j < np; ++j) {
       for (int c = 0; c < kChannels; ++c) {
         const double v = jacobians[j][i * kChannels + c];
-        row_[j * kChannels + c] = v;
+        (*row)[j * kChannels + c] = v;
         zero = zero && v == 0;
       }
     }
     return !zero;
   }
 
-  // The block's gradient_ and its Gram matrix (over its knots' channels: gram_, or a constant block's) into
-  // the band.
-  void Scatter(const Block& b, BlockBand* h, std::vector<Vec8>* g) const {
+  // The block's gradient and its Gram matrix (over its knots' channels: the workspace's, or a constant block's)
+  // into the band.
+  static void Scatter(const Block& b, const Workspace& ws, BlockBand* h, Gradient* g) {
     const int np = static_cast<int>(b.params.size());
     for (int a = 0; a < np; ++a) {
-      (*g)[b.knot[a]] += gradient_.segment<kChannels>(a * kChannels);
+      (*g)[b.knot[a]] += ws.gradient.segment<kChannels>(a * kChannels);
       for (int c = 0; c < np; ++c) {
         if (b.knot[c] > b.knot[a]) continue;
         if (b.constant) {
           h->at(b.knot[a], b.knot[c]) += b.constant_gram[a * np + c];
         } else {
-          h->at(b.knot[a], b.knot[c]) += gram_.block<kChannels, kChannels>(a * kChannels, c * kChannels);
+          h->at(b.knot[a], b.knot[c]) += ws.gram.block<kChannels, kChannels>(a * kChannels, c * kChannels);
         }
       }
     }
@@ -432,68 +596,63 @@ class Solver {
 
   // A constant block's rows and Gram matrix, once: Accumulate's at weight 1 (a block without a loss), so the
   // same numbers as Accumulate at every evaluation.
-  void TakeConstantGram(Block* b) {
+  static void TakeConstantGram(Block* b, Workspace* ws) {
     const int np = static_cast<int>(b->params.size());
     const int n = np * kChannels;
     std::vector<const double*> jacobians(np);
     for (int j = 0; j < np; ++j) jacobians[j] = b->constant->constant_jacobian(j);
     b->constant_rows.assign(static_cast<size_t>(b->rows) * n, 0.0);
-    gram_.topLeftCorner(n, n).setZero();
+    ws->gram.topLeftCorner(n, n).setZero();
     for (int i = 0; i < b->rows; ++i) {
-      if (!GatherRow(jacobians.data(), np, i)) continue;
+      if (!GatherRow(jacobians.data(), np, i, &ws->row)) continue;
       b->constant_any = true;
-      std::copy(row_.data(), row_.data() + n, b->constant_rows.data() + static_cast<size_t>(i) * n);
+      std::copy(ws->row.data(), ws->row.data() + n, b->constant_rows.data() + static_cast<size_t>(i) * n);
       for (int q = 0; q < n; ++q) {
-        if (row_[q] == 0) continue;
-        gram_.col(q).segment(q, n - q) += (1.0 * row_[q]) * row_.segment(q, n - q);
+        if (ws->row[q] == 0) continue;
+        ws->gram.col(q).segment(q, n - q) += (1.0 * ws->row[q]) * ws->row.segment(q, n - q);
       }
     }
     for (int q = 0; q < n; ++q) {
-      for (int p = q + 1; p < n; ++p) gram_(q, p) = gram_(p, q);
+      for (int p = q + 1; p < n; ++p) ws->gram(q, p) = ws->gram(p, q);
     }
     for (int a = 0; a < np; ++a) {
       for (int c = 0; c < np; ++c)
-        b->constant_gram.push_back(gram_.block<kChannels, kChannels>(a * kChannels, c * kChannels));
+        b->constant_gram.push_back(ws->gram.block<kChannels, kChannels>(a * kChannels, c * kChannels));
     }
   }
 
   // A constant block (weight 1): its gradient from its rows, its Gram matrix as taken once.
-  void ConstantAccumulate(const Block& b, BlockBand* h, std::vector<Vec8>* g) {
+  static void ConstantAccumulate(const Block& b, Workspace* ws, BlockBand* h, Gradient* g) {
     if (!b.constant_any) return;
     const int n = static_cast<int>(b.params.size()) * kChannels;
-    gradient_.head(n).setZero();
+    ws->gradient.head(n).setZero();
     for (int i = 0; i < b.rows; ++i) {
       const double* row = b.constant_rows.data() + static_cast<size_t>(i) * n;
       if (std::all_of(row, row + n, [](double v) { return v == 0; })) continue;
-      const double scale = 1.0 * residuals_[i];
-      for (int q = 0; q < n; ++q) gradient_[q] += scale * row[q];
+      const double scale = 1.0 * ws->residuals[i];
+      for (int q = 0; q < n; ++q) ws->gradient[q] += scale * row[q];
     }
-    Scatter(b, h, g);
+    Scatter(b, *ws, h, g);
   }
 
-  Mat8 values_gram_;
-  Vec8 values_gradient_;
-  // Accumulate's work space: a block reads at most kMaxKnots knots.
-  static constexpr int kMaxKnots = 4;
-  Eigen::Matrix<double, kMaxKnots * kChannels, kMaxKnots * kChannels> gram_;
-  Eigen::Matrix<double, kMaxKnots * kChannels, 1> gradient_, row_;
+  static constexpr double kLeastChunkWork = 4000;  // MakeChunks' work units: about 100 sample blocks
 
   bool trace_ = std::getenv("CINEPATH_CERES_TRACE") != nullptr;  // each step on stderr
   double* knots_;
   int n_;
   const std::vector<std::array<bool, 8>>& fixed_;
   std::vector<Block> blocks_;
+  std::vector<Chunk> chunks_;
   int band_ = 0, most_rows_ = 0, most_params_ = 0;
   bool nonnegative_ = true;     // every block's cost >= 0: no loss, or LinearAndNonNegative
   bool stopped_early_ = false;  // the last Evaluate, by its rejection
-  std::vector<double> residuals_, jacobians_;
 };
 
 }  // namespace
 
 BandedSolverSummary SolveBanded(ceres::Problem* problem, double* knots, int num_knots,
                                 const std::vector<std::array<bool, 8>>& fixed, const BandedSolverOptions& options) {
-  Solver solver(problem, knots, num_knots, fixed);
+  Solver solver(problem, knots, num_knots, fixed, options.max_chunks);
   return solver.Run(options);
 }
 

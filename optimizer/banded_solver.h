@@ -10,8 +10,12 @@
 // (H. B. Nielsen, "Damping parameter in Marquardt's method", IMM-REP-1999-05, DTU), as Ceres takes them:
 // a step is accepted when the cost falls by at least 1e-3 of what the model predicted. The problem is a
 // ceres::Problem (cost functions, loss functions with zero curvature, as the optimizer's scaled losses), so
-// the same problem can still go to Ceres (OptimizeOptions::solver). Single-threaded, a fixed order of sums:
-// the same bytes on every run.
+// the same problem can still go to Ceres (OptimizeOptions::solver).
+//
+// The blocks are evaluated in chunks of consecutive blocks, each on its own thread into its own cost, band and
+// gradient, added afterwards in chunk order. The chunks follow from the problem alone (its blocks' rows, at
+// most BandedSolverOptions::max_chunks), never from the machine's cores: a fixed order of sums, the same bytes
+// on every run and any number of threads. The factorization and the step stay on the calling thread.
 #pragma once
 
 #include <array>
@@ -31,12 +35,14 @@ struct BandedSolverOptions {
   double gradient_tolerance = 1e-12;    // largest gradient entry, in cost per unit of a channel
   double initial_damping = 1e-4;        // lambda: the step solves (H + lambda diag(H)) dx = -g
   double min_relative_decrease = 1e-3;  // a step is accepted when the cost falls by this much of the model's
+  int max_chunks = 8;  // the blocks' evaluation in at most this many chunks (threads); 1: one sum in block order
 };
 
 struct BandedSolverSummary {
   int iterations = 0;  // steps tried
   double initial_cost = 0, final_cost = 0;
   double final_damping = 0;  // lambda at the end: where the next solve of a similar problem may start
+  int chunks = 0;            // the blocks' evaluation was split in this many (each its own sums, in a fixed order)
   bool failed = false;       // the cost could not be evaluated at the start
   std::string message;
 };

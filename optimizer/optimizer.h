@@ -9,7 +9,8 @@
 // The output is a plan of the same schema, its feasibility recomputed with `plan`'s own check. It is never
 // worse than the input in any hard limit at any sample (optimizer/limit_guard.h), and a dearer preset runs
 // the cheaper ones first and keeps its own result only when its objective is no larger (docs/optimize.md,
-// "The quality ladder"). Deterministic: one solver thread, terms added in sample order.
+// "The quality ladder"). Deterministic: terms added in sample order, summed in chunks the problem fixes
+// (optimizer/banded_solver.h), so the same bytes on any number of threads.
 #pragma once
 
 #include <string>

@@ -12,7 +12,7 @@
 //   2. every drone in order, again from its planned path, against the others' latest paths, asking for
 //      the full separation: what the first sweep left is closed.
 // A one-drone plan is optimized exactly as before (the same bytes). Deterministic: drones in plan order,
-// one solver thread.
+// each solve the same bytes on any number of threads (optimizer/banded_solver.h).
 #pragma once
 
 #include <string>

@@ -5,10 +5,12 @@
 // Gauss-Newton matrix the knot rows give; a block on more than four knots is refused.
 #include "optimizer/banded_solver.h"
 
+#include <cstring>
 #include <random>
 
 #include <ceres/ceres.h>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "optimizer/cost_terms.h"
 #include "optimizer/knot_spline.h"
@@ -94,20 +96,22 @@ struct KnotPull {
 };
 
 struct Problem {
-  KnotSpline spline{0, 6, 1};
+  KnotSpline spline;
   std::vector<Knot> knots;
   std::vector<std::array<bool, 8>> fixed;
   ceres::Problem problem;
   // `linear`: without the segments' bend, a linear least-squares problem (one Gauss-Newton step solves it).
-  Problem(unsigned seed, bool with_rates, bool linear = false) {
+  // `end_s`: the spline's length, a sample block every 0.2 s.
+  Problem(unsigned seed, bool with_rates, bool linear = false, int end_s = 6) : spline(0, end_s, 1) {
     std::mt19937 rng(seed);
     knots.assign(spline.num_knots(), Knot{});
     fixed.assign(knots.size(), {});
-    for (double t = 0; t <= 6.0; t += 0.2) {
+    for (int step = 0; step <= 5 * end_s; ++step) {
+      const double t = 0.2 * step;
       const KnotWeights w = spline.At(t);
       std::vector<double*> blocks;
       for (int j = 0; j < 4; ++j) blocks.push_back(knots[w.first_knot + j].data());
-      const bool rates = with_rates && static_cast<int>(t * 5) % 3 == 0;
+      const bool rates = with_rates && step % 3 == 0;
       problem.AddResidualBlock(new LinearStateTerm(w, 3, rates, &rng), nullptr, blocks);
     }
     for (int s = 0; s < spline.num_segments() && !linear; ++s) {
@@ -224,6 +228,41 @@ TEST(BandedSolver, OneUndampedStepSolvesALinearProblem) {
         EXPECT_NEAR(p.knots[i][c], expected[i][c], 1e-6 * (1 + std::fabs(expected[i][c])))
             << (rates ? "with rates" : "values only") << ", knot " << i << " channel " << c;
       }
+    }
+  }
+}
+
+// A long problem (1,001 sample blocks) is evaluated in chunks, each summed on its own thread: the chunks are the
+// problem's, not the machine's, so the solve gives the same bytes on 1, 2 and 4 threads; and the minimum is the
+// one the same solver reaches summing every block in one chunk (which the tests above hold against Ceres).
+TEST(BandedSolver, ChunksGiveTheSameBytesOnAnyNumberOfThreadsAndTheMinimumOfOneChunk) {
+  const auto solve = [](int threads, int max_chunks, BandedSolverSummary* summary) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    Problem p(9, true, false, 200);
+    p.Hold({{0, kStops}, {100, kYaw}});
+    BandedSolverOptions o;
+    o.max_iterations = 200;
+    o.function_tolerance = 1e-15;
+    o.max_chunks = max_chunks;
+    *summary = SolveBanded(&p.problem, p.knots.front().data(), static_cast<int>(p.knots.size()), p.fixed, o);
+    return p.knots;
+  };
+  BandedSolverSummary one, two, four, single;
+  const std::vector<Knot> on_one = solve(1, 8, &one), on_two = solve(2, 8, &two), on_four = solve(4, 8, &four);
+  const std::vector<Knot> in_one_chunk = solve(2, 1, &single);
+  EXPECT_GT(one.chunks, 1) << "the problem is long enough to be split";
+  EXPECT_EQ(single.chunks, 1);
+  EXPECT_EQ(one.iterations, two.iterations);
+  EXPECT_EQ(one.iterations, four.iterations);
+  EXPECT_EQ(std::memcmp(&one.final_cost, &two.final_cost, sizeof(double)), 0);
+  ASSERT_EQ(on_one.size(), on_two.size());
+  EXPECT_EQ(std::memcmp(on_one.data(), on_two.data(), on_one.size() * sizeof(Knot)), 0) << "1 and 2 threads";
+  EXPECT_EQ(std::memcmp(on_one.data(), on_four.data(), on_one.size() * sizeof(Knot)), 0) << "1 and 4 threads";
+  EXPECT_NEAR(one.final_cost, single.final_cost, 1e-9 * single.final_cost);
+  for (size_t i = 0; i < on_one.size(); ++i) {
+    for (int c = 0; c < kNumChannels; ++c) {
+      EXPECT_NEAR(on_one[i][c], in_one_chunk[i][c], 1e-6 * (1 + std::fabs(in_one_chunk[i][c])))
+          << "knot " << i << " channel " << c;
     }
   }
 }
