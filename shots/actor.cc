@@ -10,45 +10,86 @@
 namespace cinepath::shots {
 
 Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline path)
-    : name_(std::move(name)), height_m_(height_m), heading_deg_(heading_deg), path_(std::move(path)) {}
+    : name_(std::move(name)), height_m_(height_m), heading_deg_(heading_deg), path_(std::move(path)) {
+  SmoothForCameras();
+}
 
 Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline path, const Ground* ground,
              double above_ground_m)
-    : Actor(std::move(name), height_m, heading_deg, std::move(path)) {
+    : name_(std::move(name)), height_m_(height_m), heading_deg_(heading_deg), path_(std::move(path)) {
   ground_ = ground;
   above_ground_m_ = above_ground_m;
-  // The smoothed height CameraBaseAt reads: at steps of 0.5 s (longer past 20,000 steps) over the keys'
-  // span, the ground-kept height averaged with triangular weights over the step on either side (17 points),
-  // then a natural cubic spline through those values (C2: the camera's vertical jerk stays finite). A
-  // walker's half second is under a metre: the trend of the ground is kept, its centimetre noise is not.
+  SmoothForCameras();
+}
+
+// What CameraBaseAt and CameraTravelHeadingDegAt read: at steps of 0.5 s (longer past 20,000 steps) over the keys'
+// span, the actor's position (PositionAt: on the ground for a ground-kept one) and its velocity averaged with
+// triangular weights over a second on either side (33 points), then natural cubic splines through those positions
+// and through the directions of those velocities (C2: a camera's jerk stays finite). A path through keys is C0
+// (linear) or C1 (Catmull-Rom) at its keys, and a ground-kept height copies every kink of the mesh; a camera
+// placed rigidly from it copied each into velocity or acceleration steps. A walker's second is a metre or two:
+// its trend is kept, its kinks are not. For the averages the path runs on past its end keys at its end velocities,
+// so a shot that starts as its actor is keyed to be moving starts exactly with it; outside the keys' span the
+// splines hold their ends, as the actor does (a stop at full speed stays a stop, which the feasibility check
+// reports). A cubic B-spline path not kept on the ground is C2 already and is its own camera base; its heading is
+// still smoothed (the direction of a C2 path turns at a rate whose second derivative steps at its keys).
+void Actor::SmoothForCameras() {
   const std::vector<double>& times = path_.times();
   if (times.size() < 2 || !(times.back() > times.front())) return;
-  constexpr double kStepS = 0.5;
-  const double span_s = times.back() - times.front();
+  const Eigen::Vector3d first = PositionAt(times.front());
+  bool moves = false;
+  for (double t : times) moves = moves || (PositionAt(t) - first).norm() > 1e-9;
+  if (!moves) return;
+  constexpr double kStepS = 0.5, kWindowS = 1.0;  // the grid's step; the average's reach on either side
+  constexpr int kHalfPoints = 16;
+  const double from_s = times.front(), span_s = times.back() - times.front();
   // At most 20,000 steps: over a span longer than ~2.8 h of keys the steps grow (and smooth more).
   const int steps = static_cast<int>(std::min(std::ceil(span_s / kStepS), 20000.0));
   const double step_s = span_s / steps;
+  const Eigen::Vector3d facing(std::sin(RadFromDeg(heading_deg_)), std::cos(RadFromDeg(heading_deg_)), 0.0);
   std::vector<double> grid_s;
-  std::vector<Eigen::Vector3d> heights;
+  std::vector<Eigen::Vector3d> positions, directions;
   for (int j = 0; j <= steps; ++j) {
-    const double t = times.front() + j * step_s;
-    double sum = 0, weights = 0;
-    for (int k = -8; k <= 8; ++k) {
-      const double w = 9 - std::abs(k);
-      sum += w * PositionAt(t + k * step_s / 8).z();
+    const double t = from_s + j * step_s;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
+    double weights = 0;
+    for (int k = -kHalfPoints; k <= kHalfPoints; ++k) {
+      const double w = kHalfPoints + 1 - std::abs(k), at = t + k * kWindowS / kHalfPoints;
+      // Past an end key the path runs on at its end velocity (horizontally), so that a path at a steady velocity
+      // is its own average up to its ends: a shot that starts as its actor is keyed to be moving starts with it.
+      const double key_s = std::clamp(at, times.front(), times.back());
+      Eigen::Vector3d v = VelocityAt(key_s);
+      v.z() = 0;
+      position += w * (PositionAt(key_s) + (at - key_s) * v);
+      velocity += w * v;
       weights += w;
     }
     grid_s.push_back(t);
-    heights.emplace_back(0, 0, sum / weights);
+    positions.push_back(position / weights);
+    // The direction of travel; at rest the stated facing, and in between (under 0.05 m/s) a blend of the two,
+    // so that the direction never jumps when the actor starts or stops.
+    velocity /= weights;
+    velocity.z() = 0;
+    const double still = std::max(0.0, 1.0 - velocity.norm() / kMovingMS);
+    Eigen::Vector3d direction = velocity + kMovingMS * still * facing;
+    direction = direction.norm() > 1e-12 ? Eigen::Vector3d(direction.normalized()) : facing;
+    directions.push_back(direction);
   }
-  smooth_base_up_m_.emplace(std::move(grid_s), std::move(heights), PathInterpolation::kCubicBSpline);
+  camera_travel_.emplace(grid_s, std::move(directions), PathInterpolation::kCubicBSpline);
+  // A cubic B-spline path is C2 already: its camera base is the path itself, unless the ground's kinks are in it.
+  if (path_.kind() != PathInterpolation::kCubicBSpline || ground_)
+    camera_base_.emplace(std::move(grid_s), std::move(positions), PathInterpolation::kCubicBSpline);
 }
 
 Eigen::Vector3d Actor::CameraBaseAt(double time_s) const {
-  if (!smooth_base_up_m_) return PositionAt(time_s);
-  Eigen::Vector3d p = path_.Position(time_s);  // PositionAt's east and north, without its ground ray
-  p.z() = smooth_base_up_m_->Position(time_s).z();
-  return p;
+  return camera_base_ ? camera_base_->Position(time_s) : PositionAt(time_s);
+}
+
+double Actor::CameraTravelHeadingDegAt(double time_s) const {
+  if (!camera_travel_) return TravelHeadingDegAt(time_s);
+  const Eigen::Vector3d d = camera_travel_->Position(time_s);
+  if (std::hypot(d.x(), d.y()) < 1e-6) return TravelHeadingDegAt(time_s);
+  return HeadingDegFromEnuYaw(std::atan2(d.y(), d.x()));
 }
 
 Eigen::Vector3d Actor::PositionAt(double time_s) const {
@@ -71,7 +112,7 @@ double Actor::TravelHeadingDegAt(double time_s) const {
   // Before the first key and after the last the actor holds still: keep its heading of travel there.
   const double t = std::clamp(time_s, path_.times().front(), path_.times().back());
   const Eigen::Vector3d v = VelocityAt(t);
-  if (std::hypot(v.x(), v.y()) > 0.05) return HeadingDegFromEnuYaw(std::atan2(v.y(), v.x()));
+  if (std::hypot(v.x(), v.y()) > kMovingMS) return HeadingDegFromEnuYaw(std::atan2(v.y(), v.x()));
   return NormalizeDeg360(heading_deg_);
 }
 

@@ -40,18 +40,25 @@ class Actor {
   double height_m() const { return height_m_; }
 
   Eigen::Vector3d PositionAt(double time_s) const;
-  // Where shots place the camera from: PositionAt, but for an actor kept on the ground that moves, the
-  // height is the ground's smoothed in time (a C2 spline through the ground height averaged over 0.5 s
-  // steps): a camera flies a steady height over the ground's trend instead of copying each kink and
-  // bump of a photogrammetry mesh under the actor's feet (those made jerk spikes of thousands of
-  // m/s^3). Framing and focus still use PositionAt.
+  // Where shots place the camera from: for an actor that moves on a linear or Catmull-Rom path, or is kept on the
+  // ground, its position smoothed in time (a C2 spline through the position averaged over half-second steps,
+  // SmoothForCameras); else PositionAt. A camera placed rigidly from the keyed path copied each of its kinks: a
+  // Catmull-Rom path is only C1 at its keys (an acceleration step), a linear one C0, and a ground-kept height copies
+  // every bump of a photogrammetry mesh (jerk spikes of hundreds to thousands of m/s^3). Framing and focus still use
+  // PositionAt.
   Eigen::Vector3d CameraBaseAt(double time_s) const;
   Eigen::Vector3d VelocityAt(double time_s) const { return path_.Velocity(time_s); }
   // Where cameras aim: the base raised by half the actor's height.
   Eigen::Vector3d AimPointAt(double time_s) const;
-  // Compass heading of travel (degrees) when moving faster than 0.05 m/s horizontally, else the
+  // Compass heading of travel (degrees) when moving faster than kMovingMS horizontally, else the
   // actor's stated facing heading. Outside the keyframe range the heading at the nearest end holds.
   double TravelHeadingDegAt(double time_s) const;
+  // The heading shots place the camera by (CHASE behind, FLYBY and DOLLY beside): the direction of the velocity
+  // averaged as CameraBaseAt's position, through a C2 spline, blending into the facing heading at rest. The
+  // heading of a C1 path turns at a rate that steps at each key; a camera metres to the side of it stepped in
+  // velocity there.
+  double CameraTravelHeadingDegAt(double time_s) const;
+  static constexpr double kMovingMS = 0.05;  // slower than this, an actor faces its stated heading
 
   const PathSpline& path() const { return path_; }
 
@@ -62,7 +69,9 @@ class Actor {
   PathSpline path_;
   const Ground* ground_ = nullptr;  // set: on the ground at every time
   double above_ground_m_ = 0;
-  std::optional<PathSpline> smooth_base_up_m_;  // the ground-kept height, smoothed (z of each point)
+  void SmoothForCameras();
+  std::optional<PathSpline> camera_base_;    // CameraBaseAt's positions
+  std::optional<PathSpline> camera_travel_;  // CameraTravelHeadingDegAt's unit directions (z = 0)
 };
 
 // Parses one element of shots.json "actors" (docs/plan.md): a position or timed keyframes, and

@@ -22,9 +22,9 @@ struct SubjectFrame {
   // The direction of travel at a time: the shot's bearing, or the subject's heading.
   Eigen::Vector3d Travel(double time_s) const {
     return HorizontalFromBearing(shot.travel_bearing_deg ? *shot.travel_bearing_deg
-                                                         : actor->TravelHeadingDegAt(time_s));
+                                                         : actor->CameraTravelHeadingDegAt(time_s));
   }
-  // The subject's base the camera is placed from (its height smoothed over the ground, Actor::CameraBaseAt).
+  // The subject's base the camera is placed from (its path smoothed in time, Actor::CameraBaseAt).
   Eigen::Vector3d Base(double time_s) {
     const Eigen::Vector3d p = actor->CameraBaseAt(time_s);
     base_up_m = p.z();

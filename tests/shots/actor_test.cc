@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/angles.h"
 #include "core/error.h"
 
 namespace cinepath::shots {
@@ -23,6 +24,64 @@ TEST(Actor, StaticAndKeyframed) {
   EXPECT_NEAR(b.TravelHeadingDegAt(-3), 0.0, 1e-9);  // before the first key: the start heading holds
   EXPECT_NEAR(b.PositionAt(20).y(), 50.0, 1e-12);    // holds after the last key
   EXPECT_DOUBLE_EQ(b.height_m(), 1.8);
+}
+
+// Largest |third difference| / dt^3 of f over [from, to] at dt = 1/30 s (the plan's jerk, as the feasibility check
+// takes it from its samples).
+template <typename F>
+double MostJerk(F f, double from_s, double to_s) {
+  const double dt = 1.0 / 30;
+  double most = 0;
+  for (double t = from_s; t + 3 * dt <= to_s; t += dt) {
+    const Eigen::Vector3d j = (f(t + 3 * dt) - 3 * f(t + 2 * dt) + 3 * f(t + dt) - f(t)) / (dt * dt * dt);
+    most = std::max(most, j.norm());
+  }
+  return most;
+}
+
+// A Catmull-Rom walker turning at its keys is C1 there: its acceleration steps, and a camera placed rigidly from
+// it (or metres beside its direction of travel) copied each step as a jerk spike. The camera's base and heading
+// are the walker's averaged over two seconds through C2 splines: finite jerk, within centimetres of the walker.
+TEST(Actor, TheCameraFrameOfAWalkerTurningAtItsKeysIsSmooth) {
+  const Json doc = Json::parse(R"({"name": "w", "interpolation": "catmull_rom", "keyframes": [
+      {"time_s": 0, "position_enu_m": [-20, -12, 0]}, {"time_s": 6, "position_enu_m": [-8, -12, 0]},
+      {"time_s": 12, "position_enu_m": [4, -10, 0]}, {"time_s": 18, "position_enu_m": [12, -2, 0]},
+      {"time_s": 24, "position_enu_m": [14, 10, 0]}]})");
+  const Actor w = ParseActor(JsonField(doc, "shots.json", "actors[0]"), nullptr);
+  const auto keyed = [&](double t) { return w.PositionAt(t); };
+  const auto base = [&](double t) { return w.CameraBaseAt(t); };
+  // 8 m behind the direction of travel, as a CHASE places its camera.
+  const auto chase = [&](double t) {
+    const double b = RadFromDeg(w.CameraTravelHeadingDegAt(t));
+    return Eigen::Vector3d(w.CameraBaseAt(t) - 8.0 * Eigen::Vector3d(std::sin(b), std::cos(b), 0));
+  };
+  const auto rigid_chase = [&](double t) {
+    const double b = RadFromDeg(w.TravelHeadingDegAt(t));
+    return Eigen::Vector3d(w.PositionAt(t) - 8.0 * Eigen::Vector3d(std::sin(b), std::cos(b), 0));
+  };
+  EXPECT_GT(MostJerk(keyed, 1, 23), 2.5) << "the keyed path's acceleration steps at its keys";
+  EXPECT_GT(MostJerk(rigid_chase, 1, 23), 20.0);
+  EXPECT_LT(MostJerk(base, 1, 23), 1.0);
+  EXPECT_LT(MostJerk(chase, 1, 23), 2.0);
+  for (double t = 1; t <= 23; t += 0.25) {
+    EXPECT_LT((w.CameraBaseAt(t) - w.PositionAt(t)).norm(), 0.05) << t;
+    EXPECT_LT(std::fabs(AngleDiffDeg(w.CameraTravelHeadingDegAt(t), w.TravelHeadingDegAt(t))), 5.0) << t;
+  }
+  // At the ends the base is the walker (its path runs on at its end velocity for the averages), and at rest too.
+  EXPECT_LT((w.CameraBaseAt(0) - w.PositionAt(0)).norm(), 0.05);
+  EXPECT_LT((w.CameraBaseAt(24) - w.PositionAt(24)).norm(), 0.05);
+  EXPECT_NEAR((w.CameraBaseAt(30) - w.CameraBaseAt(24)).norm(), 0, 1e-12) << "holds after the last key";
+}
+
+// A still actor, and one that only stands, keep their camera frame exactly.
+TEST(Actor, AStillActorIsItsOwnCameraBase) {
+  const Json doc = Json::parse(R"([{"name": "s", "heading_deg": 30, "keyframes": [
+      {"time_s": 0, "position_enu_m": [3, 4, 5]}, {"time_s": 9, "position_enu_m": [3, 4, 5]}]}])");
+  const Actor a = ParseActor(JsonField(doc, "shots.json", "actors").At(0), nullptr);
+  for (double t : {-1.0, 0.0, 4.5, 9.0, 12.0}) {
+    EXPECT_EQ(a.CameraBaseAt(t), Eigen::Vector3d(3, 4, 5));
+    EXPECT_EQ(a.CameraTravelHeadingDegAt(t), 30.0);
+  }
 }
 
 TEST(Actor, LatLonNeedsAnOriginAndConverts) {
