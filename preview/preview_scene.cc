@@ -36,8 +36,10 @@ const std::array<float, 256>& LinearFromSrgb8() {
   return table;
 }
 
-Texture DecodeTexture(const scene::SceneImage& image, size_t index) {
-  Srgb8Image decoded = DecodeSrgb8(image.encoded, "images[" + std::to_string(index) + "] (" + image.mime_type + ")");
+Texture DecodeTexture(const scene::SceneMesh& mesh, size_t index) {
+  const scene::SceneImage& image = mesh.images[index];
+  Srgb8Image decoded = DecodeSrgb8(image.encoded, "images[" + std::to_string(index) + "] (" + image.mime_type + ")",
+                                   [&mesh, index](int, int height) { return TextureRowsSampled(mesh, index, height); });
   Texture texture;
   texture.width = decoded.width;
   texture.height = decoded.height;
@@ -71,9 +73,48 @@ double SecondsSince(Clock::time_point start) { return std::chrono::duration<doub
 
 }  // namespace
 
+std::vector<uint8_t> TextureRowsSampled(const scene::SceneMesh& mesh, size_t image, int height) {
+  std::vector<uint8_t> rows(size_t(std::max(0, height)), 0);
+  if (height <= 0 || !mesh.has_texcoords() || mesh.face_material.size() != mesh.faces.size()) return rows;
+  // A difference array over the rows: +1 where a face's rows begin, -1 after they end.
+  std::vector<int> starts(size_t(height) + 1, 0);
+  const long h = height;
+  for (size_t face = 0; face < mesh.faces.size(); ++face) {
+    const int m = mesh.face_material[face];
+    if (m < 0 || size_t(m) >= mesh.materials.size() || mesh.materials[size_t(m)].base_color_image != int(image)) {
+      continue;
+    }
+    const auto& f = mesh.faces[face];
+    const float v0 = mesh.texcoords[f[0]].y(), v1 = mesh.texcoords[f[1]].y(), v2 = mesh.texcoords[f[2]].y();
+    const double lo_v = std::min({v0, v1, v2}), hi_v = std::max({v0, v1, v2});
+    // Texture::Sample reads rows floor(v h - 1/2) and the next; kRowMargin more each side for the
+    // barycentric interpolation's rounding (a hit's u, v and the uv are floats).
+    constexpr long kRowMargin = 2;
+    const double lo_y = std::floor(lo_v * h - 0.5) - kRowMargin, hi_y = std::floor(hi_v * h - 0.5) + 1 + kRowMargin;
+    const bool finite = std::isfinite(v0) && std::isfinite(v1) && std::isfinite(v2);
+    if (!finite || hi_y - lo_y + 1 >= double(h)) {  // a NaN or infinite v: any row
+      std::fill(rows.begin(), rows.end(), 1);
+      return rows;
+    }
+    const long lo = ((long(lo_y) % h) + h) % h, hi = lo + long(hi_y - lo_y);  // REPEAT: rows wrap
+    if (hi < h) {
+      ++starts[size_t(lo)];
+      --starts[size_t(hi) + 1];
+    } else {
+      ++starts[size_t(lo)];
+      --starts[size_t(h)];
+      ++starts[0];
+      --starts[size_t(hi - h) + 1];
+    }
+  }
+  int open = 0;
+  for (size_t r = 0; r < rows.size(); ++r) rows[r] = (open += starts[r]) > 0;
+  return rows;
+}
+
 std::vector<Texture> DecodeTextures(const scene::SceneMesh& mesh) {
   std::vector<Texture> textures;
-  for (size_t i = 0; i < mesh.images.size(); ++i) textures.push_back(DecodeTexture(mesh.images[i], i));
+  for (size_t i = 0; i < mesh.images.size(); ++i) textures.push_back(DecodeTexture(mesh, i));
   return textures;
 }
 
