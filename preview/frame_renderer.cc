@@ -305,7 +305,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
           for (int s0 = 0; s0 < n; s0 += 8) {
             const int count = std::min(8, n - s0);
             for (int j = 0; j < count; ++j) {
-              const PixelSample ps = sequence.Get(uint32_t(s0 + j));
+              const PixelSample ps = lens ? sequence.Get(uint32_t(s0 + j)) : sequence.GetPixel(uint32_t(s0 + j));
               const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
               const CameraRay ray = camera.Ray(frame_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
               origins[j] = ray.origin_enu_m;

@@ -27,14 +27,12 @@ float SrgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 
 // Linear light of each 8-bit sRGB value, as OpenImageIO's 8-bit to float conversion gives it (v times
 // 1/255 in float; measured: all 256 values equal) and then converted: the same texels as decoding to
 // floats first.
-const std::array<float, 256>& LinearFromSrgb8() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int v = 0; v < 256; ++v) t[size_t(v)] = SrgbToLinear(float(v) * (1.0f / 255.0f));
-    return t;
-  }();
-  return table;
-}
+// (Filled when the module loads, so a lookup reads it without a guard.)
+const std::array<float, 256> kLinearFromSrgb8 = [] {
+  std::array<float, 256> t{};
+  for (int v = 0; v < 256; ++v) t[size_t(v)] = SrgbToLinear(float(v) * (1.0f / 255.0f));
+  return t;
+}();
 
 Texture DecodeTexture(const scene::SceneMesh& mesh, size_t index) {
   const scene::SceneImage& image = mesh.images[index];
@@ -49,21 +47,43 @@ Texture DecodeTexture(const scene::SceneMesh& mesh, size_t index) {
 
 }  // namespace
 
+namespace {
+
+// floor() without the library call (SSE2 has no rounding instruction): exact for |x| < 2^23, where every
+// float's truncation is an integer held exactly; anything else (huge, NaN) goes to std::floor.
+float FloorOf(float x) {
+  if (!(std::fabs(x) < 8388608.0f)) return std::floor(x);
+  const float t = float(long(x));
+  return t > x ? t - 1 : t;
+}
+
+}  // namespace
+
 Eigen::Vector3f Texture::Sample(const Eigen::Vector2f& uv) const {
   if (srgb.empty()) return Eigen::Vector3f::Ones();
   const float x = uv.x() * width - 0.5f, y = uv.y() * height - 0.5f;
-  const float fx = std::floor(x), fy = std::floor(y);
+  const float fx = FloorOf(x), fy = FloorOf(y);
   const float wx = x - fx, wy = y - fy;
-  const std::array<float, 256>& linear = LinearFromSrgb8();
+  const float* linear = kLinearFromSrgb8.data();
   // Wrapped once per axis (a division each), not per texel: the neighbour is the next or the first.
   auto wrap = [](long i, long n) { return i >= 0 && i < n ? i : ((i % n) + n) % n; };
   const long i0 = wrap(long(fx), width), j0 = wrap(long(fy), height);
   const long i1 = i0 + 1 == width ? 0 : i0 + 1, j1 = j0 + 1 == height ? 0 : j0 + 1;
-  auto at = [&](long i, long j) {
-    const uint8_t* p = &srgb[(size_t(j) * width + size_t(i)) * 3];
-    return Eigen::Vector3f(linear[p[0]], linear[p[1]], linear[p[2]]);
-  };
-  return (1 - wy) * ((1 - wx) * at(i0, j0) + wx * at(i1, j0)) + wy * ((1 - wx) * at(i0, j1) + wx * at(i1, j1));
+  const uint8_t* texels = srgb.data();
+  const uint8_t* p00 = texels + (size_t(j0) * size_t(width) + size_t(i0)) * 3;
+  const uint8_t* p10 = texels + (size_t(j0) * size_t(width) + size_t(i1)) * 3;
+  const uint8_t* p01 = texels + (size_t(j1) * size_t(width) + size_t(i0)) * 3;
+  const uint8_t* p11 = texels + (size_t(j1) * size_t(width) + size_t(i1)) * 3;
+  // Per channel, in the order of the vector expression it replaces, (1 - wy) ((1 - wx) t00 + wx t10) +
+  // wy ((1 - wx) t01 + wx t11): the same floats.
+  const float ax = 1 - wx, ay = 1 - wy;
+  Eigen::Vector3f out;
+  for (int c = 0; c < 3; ++c) {
+    const float top = ax * linear[p00[c]] + wx * linear[p10[c]];
+    const float bottom = ax * linear[p01[c]] + wx * linear[p11[c]];
+    out[c] = ay * top + wy * bottom;
+  }
+  return out;
 }
 
 namespace {
