@@ -99,24 +99,36 @@ std::vector<uint8_t> TextureRowsSampled(const scene::SceneMesh& mesh, size_t ima
   // A difference array over the rows: +1 where a face's rows begin, -1 after they end.
   std::vector<int> starts(size_t(height) + 1, 0);
   const long h = height;
+  std::vector<uint8_t> takes_image(mesh.materials.size());  // per material: its base colour is this image
+  for (size_t m = 0; m < takes_image.size(); ++m) takes_image[m] = mesh.materials[m].base_color_image == int(image);
+  const Eigen::Vector2f* uv = mesh.texcoords.data();
   for (size_t face = 0; face < mesh.faces.size(); ++face) {
-    const int m = mesh.face_material[face];
-    if (m < 0 || size_t(m) >= mesh.materials.size() || mesh.materials[size_t(m)].base_color_image != int(image)) {
-      continue;
-    }
+    const size_t m = size_t(mesh.face_material[face]);  // -1 (none) wraps past the end
+    if (m >= takes_image.size() || !takes_image[m]) continue;
     const auto& f = mesh.faces[face];
-    const float v0 = mesh.texcoords[f[0]].y(), v1 = mesh.texcoords[f[1]].y(), v2 = mesh.texcoords[f[2]].y();
-    const double lo_v = std::min({v0, v1, v2}), hi_v = std::max({v0, v1, v2});
-    // Texture::Sample reads rows floor(v h - 1/2) and the next; kRowMargin more each side for the
-    // barycentric interpolation's rounding (a hit's u, v and the uv are floats).
-    constexpr long kRowMargin = 2;
-    const double lo_y = std::floor(lo_v * h - 0.5) - kRowMargin, hi_y = std::floor(hi_v * h - 0.5) + 1 + kRowMargin;
-    const bool finite = std::isfinite(v0) && std::isfinite(v1) && std::isfinite(v2);
-    if (!finite || hi_y - lo_y + 1 >= double(h)) {  // a NaN or infinite v: any row
+    const float v0 = uv[f[0]].y(), v1 = uv[f[1]].y(), v2 = uv[f[2]].y();
+    // A NaN, infinite or far-off v (the texture repeated a million times over): any row.
+    constexpr float kFar = 1e6f;
+    if (!(std::fabs(v0) < kFar && std::fabs(v1) < kFar && std::fabs(v2) < kFar)) {
       std::fill(rows.begin(), rows.end(), 1);
       return rows;
     }
-    const long lo = ((long(lo_y) % h) + h) % h, hi = lo + long(hi_y - lo_y);  // REPEAT: rows wrap
+    const double lo_v = std::min(v0, std::min(v1, v2)), hi_v = std::max(v0, std::max(v1, v2));
+    // Texture::Sample reads rows floor(v h - 1/2) and the next; kRowMargin more each side for the
+    // barycentric interpolation's rounding (a hit's u, v and the uv are floats). (A floor by truncation:
+    // exact here, where |v h| < 2^52, and without a library call for each of a million faces.)
+    constexpr long kRowMargin = 2;
+    auto floor_of = [](double y) {
+      const double t = double(long(y));
+      return long(t > y ? t - 1 : t);
+    };
+    const long lo_y = floor_of(lo_v * h - 0.5) - kRowMargin, hi_y = floor_of(hi_v * h - 0.5) + 1 + kRowMargin;
+    if (hi_y - lo_y + 1 >= h) {
+      std::fill(rows.begin(), rows.end(), 1);
+      return rows;
+    }
+    const long lo = lo_y >= 0 && lo_y < h ? lo_y : ((lo_y % h) + h) % h;  // REPEAT: rows wrap
+    const long hi = lo + (hi_y - lo_y);
     if (hi < h) {
       ++starts[size_t(lo)];
       --starts[size_t(hi) + 1];
