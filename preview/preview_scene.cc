@@ -96,12 +96,26 @@ double SecondsSince(Clock::time_point start) { return std::chrono::duration<doub
 std::vector<uint8_t> TextureRowsSampled(const scene::SceneMesh& mesh, size_t image, int height) {
   std::vector<uint8_t> rows(size_t(std::max(0, height)), 0);
   if (height <= 0 || !mesh.has_texcoords() || mesh.face_material.size() != mesh.faces.size()) return rows;
+  const long h = height;
+  constexpr long kRowMargin = 2;
+  // First the vertices' whole v range (a few instructions a vertex): when its rows, as below, span the
+  // texture, so may the faces' (a mesh mapped over its whole texture: the large scene's million faces
+  // would cost 80 M instructions), and every row is taken without looking at the faces.
+  const Eigen::Vector2f* uv = mesh.texcoords.data();
+  float v_min = uv[0].y(), v_max = uv[0].y();
+  for (size_t i = 0; i < mesh.texcoords.size(); ++i) {
+    v_min = std::min(v_min, uv[i].y());
+    v_max = std::max(v_max, uv[i].y());
+  }
+  if (!(v_min > -1e6f && v_max < 1e6f) ||  // an infinity, a far-off v: any row (a NaN is found face by face)
+      std::floor(double(v_max) * h - 0.5) - std::floor(double(v_min) * h - 0.5) + 1 + 2 * kRowMargin + 1 >= h) {
+    std::fill(rows.begin(), rows.end(), 1);
+    return rows;
+  }
   // A difference array over the rows: +1 where a face's rows begin, -1 after they end.
   std::vector<int> starts(size_t(height) + 1, 0);
-  const long h = height;
   std::vector<uint8_t> takes_image(mesh.materials.size());  // per material: its base colour is this image
   for (size_t m = 0; m < takes_image.size(); ++m) takes_image[m] = mesh.materials[m].base_color_image == int(image);
-  const Eigen::Vector2f* uv = mesh.texcoords.data();
   for (size_t face = 0; face < mesh.faces.size(); ++face) {
     const size_t m = size_t(mesh.face_material[face]);  // -1 (none) wraps past the end
     if (m >= takes_image.size() || !takes_image[m]) continue;
@@ -117,7 +131,6 @@ std::vector<uint8_t> TextureRowsSampled(const scene::SceneMesh& mesh, size_t ima
     // Texture::Sample reads rows floor(v h - 1/2) and the next; kRowMargin more each side for the
     // barycentric interpolation's rounding (a hit's u, v and the uv are floats). (A floor by truncation:
     // exact here, where |v h| < 2^52, and without a library call for each of a million faces.)
-    constexpr long kRowMargin = 2;
     auto floor_of = [](double y) {
       const double t = double(long(y));
       return long(t > y ? t - 1 : t);

@@ -69,11 +69,20 @@ TEST(TextureRows, NoTexcoordsNoRowsAndBadOnesEveryRow) {
   EXPECT_EQ(Flagged(TextureRowsSampled(mesh, 0, 100)), std::vector<int>{});
 }
 
+// Vertices whose v spans the texture: every row, without looking at the faces (so a mesh mapped over its
+// whole texture costs a pass over its vertices), though these two faces leave a gap between them.
+TEST(TextureRows, VerticesSpanningTheTextureTakeEveryRow) {
+  const scene::SceneMesh mesh = UvMesh({{0.01f, 0.02f, 0.03f}, {0.97f, 0.98f, 0.99f}}, {0, 0});
+  EXPECT_EQ(Flagged(TextureRowsSampled(mesh, 0, 100)), Range(0, 100));
+  const scene::SceneMesh apart = UvMesh({{0.1f, 0.12f, 0.13f}, {0.8f, 0.82f, 0.83f}}, {0, 0});
+  EXPECT_EQ(Flagged(TextureRowsSampled(apart, 0, 100)).size(), size_t(9 + 9));  // rows 7-15 and 77-85
+}
+
 // The rows left out are never read: every lookup inside the faces (their corners and edges included, and
 // the wrap past v = 0) is the same from a texture whose rows left out hold other bytes.
 TEST(TextureRows, LookupsInsideTheFacesNeverReadARowLeftOut) {
   const scene::SceneMesh mesh =
-      UvMesh({{0.25f, 0.5f, 0.3f}, {0.002f, 0.03f, 0.01f}, {0.6f, 0.6f, 0.61f}, {0.999f, 0.97f, 0.98f}}, {0, 0, 0, 0});
+      UvMesh({{0.25f, 0.5f, 0.3f}, {0.002f, 0.03f, 0.01f}, {0.6f, 0.6f, 0.61f}, {0.4f, 0.41f, 0.45f}}, {0, 0, 0, 0});
   constexpr int kSize = 64;
   const std::vector<uint8_t> rows = TextureRowsSampled(mesh, 0, kSize);
   ASSERT_LT(Flagged(rows).size(), size_t(kSize));
