@@ -124,13 +124,24 @@ std::vector<uint8_t> FindEdges(const PrePass& pass, int w, int h, float edge_col
     if (std::abs(da - db) > kEdgeDepthRatio * std::min(da, db)) return true;
     return (pass.rgb[a] - pass.rgb[b]).cwiseAbs().maxCoeff() > edge_color_step;
   };
-  // A pixel is an edge when it differs from one of its four neighbours (each row on its own: rows in parallel).
+  // A pixel is an edge when it differs from one of its four neighbours. Each pair of neighbours is
+  // compared once (differ is symmetric): with its right neighbour into `right`, with the one below into
+  // `below`, rows in parallel; then each pixel looks at its four pairs.
+  std::vector<uint8_t> right(edge.size(), 0), below(edge.size(), 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
-        edge[i] = (x + 1 < w && differ(i, i + 1)) || (x > 0 && differ(i, i - 1)) || (y + 1 < h && differ(i, i + w)) ||
-                  (y > 0 && differ(i, i - w));
+        right[i] = x + 1 < w && differ(i, i + 1);
+        below[i] = y + 1 < h && differ(i, i + w);
+      }
+    }
+  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        edge[i] = right[i] || (x > 0 && right[i - 1]) || below[i] || (y > 0 && below[i - w]);
       }
     }
   });
@@ -305,7 +316,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
           for (int s0 = 0; s0 < n; s0 += 8) {
             const int count = std::min(8, n - s0);
             for (int j = 0; j < count; ++j) {
-              const PixelSample ps = sequence.Get(uint32_t(s0 + j));
+              const PixelSample ps = lens ? sequence.Get(uint32_t(s0 + j)) : sequence.GetPixel(uint32_t(s0 + j));
               const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
               const CameraRay ray = camera.Ray(frame_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
               origins[j] = ray.origin_enu_m;

@@ -204,9 +204,11 @@ void WriteJpeg(FILE* file, const Srgb8Image& image) {
 //
 // With `claim`, the decoder takes its rows a few at a time: at each claimed end it asks `claim(row)` for
 // the next end (at most `end`), and stops when that is not past `row` (another decoder took the rest).
+// With `wanted` (a flag per row), the rows it does not flag are skipped too, within the claimed rows, and
+// left unwritten.
 void DecodeJpegRows(const std::vector<uint8_t>& encoded, const std::string& where, int begin, int end,
                     Srgb8Image* image, int* width = nullptr, int* height = nullptr,
-                    const std::function<int(int)>& claim = nullptr) {
+                    const std::function<int(int)>& claim = nullptr, const std::vector<uint8_t>* wanted = nullptr) {
   jpeg_decompress_struct jpeg{};
   JpegError error{};
   jpeg.err = jpeg_std_error(&error.manager);
@@ -227,10 +229,15 @@ void DecodeJpegRows(const std::vector<uint8_t>& encoded, const std::string& wher
     if (begin > 0) jpeg_skip_scanlines(&jpeg, JDIMENSION(begin));
     int claimed = claim ? int(jpeg.output_scanline) : end;
     while (int(jpeg.output_scanline) < end) {
-      if (int(jpeg.output_scanline) == claimed &&
-          (claimed = std::min(end, claim(claimed))) <= int(jpeg.output_scanline))
-        break;
-      JSAMPROW row = &image->rgb[size_t(jpeg.output_scanline) * image->width * 3];
+      const int at = int(jpeg.output_scanline);
+      if (at >= claimed && (claimed = std::min(end, claim(at))) <= at) break;
+      if (wanted && !(*wanted)[size_t(at)]) {
+        int next = at + 1;
+        while (next < claimed && !(*wanted)[size_t(next)]) ++next;
+        jpeg_skip_scanlines(&jpeg, JDIMENSION(next - at));
+        continue;
+      }
+      JSAMPROW row = &image->rgb[size_t(at) * image->width * 3];
       jpeg_read_scanlines(&jpeg, &row, 1);
     }
   }
@@ -392,33 +399,49 @@ int JpegSecondBandStart(int height, int first_done) {
   return split >= height - 64 ? height : std::max(split, first_done);
 }
 
-Srgb8Image DecodeJpegShared(const std::vector<uint8_t>& encoded, const std::string& where) {
+Srgb8Image DecodeJpegShared(const std::vector<uint8_t>& encoded, const std::string& where,
+                            const RowsWanted& rows_wanted) {
   Srgb8Image image;
   DecodeJpegRows(encoded, where, 0, 0, nullptr, &image.width, &image.height);
   image.rgb.resize(size_t(image.width) * image.height * 3);
+  std::vector<uint8_t> wanted;
+  if (rows_wanted) {
+    wanted = rows_wanted(image.width, image.height);
+    if (wanted.size() != size_t(image.height)) throw InternalError("DecodeJpegShared: one flag per row wanted");
+  }
+  // The decode ends after the last row wanted: the rest is not even entropy-decoded.
+  int end = image.height;
+  if (rows_wanted) {
+    while (end > 0 && !wanted[size_t(end) - 1]) --end;
+  }
+  const std::vector<uint8_t>* wanted_rows = rows_wanted ? &wanted : nullptr;
   AdviseHugePages(image.rgb.data(), image.rgb.size());
-  if (image.height < 512) {
-    DecodeJpegRows(encoded, where, 0, image.height, &image);
+  if (end == 0) return image;
+  if (end < 512) {
+    DecodeJpegRows(encoded, where, 0, end, &image, nullptr, nullptr, nullptr, wanted_rows);
     return image;
   }
-  // Rows [0, claimed) are the first decoder's; from `second` on (height: none yet) the second's.
+  // Rows [0, claimed) are the first decoder's; from `second` on (end: none yet) the second's.
   std::mutex mutex;
-  int claimed = 0, second = image.height;
+  int claimed = 0, second = end;
   tbb::task_group group;
   group.run([&] {
     int begin;
     {
       const std::lock_guard<std::mutex> lock(mutex);
-      begin = second = JpegSecondBandStart(image.height, claimed);
+      begin = second = JpegSecondBandStart(end, claimed);
     }
-    if (begin < image.height) DecodeJpegRows(encoded, where, begin, image.height, &image);
+    if (begin < end) DecodeJpegRows(encoded, where, begin, end, &image, nullptr, nullptr, nullptr, wanted_rows);
   });
   try {
-    DecodeJpegRows(encoded, where, 0, image.height, &image, nullptr, nullptr, [&](int row) {
-      const std::lock_guard<std::mutex> lock(mutex);
-      claimed = std::min(second, row + 16);
-      return claimed;
-    });
+    DecodeJpegRows(
+        encoded, where, 0, end, &image, nullptr, nullptr,
+        [&](int row) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          claimed = std::min(second, row + 16);
+          return claimed;
+        },
+        wanted_rows);
   } catch (...) {
     try {
       group.wait();
@@ -429,11 +452,11 @@ Srgb8Image DecodeJpegShared(const std::vector<uint8_t>& encoded, const std::stri
   return image;
 }
 
-Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& bytes, const std::string& where) {
+Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& bytes, const std::string& where, const RowsWanted& rows_wanted) {
   const bool png = bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
   const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff;
   if (png) return DecodePng(bytes, where);
-  if (jpeg) return DecodeJpegShared(bytes, where);
+  if (jpeg) return DecodeJpegShared(bytes, where, rows_wanted);
   throw InputError(where + ": cannot decode: neither JPEG nor PNG");
 }
 

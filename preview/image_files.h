@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -57,17 +58,27 @@ uint8_t LinearToSrgb8(float linear);
 uint8_t LinearToSrgb8ByTable(float linear);
 Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width, int height);
 
+// Given an image's width and height, a flag per row: the rows its user will read (the rest may be left
+// unwritten).
+using RowsWanted = std::function<std::vector<uint8_t>(int width, int height)>;
+
 // A PNG or JPEG (told by its first bytes) decoded to 8-bit RGB as stored (grey replicated, alpha dropped;
 // libjpeg's default islow IDCT and fancy upsampling). InputError naming `where` when it cannot be.
-Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& encoded, const std::string& where);
+// With `rows_wanted`, a JPEG's rows it does not flag are left unwritten (skipped: entropy-decoded only,
+// and after the last row flagged not decoded at all); every row it flags holds the bytes of a full
+// decode. A PNG is decoded in full.
+Srgb8Image DecodeSrgb8(const std::vector<uint8_t>& encoded, const std::string& where,
+                       const RowsWanted& rows_wanted = nullptr);
 // A JPEG decoded by `parts` decoders at once, each a band of rows (the same bytes as one decoder).
 Srgb8Image DecodeJpeg(const std::vector<uint8_t>& encoded, const std::string& where, int parts);
 // A JPEG decoded by two decoders that split its rows when the second starts (the same bytes as one
 // decoder): the first starts at once on the calling thread from the top; the second, a task, starts
 // when a thread is free (at once on an idle machine, later when the plan's reading holds the other core,
 // never when none frees up before the first ends) and takes the bottom rows from
-// JpegSecondBandStart(height, rows the first has taken), so both end together. DecodeSrgb8's JPEG path.
-Srgb8Image DecodeJpegShared(const std::vector<uint8_t>& encoded, const std::string& where);
+// JpegSecondBandStart(height, rows the first has taken), so both end together. DecodeSrgb8's JPEG path
+// (with `rows_wanted` as there: both decoders end after the last row wanted, and share the rows up to it).
+Srgb8Image DecodeJpegShared(const std::vector<uint8_t>& encoded, const std::string& where,
+                            const RowsWanted& rows_wanted = nullptr);
 // The second decoder's first row (a multiple of 16, not before `first_done`), or `height` when what is
 // left is too little to share.
 int JpegSecondBandStart(int height, int first_done);

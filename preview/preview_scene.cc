@@ -27,17 +27,17 @@ float SrgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 
 // Linear light of each 8-bit sRGB value, as OpenImageIO's 8-bit to float conversion gives it (v times
 // 1/255 in float; measured: all 256 values equal) and then converted: the same texels as decoding to
 // floats first.
-const std::array<float, 256>& LinearFromSrgb8() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int v = 0; v < 256; ++v) t[size_t(v)] = SrgbToLinear(float(v) * (1.0f / 255.0f));
-    return t;
-  }();
-  return table;
-}
+// (Filled when the module loads, so a lookup reads it without a guard.)
+const std::array<float, 256> kLinearFromSrgb8 = [] {
+  std::array<float, 256> t{};
+  for (int v = 0; v < 256; ++v) t[size_t(v)] = SrgbToLinear(float(v) * (1.0f / 255.0f));
+  return t;
+}();
 
-Texture DecodeTexture(const scene::SceneImage& image, size_t index) {
-  Srgb8Image decoded = DecodeSrgb8(image.encoded, "images[" + std::to_string(index) + "] (" + image.mime_type + ")");
+Texture DecodeTexture(const scene::SceneMesh& mesh, size_t index) {
+  const scene::SceneImage& image = mesh.images[index];
+  Srgb8Image decoded = DecodeSrgb8(image.encoded, "images[" + std::to_string(index) + "] (" + image.mime_type + ")",
+                                   [&mesh, index](int, int height) { return TextureRowsSampled(mesh, index, height); });
   Texture texture;
   texture.width = decoded.width;
   texture.height = decoded.height;
@@ -47,21 +47,43 @@ Texture DecodeTexture(const scene::SceneImage& image, size_t index) {
 
 }  // namespace
 
+namespace {
+
+// floor() without the library call (SSE2 has no rounding instruction): exact for |x| < 2^23, where every
+// float's truncation is an integer held exactly; anything else (huge, NaN) goes to std::floor.
+float FloorOf(float x) {
+  if (!(std::fabs(x) < 8388608.0f)) return std::floor(x);
+  const float t = float(long(x));
+  return t > x ? t - 1 : t;
+}
+
+}  // namespace
+
 Eigen::Vector3f Texture::Sample(const Eigen::Vector2f& uv) const {
   if (srgb.empty()) return Eigen::Vector3f::Ones();
   const float x = uv.x() * width - 0.5f, y = uv.y() * height - 0.5f;
-  const float fx = std::floor(x), fy = std::floor(y);
+  const float fx = FloorOf(x), fy = FloorOf(y);
   const float wx = x - fx, wy = y - fy;
-  const std::array<float, 256>& linear = LinearFromSrgb8();
+  const float* linear = kLinearFromSrgb8.data();
   // Wrapped once per axis (a division each), not per texel: the neighbour is the next or the first.
   auto wrap = [](long i, long n) { return i >= 0 && i < n ? i : ((i % n) + n) % n; };
   const long i0 = wrap(long(fx), width), j0 = wrap(long(fy), height);
   const long i1 = i0 + 1 == width ? 0 : i0 + 1, j1 = j0 + 1 == height ? 0 : j0 + 1;
-  auto at = [&](long i, long j) {
-    const uint8_t* p = &srgb[(size_t(j) * width + size_t(i)) * 3];
-    return Eigen::Vector3f(linear[p[0]], linear[p[1]], linear[p[2]]);
-  };
-  return (1 - wy) * ((1 - wx) * at(i0, j0) + wx * at(i1, j0)) + wy * ((1 - wx) * at(i0, j1) + wx * at(i1, j1));
+  const uint8_t* texels = srgb.data();
+  const uint8_t* p00 = texels + (size_t(j0) * size_t(width) + size_t(i0)) * 3;
+  const uint8_t* p10 = texels + (size_t(j0) * size_t(width) + size_t(i1)) * 3;
+  const uint8_t* p01 = texels + (size_t(j1) * size_t(width) + size_t(i0)) * 3;
+  const uint8_t* p11 = texels + (size_t(j1) * size_t(width) + size_t(i1)) * 3;
+  // Per channel, in the order of the vector expression it replaces, (1 - wy) ((1 - wx) t00 + wx t10) +
+  // wy ((1 - wx) t01 + wx t11): the same floats.
+  const float ax = 1 - wx, ay = 1 - wy;
+  Eigen::Vector3f out;
+  for (int c = 0; c < 3; ++c) {
+    const float top = ax * linear[p00[c]] + wx * linear[p10[c]];
+    const float bottom = ax * linear[p01[c]] + wx * linear[p11[c]];
+    out[c] = ay * top + wy * bottom;
+  }
+  return out;
 }
 
 namespace {
@@ -71,9 +93,73 @@ double SecondsSince(Clock::time_point start) { return std::chrono::duration<doub
 
 }  // namespace
 
+std::vector<uint8_t> TextureRowsSampled(const scene::SceneMesh& mesh, size_t image, int height) {
+  std::vector<uint8_t> rows(size_t(std::max(0, height)), 0);
+  if (height <= 0 || !mesh.has_texcoords() || mesh.face_material.size() != mesh.faces.size()) return rows;
+  const long h = height;
+  constexpr long kRowMargin = 2;
+  // First the vertices' whole v range (a few instructions a vertex): when its rows, as below, span the
+  // texture, so may the faces' (a mesh mapped over its whole texture: the large scene's million faces
+  // cost 83 M instructions face by face), and every row is taken without looking at the faces.
+  const Eigen::Vector2f* uv = mesh.texcoords.data();
+  float v_min = uv[0].y(), v_max = uv[0].y();
+  for (size_t i = 0; i < mesh.texcoords.size(); ++i) {
+    v_min = std::min(v_min, uv[i].y());
+    v_max = std::max(v_max, uv[i].y());
+  }
+  if (!(v_min > -1e6f && v_max < 1e6f) ||  // an infinity, a far-off v: any row (a NaN is found face by face)
+      std::floor(double(v_max) * h - 0.5) - std::floor(double(v_min) * h - 0.5) + 1 + 2 * kRowMargin + 1 >= h) {
+    std::fill(rows.begin(), rows.end(), 1);
+    return rows;
+  }
+  // A difference array over the rows: +1 where a face's rows begin, -1 after they end.
+  std::vector<int> starts(size_t(height) + 1, 0);
+  std::vector<uint8_t> takes_image(mesh.materials.size());  // per material: its base colour is this image
+  for (size_t m = 0; m < takes_image.size(); ++m) takes_image[m] = mesh.materials[m].base_color_image == int(image);
+  for (size_t face = 0; face < mesh.faces.size(); ++face) {
+    const size_t m = size_t(mesh.face_material[face]);  // -1 (none) wraps past the end
+    if (m >= takes_image.size() || !takes_image[m]) continue;
+    const auto& f = mesh.faces[face];
+    const float v0 = uv[f[0]].y(), v1 = uv[f[1]].y(), v2 = uv[f[2]].y();
+    // A NaN, infinite or far-off v (the texture repeated a million times over): any row.
+    constexpr float kFar = 1e6f;
+    if (!(std::fabs(v0) < kFar && std::fabs(v1) < kFar && std::fabs(v2) < kFar)) {
+      std::fill(rows.begin(), rows.end(), 1);
+      return rows;
+    }
+    const double lo_v = std::min(v0, std::min(v1, v2)), hi_v = std::max(v0, std::max(v1, v2));
+    // Texture::Sample reads rows floor(v h - 1/2) and the next; kRowMargin more each side for the
+    // barycentric interpolation's rounding (a hit's u, v and the uv are floats). (A floor by truncation:
+    // exact here, where |v h| < 2^52, and without a library call for each of a million faces.)
+    auto floor_of = [](double y) {
+      const double t = double(long(y));
+      return long(t > y ? t - 1 : t);
+    };
+    const long lo_y = floor_of(lo_v * h - 0.5) - kRowMargin, hi_y = floor_of(hi_v * h - 0.5) + 1 + kRowMargin;
+    if (hi_y - lo_y + 1 >= h) {
+      std::fill(rows.begin(), rows.end(), 1);
+      return rows;
+    }
+    const long lo = lo_y >= 0 && lo_y < h ? lo_y : ((lo_y % h) + h) % h;  // REPEAT: rows wrap
+    const long hi = lo + (hi_y - lo_y);
+    if (hi < h) {
+      ++starts[size_t(lo)];
+      --starts[size_t(hi) + 1];
+    } else {
+      ++starts[size_t(lo)];
+      --starts[size_t(h)];
+      ++starts[0];
+      --starts[size_t(hi - h) + 1];
+    }
+  }
+  int open = 0;
+  for (size_t r = 0; r < rows.size(); ++r) rows[r] = (open += starts[r]) > 0;
+  return rows;
+}
+
 std::vector<Texture> DecodeTextures(const scene::SceneMesh& mesh) {
   std::vector<Texture> textures;
-  for (size_t i = 0; i < mesh.images.size(); ++i) textures.push_back(DecodeTexture(mesh.images[i], i));
+  for (size_t i = 0; i < mesh.images.size(); ++i) textures.push_back(DecodeTexture(mesh, i));
   return textures;
 }
 

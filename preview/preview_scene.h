@@ -73,7 +73,15 @@ struct SceneLoadTimes {
   double ground_s = 0;    // the ground past the edge (border ring, unless given found, and its colours)
 };
 
+// The rows of the mesh's image `image` (`height` rows) that a lookup can read: every row that
+// Texture::Sample's bilinear taps can reach from a uv inside a face whose material takes that image as its
+// base colour (the face's v range, the neighbour row, two rows' margin for rounding, wrapped as REPEAT
+// wraps). The rest of a texture is never read: no face maps onto it (a texture atlas's unused space).
+std::vector<uint8_t> TextureRowsSampled(const scene::SceneMesh& mesh, size_t image, int height);
+
 // The mesh's images decoded, one texture each (libjpeg, libpng). InputError for an image that cannot be.
+// A JPEG's rows no lookup can read (TextureRowsSampled) are left unwritten, and after the last row that
+// can be read nothing is decoded: the bundled 4096² atlas's charts fill its top 30 % of rows.
 std::vector<Texture> DecodeTextures(const scene::SceneMesh& mesh);
 
 class PreviewScene {

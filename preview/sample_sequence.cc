@@ -83,4 +83,11 @@ PixelSample SampleSequence::Get(uint32_t index) const {
   return s;
 }
 
+PixelSample SampleSequence::GetPixel(uint32_t index) const {
+  PixelSample s;
+  s.pixel_x = Wrap(RadicalInverse(index, 3) + shift_[2]);
+  s.pixel_y = Wrap(RadicalInverse(index, 5) + shift_[3]);
+  return s;
+}
+
 }  // namespace cinepath::preview

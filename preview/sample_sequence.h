@@ -24,6 +24,9 @@ class SampleSequence {
  public:
   SampleSequence(uint64_t frame, uint32_t x, uint32_t y);
   PixelSample Get(uint32_t index) const;
+  // Only the pixel offsets of Get(index) (the lens and the time left at their centres): what a ray
+  // without lens or shutter needs (draft's edge rays), without the lens's scrambles.
+  PixelSample GetPixel(uint32_t index) const;
 
  private:
   double shift_[5];         // [2..4]: pixel x, pixel y, time

@@ -235,6 +235,39 @@ TEST(JpegDecode, TwoDecodersSplittingWhenTheSecondStartsGiveTheBytesOfOne) {
   }
 }
 
+// Only the rows asked for: each of them holds the bytes of a full decode, whatever rows are skipped
+// before, between and after them, and wherever the two decoders split.
+TEST(JpegDecode, TheRowsWantedHoldTheBytesOfAFullDecode) {
+  for (const auto& [h, v] : {std::pair{1, 1}, std::pair{2, 2}, std::pair{2, 1}}) {
+    const std::vector<uint8_t> jpeg = TestJpeg(301, 777, h, v);
+    const std::vector<uint8_t> reference = ReferenceDecode(jpeg);
+    const std::vector<std::vector<std::pair<int, int>>> patterns = {
+        {{0, 777}}, {{0, 1}}, {{776, 777}}, {{100, 300}, {500, 520}}, {{3, 4}, {17, 18}, {33, 40}, {700, 777}},
+        {{0, 600}}, {}};
+    for (const auto& pattern : patterns) {
+      std::vector<uint8_t> wanted(777, 0);
+      for (const auto& [begin, end] : pattern) std::fill(wanted.begin() + begin, wanted.begin() + end, 1);
+      for (int run = 0; run < 5; ++run) {
+        const Srgb8Image image = DecodeSrgb8(jpeg, "test", [&](int width, int height) {
+          EXPECT_EQ(width, 301);
+          EXPECT_EQ(height, 777);
+          return wanted;
+        });
+        ASSERT_EQ(image.rgb.size(), reference.size());
+        const size_t row_bytes = 301 * 3;
+        for (size_t y = 0; y < 777; ++y) {
+          if (!wanted[y]) continue;
+          ASSERT_TRUE(std::equal(image.rgb.begin() + long(y * row_bytes), image.rgb.begin() + long((y + 1) * row_bytes),
+                                 reference.begin() + long(y * row_bytes)))
+              << "sampling " << h << "x" << v << ", row " << y << ", " << pattern.size() << " runs, run " << run;
+        }
+      }
+    }
+  }
+  const std::vector<uint8_t> jpeg = TestJpeg(64, 64, 2, 2);
+  EXPECT_THROW(DecodeSrgb8(jpeg, "test", [](int, int) { return std::vector<uint8_t>(3, 1); }), InternalError);
+}
+
 TEST(JpegDecode, TheSecondBandStartsOnAnMcuRowAfterTheFirstsRows) {
   for (int height : {512, 777, 4096}) {
     for (int done = 0; done <= height; done += 16) {

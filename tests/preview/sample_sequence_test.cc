@@ -41,5 +41,20 @@ TEST(SampleSequence, OwenScrambleIsAPermutationOfDyadicIntervals) {
   }
 }
 
+// GetPixel is Get's pixel offsets, to the bit, with the lens and time at their centres.
+TEST(SampleSequence, GetPixelIsGetsPixelOffsets) {
+  for (uint32_t x : {0u, 7u, 639u}) {
+    const SampleSequence sequence(42, x, 3 * x + 1);
+    for (uint32_t index = 0; index < 64; ++index) {
+      const PixelSample all = sequence.Get(index), pixel = sequence.GetPixel(index);
+      EXPECT_EQ(all.pixel_x, pixel.pixel_x);
+      EXPECT_EQ(all.pixel_y, pixel.pixel_y);
+      EXPECT_EQ(pixel.lens_u, 0.5);
+      EXPECT_EQ(pixel.lens_v, 0.5);
+      EXPECT_EQ(pixel.time, 0.5);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cinepath::preview
