@@ -342,6 +342,8 @@ std::optional<int> ParseArgs(int argc, char** argv, BenchArgs& args) {
       qem.light_budget_keep = std::stod(next());
     else if (arg == "--qem-spike-pass")
       qem.spike_pass = std::stod(next());
+    else if (arg == "--qem-refit")
+      qem.refit = std::stod(next());
     else if (arg == "--ratio")
       ratio = std::stod(next());
     else if (arg == "--samples")
