@@ -1551,19 +1551,45 @@ class Refit {
   // The output vertices farther from the input than share × the largest such distance, farthest first.
   std::vector<uint32_t> Farthest(double share) const {
     const size_t n = input_.size();
-    std::vector<double> far2(n, 0.0);
+    // First against r's own input faces only (an upper bound: r is merged into itself), then, from
+    // the largest bound down, against all: until the next bound is within share × the largest
+    // distance found, which the rest can neither reach nor raise.
+    std::vector<double> bound2(n, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t r = range.begin(); r != range.end(); ++r) {
         // An output vertex at its input position is on the input.
         if (output_around_.begin(r) == output_around_.end(r) || positions_[r] == input_[r]) continue;
-        const double d2 = OutToIn(static_cast<uint32_t>(r), positions_[r], nullptr);
-        far2[r] = std::isfinite(d2) ? d2 : 0.0;
+        double best = INFINITY;
+        for (uint32_t j = input_around_.begin(r); j < input_around_.end(r); ++j) {
+          const auto& t = faces_[input_around_.items[j]];
+          best = std::min(best, SquaredDistanceToTriangle(positions_[r], input_[t[0]], input_[t[1]], input_[t[2]]));
+        }
+        bound2[r] = best;
       }
     });
-    const double largest2 = *std::max_element(far2.begin(), far2.end());
+    std::vector<std::pair<double, uint32_t>> by_bound;
+    for (size_t r = 0; r < n; ++r) {
+      if (bound2[r] > 0) by_bound.push_back({-bound2[r], static_cast<uint32_t>(r)});
+    }
+    std::sort(by_bound.begin(), by_bound.end());
+    std::vector<double> far2(by_bound.size(), 0.0);
+    double largest2 = 0;
+    size_t done = 0;
+    constexpr size_t kChunk = 1024;
+    while (done < by_bound.size() && -by_bound[done].first > share * share * largest2) {
+      const size_t end = std::min(by_bound.size(), done + kChunk);
+      tbb::parallel_for(tbb::blocked_range<size_t>(done, end, 64), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t k = range.begin(); k != range.end(); ++k) {
+          const double d2 = OutToIn(by_bound[k].second, positions_[by_bound[k].second], nullptr);
+          far2[k] = std::isfinite(d2) ? d2 : 0.0;
+        }
+      });
+      for (size_t k = done; k < end; ++k) largest2 = std::max(largest2, far2[k]);
+      done = end;
+    }
     std::vector<std::pair<double, uint32_t>> order;
-    for (size_t r = 0; r < n && largest2 > 0; ++r) {
-      if (far2[r] > share * share * largest2) order.push_back({-far2[r], static_cast<uint32_t>(r)});
+    for (size_t k = 0; k < done && largest2 > 0; ++k) {
+      if (far2[k] > share * share * largest2) order.push_back({-far2[k], by_bound[k].second});
     }
     std::sort(order.begin(), order.end());
     std::vector<uint32_t> farthest;
