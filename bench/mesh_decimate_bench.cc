@@ -9,7 +9,7 @@
 //   mesh_decimate_bench [--faces N] [--ratio R | --ratios R1,R2,...] [--samples S] [--methods a,b,...]
 //                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C] [--qem-rcond R]
 //                       [--qem-band-rings B] [--qem-band-cell-faces C] [--qem-area-floor F]
-//                       [--qem-distance-check D] [--qem-light-budget-keep K] [--qem-spike-pass S]
+//                       [--qem-distance-check D] [--qem-light-budget-keep K] [--qem-spike-pass S] [--qem-refit R]
 //                       [--error-goals E1,E2,...]
 //                       [--presets] [--export-raw FILE] [--import-raw FILE --label NAME]
 //                       [--end-to-end] [--defects] [--threads T]
@@ -342,6 +342,8 @@ std::optional<int> ParseArgs(int argc, char** argv, BenchArgs& args) {
       qem.light_budget_keep = std::stod(next());
     else if (arg == "--qem-spike-pass")
       qem.spike_pass = std::stod(next());
+    else if (arg == "--qem-refit")
+      qem.refit = std::stod(next());
     else if (arg == "--ratio")
       ratio = std::stod(next());
     else if (arg == "--samples")

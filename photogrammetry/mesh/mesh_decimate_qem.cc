@@ -1356,6 +1356,19 @@ void SimplifyBand(const TileGrid& tiles, const std::vector<std::array<uint32_t, 
   for (const Piece& piece : band_pieces) kept.insert(kept.end(), piece.faces.begin(), piece.faces.end());
 }
 
+// Each removed vertex's root, in place: the output vertex it ended in (chains point to later collapses).
+void ToRoots(std::vector<uint32_t>& parent) {
+  for (size_t v = 0; v < parent.size(); ++v) {
+    uint32_t r = parent[v];
+    while (parent[r] != r) r = parent[r];
+    for (uint32_t w = static_cast<uint32_t>(v); parent[w] != r;) {
+      const uint32_t next = parent[w];
+      parent[w] = r;
+      w = next;
+    }
+  }
+}
+
 // The input vertices farther from the output than `share` × the largest such distance (the in→out
 // side of the Hausdorff distance), and that largest distance (`largest_m`). Each input vertex is measured against the
 // faces around the output vertex it merged into (`parent`: the vertex each removed one collapsed into), then, when that
@@ -1365,16 +1378,7 @@ std::vector<char> SpikesToPin(const std::vector<Eigen::Vector3d>& input, const s
                               const std::vector<std::array<uint32_t, 3>>& kept, std::vector<uint32_t>& parent,
                               const std::vector<char>& used, double share, double* largest_m) {
   const size_t n = input.size();
-  // Each removed vertex's root: the output vertex it ended in (chains point to later collapses).
-  for (size_t v = 0; v < n; ++v) {
-    uint32_t r = parent[v];
-    while (parent[r] != r) r = parent[r];
-    for (uint32_t w = static_cast<uint32_t>(v); parent[w] != r;) {
-      const uint32_t next = parent[w];
-      parent[w] = r;
-      w = next;
-    }
-  }
+  ToRoots(parent);
   // The output's faces around each vertex.
   std::vector<uint32_t> start(n + 1, 0);
   for (const auto& t : kept) {
@@ -1470,6 +1474,222 @@ void ResimplifyPinnedTiles(const std::vector<Eigen::Vector3d>& input,
   });
 }
 
+// The closest point to p on the triangle (a, b, c) (Ericson 5.1.5, as SquaredDistanceToTriangle).
+Eigen::Vector3d ClosestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                  const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = 1 / (va + vb + vc);
+  return a + vb * denom * ab + vc * denom * ac;
+}
+
+// Compressed sparse rows: the items of key k are items[start[k] .. start[k + 1]).
+struct Csr {
+  std::vector<uint32_t> start, items;
+  uint32_t begin(uint32_t k) const { return start[k]; }
+  uint32_t end(uint32_t k) const { return start[k + 1]; }
+};
+
+// Each vertex's faces (of `faces`, by index), in the faces' order.
+Csr FacesAround(size_t n, const std::vector<std::array<uint32_t, 3>>& faces) {
+  Csr csr;
+  csr.start.assign(n + 1, 0);
+  for (const auto& t : faces) {
+    if (IsValidFace(t)) {
+      for (uint32_t v : t) ++csr.start[v + 1];
+    }
+  }
+  for (size_t v = 0; v < n; ++v) csr.start[v + 1] += csr.start[v];
+  csr.items.resize(csr.start[n]);
+  std::vector<uint32_t> fill(csr.start.begin(), csr.start.end() - 1);
+  for (uint32_t f = 0; f < faces.size(); ++f) {
+    if (!IsValidFace(faces[f])) continue;
+    for (uint32_t v : faces[f]) csr.items[fill[v]++] = f;
+  }
+  return csr;
+}
+
+// The re-fit after the budget is met: each output vertex is measured against the input faces around
+// the input vertices merged into it (`root`: the output vertex each input vertex ended in, from the
+// collapse records), an upper bound of the out→in distance there. Those farther than a share of the
+// largest are moved, one at a time in order of that distance (deterministic), towards the nearest
+// point of those input faces (the whole way, half or a quarter); a move is kept only when it lowers
+// the largest of the distances it can change, measured the same way (LocalMax), and flips no face.
+class Refit {
+ public:
+  Refit(const std::vector<Eigen::Vector3d>& input, const std::vector<std::array<uint32_t, 3>>& faces,
+        const std::vector<std::array<uint32_t, 3>>& kept, const std::vector<uint32_t>& root,
+        std::vector<Eigen::Vector3d>& positions)
+      : input_(input),
+        faces_(faces),
+        kept_(kept),
+        positions_(positions),
+        input_around_(FacesAround(input.size(), faces)),
+        output_around_(FacesAround(input.size(), kept)) {
+    const size_t n = input.size();
+    cluster_.start.assign(n + 1, 0);
+    for (size_t v = 0; v < n; ++v) ++cluster_.start[root[v] + 1];
+    for (size_t v = 0; v < n; ++v) cluster_.start[v + 1] += cluster_.start[v];
+    cluster_.items.resize(n);
+    std::vector<uint32_t> fill(cluster_.start.begin(), cluster_.start.end() - 1);
+    for (uint32_t v = 0; v < n; ++v) cluster_.items[fill[root[v]]++] = v;
+  }
+
+  // The output vertices farther from the input than share × the largest such distance, farthest first.
+  std::vector<uint32_t> Farthest(double share) const {
+    const size_t n = input_.size();
+    // First against r's own input faces only (an upper bound: r is merged into itself), then, from
+    // the largest bound down, against all: until the next bound is within share × the largest
+    // distance found, which the rest can neither reach nor raise.
+    std::vector<double> bound2(n, 0.0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t r = range.begin(); r != range.end(); ++r) {
+        // An output vertex at its input position is on the input.
+        if (output_around_.begin(r) == output_around_.end(r) || positions_[r] == input_[r]) continue;
+        double best = INFINITY;
+        for (uint32_t j = input_around_.begin(r); j < input_around_.end(r); ++j) {
+          const auto& t = faces_[input_around_.items[j]];
+          best = std::min(best, SquaredDistanceToTriangle(positions_[r], input_[t[0]], input_[t[1]], input_[t[2]]));
+        }
+        bound2[r] = best;
+      }
+    });
+    std::vector<std::pair<double, uint32_t>> by_bound;
+    for (size_t r = 0; r < n; ++r) {
+      if (bound2[r] > 0) by_bound.push_back({-bound2[r], static_cast<uint32_t>(r)});
+    }
+    std::sort(by_bound.begin(), by_bound.end());
+    std::vector<double> far2(by_bound.size(), 0.0);
+    double largest2 = 0;
+    size_t done = 0;
+    constexpr size_t kChunk = 1024;
+    while (done < by_bound.size() && -by_bound[done].first > share * share * largest2) {
+      const size_t end = std::min(by_bound.size(), done + kChunk);
+      tbb::parallel_for(tbb::blocked_range<size_t>(done, end, 64), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t k = range.begin(); k != range.end(); ++k) {
+          const double d2 = OutToIn(by_bound[k].second, positions_[by_bound[k].second], nullptr);
+          far2[k] = std::isfinite(d2) ? d2 : 0.0;
+        }
+      });
+      for (size_t k = done; k < end; ++k) largest2 = std::max(largest2, far2[k]);
+      done = end;
+    }
+    std::vector<std::pair<double, uint32_t>> order;
+    for (size_t k = 0; k < done && largest2 > 0; ++k) {
+      if (far2[k] > share * share * largest2) order.push_back({-far2[k], by_bound[k].second});
+    }
+    std::sort(order.begin(), order.end());
+    std::vector<uint32_t> farthest;
+    for (const auto& entry : order) farthest.push_back(entry.second);
+    return farthest;
+  }
+
+  // Moves r towards the nearest point of its input faces (the whole way, half or a quarter) when that
+  // lowers LocalMax and flips none of its faces.
+  void Move(uint32_t r) {
+    ring_.assign(1, r);  // the vertex and its neighbours in the output
+    for (uint32_t k = output_around_.begin(r); k < output_around_.end(r); ++k) {
+      for (uint32_t w : kept_[output_around_.items[k]]) {
+        if (std::find(ring_.begin(), ring_.end(), w) == ring_.end()) ring_.push_back(w);
+      }
+    }
+    const Eigen::Vector3d start = positions_[r];
+    Eigen::Vector3d nearest;
+    if (!std::isfinite(OutToIn(r, start, &nearest))) return;
+    std::vector<Eigen::Vector3d> normals;
+    for (uint32_t k = output_around_.begin(r); k < output_around_.end(r); ++k)
+      normals.push_back(Normal(kept_[output_around_.items[k]]));
+    double best = LocalMax(r);
+    Eigen::Vector3d best_at = start;
+    for (double step : {1.0, 0.5, 0.25}) {
+      positions_[r] = start + step * (nearest - start);
+      bool flips = false;
+      for (uint32_t k = output_around_.begin(r); k < output_around_.end(r) && !flips; ++k)
+        flips = Normal(kept_[output_around_.items[k]]).dot(normals[k - output_around_.begin(r)]) <= 0;
+      if (flips) continue;
+      const double worst = LocalMax(r);
+      if (worst < best) best = worst, best_at = positions_[r];
+    }
+    positions_[r] = best_at;
+  }
+
+ private:
+  // Squared distance from x to the input faces around the vertices merged into r; `nearest`: where.
+  double OutToIn(uint32_t r, const Eigen::Vector3d& x, Eigen::Vector3d* nearest) const {
+    double best = INFINITY;
+    uint32_t best_face = 0;
+    for (uint32_t k = cluster_.begin(r); k < cluster_.end(r); ++k) {
+      const uint32_t m = cluster_.items[k];
+      for (uint32_t j = input_around_.begin(m); j < input_around_.end(m); ++j) {
+        const auto& t = faces_[input_around_.items[j]];
+        const double d2 = SquaredDistanceToTriangle(x, input_[t[0]], input_[t[1]], input_[t[2]]);
+        if (d2 < best) best = d2, best_face = input_around_.items[j];
+      }
+    }
+    if (nearest && std::isfinite(best)) {
+      const auto& t = faces_[best_face];
+      *nearest = ClosestOnTriangle(x, input_[t[0]], input_[t[1]], input_[t[2]]);
+    }
+    return best;
+  }
+
+  // The largest (squared) of the distances a move of r can change, each measured as above: r's own,
+  // out→in at the centres and edge midpoints of its faces, and in→out of the input vertices merged
+  // into r or its neighbours (`ring_`), against the output faces around the vertex each merged into.
+  double LocalMax(uint32_t r) const {
+    double worst = OutToIn(r, positions_[r], nullptr);
+    for (uint32_t k = output_around_.begin(r); k < output_around_.end(r); ++k) {
+      const auto& t = kept_[output_around_.items[k]];
+      const Eigen::Vector3d centre = (positions_[t[0]] + positions_[t[1]] + positions_[t[2]]) / 3;
+      double at_centre = INFINITY;
+      for (uint32_t w : t) {
+        at_centre = std::min(at_centre, OutToIn(w, centre, nullptr));
+        if (w == r) continue;
+        const Eigen::Vector3d mid = (positions_[r] + positions_[w]) / 2;
+        worst = std::max(worst, std::min(OutToIn(r, mid, nullptr), OutToIn(w, mid, nullptr)));
+      }
+      worst = std::max(worst, at_centre);
+    }
+    for (uint32_t w : ring_) {
+      for (uint32_t k = cluster_.begin(w); k < cluster_.end(w); ++k) {
+        const Eigen::Vector3d& x = input_[cluster_.items[k]];
+        double best = INFINITY;
+        for (uint32_t j = output_around_.begin(w); j < output_around_.end(w); ++j) {
+          const auto& t = kept_[output_around_.items[j]];
+          best = std::min(best, SquaredDistanceToTriangle(x, positions_[t[0]], positions_[t[1]], positions_[t[2]]));
+        }
+        if (std::isfinite(best)) worst = std::max(worst, best);
+      }
+    }
+    return worst;
+  }
+
+  Eigen::Vector3d Normal(const std::array<uint32_t, 3>& t) const {
+    return (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]);
+  }
+
+  const std::vector<Eigen::Vector3d>& input_;
+  const std::vector<std::array<uint32_t, 3>>& faces_;
+  const std::vector<std::array<uint32_t, 3>>& kept_;
+  std::vector<Eigen::Vector3d>& positions_;
+  const Csr input_around_, output_around_;
+  Csr cluster_;                 // the input vertices merged into each output vertex (itself included)
+  std::vector<uint32_t> ring_;  // Move's vertex and its neighbours
+};
+
 }  // namespace
 
 TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, int partitions,
@@ -1496,9 +1716,10 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   }
   // Not at light budgets: there it made 80 % worse (bench/RESULTS.md, run M).
   const bool spike_pass = goals2.empty() && options.spike_pass > 0 && keep_ratio < options.light_budget_keep;
+  const bool refit = goals2.empty() && options.refit > 0 && target_faces > 0;
   SpikeContext spikes;
   std::vector<uint32_t> parent;
-  if (spike_pass) {
+  if (spike_pass || refit) {
     parent.resize(n);
     for (size_t v = 0; v < n; ++v) parent[v] = static_cast<uint32_t>(v);
     spikes.parent = &parent;
@@ -1555,6 +1776,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     const std::vector<char> pinned = SpikesToPin(input, positions, kept, parent, used, options.spike_pass, &first_m);
     std::vector<std::array<uint32_t, 3>> first_kept = std::move(kept);
     std::vector<Eigen::Vector3d> first_positions = positions;
+    std::vector<uint32_t> first_parent = parent;
     // The second run records its collapses as the first did: the tiles it reuses keep theirs.
     parent = tile_parent;
     spikes.pinned = &pinned;
@@ -1569,7 +1791,13 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     if (!(second_m < first_m)) {
       kept = std::move(first_kept);
       positions = std::move(first_positions);
+      parent = std::move(first_parent);
     }
+  }
+  if (refit && !kept.empty()) {
+    ToRoots(parent);
+    Refit refitter(input, mesh.faces, kept, parent, positions);
+    for (uint32_t r : refitter.Farthest(options.refit)) refitter.Move(r);
   }
 
   // The surviving vertices in their input order, then the faces.

@@ -444,6 +444,7 @@ TEST(QemTiled, TheSpikePassBringsTheFarthestInputPointsCloser) {
     spikes.target_faces = none.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
     spikes.qem.tiles = none.qem.tiles = 16;
     none.qem.spike_pass = 0;
+    spikes.qem.refit = none.qem.refit = 0;  // the spike pass alone
     const TriangleMesh out = DecimateMesh(terrain, spikes);
     const TriangleMesh without = DecimateMesh(terrain, none);
     EXPECT_LE(static_cast<int64_t>(out.num_faces()), spikes.target_faces) << ratio;
@@ -460,6 +461,37 @@ TEST(QemTiled, TheSpikePassBringsTheFarthestInputPointsCloser) {
     EXPECT_EQ(BorderEdgesOrMinusOneIfNotManifold(out), 4 * (side - 1)) << ratio;
     tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);  // the same bytes on one thread
     const TriangleMesh serial = DecimateMesh(terrain, spikes);
+    EXPECT_EQ(serial.faces, out.faces) << ratio;
+    EXPECT_EQ(serial.vertices_m, out.vertices_m) << ratio;
+  }
+}
+
+TEST(QemTiled, TheRefitBringsTheFarthestOutputPointsCloser) {
+  const int side = 161;
+  TriangleMesh terrain = TerrainWithBuildings(side);  // 51,200 faces
+  for (size_t k = 0; k < terrain.vertices_m.size(); ++k) terrain.vertices_m[k].z() += 0.035 * HashUnit(k, 3);
+  HausdorffOptions hausdorff;
+  hausdorff.samples_per_mesh = 400000;
+  for (double ratio : {0.8, 0.4, 0.1}) {
+    DecimateOptions refit, none;
+    refit.method = none.method = DecimationMethod::kQemTiled;
+    refit.target_faces = none.target_faces = static_cast<int64_t>(ratio * terrain.num_faces());
+    refit.qem.tiles = none.qem.tiles = 16;
+    none.qem.refit = 0;
+    const TriangleMesh out = DecimateMesh(terrain, refit);
+    const TriangleMesh without = DecimateMesh(terrain, none);
+    EXPECT_EQ(out.faces, without.faces) << ratio;  // it moves vertices only
+    const HausdorffDistance with_refit = ApproximateHausdorff(terrain, out, hausdorff);
+    const HausdorffDistance without_refit = ApproximateHausdorff(terrain, without, hausdorff);
+    std::printf("%.0f %%: out->in %.4f m with the re-fit, %.4f m without (symmetric %.4f / %.4f m)\n", 100 * ratio,
+                with_refit.b_to_a_m, without_refit.b_to_a_m, with_refit.symmetric_m, without_refit.symmetric_m);
+    EXPECT_LE(with_refit.symmetric_m, without_refit.symmetric_m) << ratio;
+    if (ratio < 0.2) {
+      EXPECT_NE(out.vertices_m, without.vertices_m);
+      EXPECT_LT(with_refit.b_to_a_m, 0.8 * without_refit.b_to_a_m);
+    }
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);  // the same bytes on one thread
+    const TriangleMesh serial = DecimateMesh(terrain, refit);
     EXPECT_EQ(serial.faces, out.faces) << ratio;
     EXPECT_EQ(serial.vertices_m, out.vertices_m) << ratio;
   }
