@@ -68,9 +68,9 @@ struct QemOptions {
   // distance are pinned (locked as the cuts are), and the tiles that hold one run again with the band
   // pass, so that other collapses meet the budget (bench/RESULTS.md, run M). 0 = off.
   double spike_pass = 0.8;
-  // The re-fit, with a face budget: the output vertices farther from the input (measured against the
-  // input faces merged into them) than this share of the largest such distance are moved towards the
-  // input when that lowers the distances around them (docs/mesh.md). 0 = off.
+  // The re-fit, with a face budget that keeps less than `light_budget_keep` of the faces: the output vertices farther
+  // from the input (measured against the input faces merged into them) than this share of the largest such distance are
+  // moved towards the input when that lowers the distances around them (docs/mesh.md). 0 = off.
   double refit = 0.8;
 };
 }  // namespace internal
