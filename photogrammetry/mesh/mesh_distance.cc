@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "photogrammetry/mesh/cgal_mesh_internal.h"
+#include "photogrammetry/mesh/closest_on_triangle.h"
 
 namespace cinepath::photogrammetry {
 namespace {
@@ -72,33 +73,6 @@ double TriangleArea(const TriangleMesh& mesh, const std::array<uint32_t, 3>& f) 
 }
 
 size_t NumChunks(size_t n) { return (n + kChunk - 1) / kChunk; }
-
-// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection §5.1.5), in plain
-// doubles: used only for upper bounds and hints, never for the reported distance, which always
-// comes from a CGAL query or a bound at most the running maximum.
-Eigen::Vector3d ClosestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                  const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  }
-  const double denom = va + vb + vc;
-  if (!(denom > 0)) return a;  // degenerate triangle: any corner is on it
-  return a + ab * (vb / denom) + ac * (vc / denom);
-}
 
 // Morton (Z-order) code of a point in a box: 21 bits per axis, interleaved.
 uint64_t SpreadBits(uint64_t x) {

@@ -1,0 +1,35 @@
+// The closest point to p on the triangle (a, b, c) (C. Ericson, "Real-Time Collision Detection", 2005, 5.1.5:
+// by the Voronoi regions of the vertices, edges and face), in plain doubles; a degenerate triangle gives its
+// first corner. Used for upper bounds and for moving points towards a surface (the decimation's re-fit), never
+// for a distance reported as the truth, which comes from CGAL's queries (photogrammetry/mesh/mesh_distance.h).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace cinepath::photogrammetry {
+
+inline Eigen::Vector3d ClosestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                         const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  }
+  const double denom = va + vb + vc;
+  if (!(denom > 0)) return a;  // degenerate triangle: any corner is on it
+  return a + ab * (vb / denom) + ac * (vc / denom);
+}
+
+}  // namespace cinepath::photogrammetry
