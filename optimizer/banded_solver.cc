@@ -49,9 +49,8 @@ class BlockBand {
   int size() const { return n_; }
   int band() const { return band_; }
   int first() const { return first_; }
-  Mat8& at(int i, int j) {
-    return blocks_[static_cast<size_t>(i - first_) * (band_ + 1) + (i - j)];
-  }  // j in [i - band, i]
+  // Block (i, j), j in [i - band, i].
+  Mat8& at(int i, int j) { return blocks_[static_cast<size_t>(i - first_) * (band_ + 1) + (i - j)]; }
   const Mat8& at(int i, int j) const { return blocks_[static_cast<size_t>(i - first_) * (band_ + 1) + (i - j)]; }
   void SetZero() {
     for (Mat8& m : blocks_) m.setZero();
