@@ -66,6 +66,10 @@ struct OptimizeOptions {
   double clearance_margin_m = 3.0;  // distance to the mesh the drone keeps
   double max_deviation_m = 5.0;     // default when a shot gives none
   double limit_margin = 0.02;       // limits are aimed at (1 - margin) of their value, so they hold after
+  // The first solve's continuation (docs/optimize.md, "Limits as constraints"): the scale of the limits'
+  // penalties in each stage, full weight (1) last. A decade a stage: from 1e-2 straight to 1 the soft
+  // path was often too far outside the limits for the stiff stage to bring back in its iterations.
+  std::vector<double> ramp = {1e-4, 1e-3, 1e-2, 1e-1, 1.0};
   CostWeights weights;
   ExternalSolver external_solver;  // empty: Ceres (always, outside the fuzz target)
   // Set: in place of every solve, its penalty ramp and its multiplier rounds (always empty, outside the

@@ -317,6 +317,14 @@ class PlanOptimizer {
   // The plan with `alpha` of the change: input + alpha (output - input) over every optimized channel
   // (alpha = 1 is the solver's output, 0 the input itself).
   Trajectory Apply(double alpha) const;
+  // GoalCost with `alpha` of the change (every knot scaled by it).
+  double ObjectiveAt(double alpha);
+  // When the guard cut the change (alpha < 1: the soft stages led the path where the stiff stage and the
+  // multiplier rounds could not bring every limit back), a second solve from the plan as given with the
+  // limits at full weight from the first step; the guarded result with the smaller objective is kept, and
+  // the report says what was tried (null: nothing was). Not for a stage that starts from a cheaper preset's
+  // result: it runs at full weight already.
+  Json RetryAtFullWeight(const LimitGuard& guard, GuardedPlan* kept);
   Json Report(const Trajectory& optimized, const Json& before_terms, const Json& after_terms, double total_before,
               double total_after) const;
   Json TermCosts(double* total);
@@ -829,11 +837,12 @@ void PlanOptimizer::Solve(bool ramp) {
   } else {
     o.linear_solver_type = ceres::DENSE_QR;
   }
-  // Continuation: the hard limits' penalties start soft (1e-4 and 1e-2 of their cost) and end at full
-  // weight, each stage starting where the last ended. A hinge that switches on mid-step makes the
-  // Gauss-Newton model wrong and the step rejected; soft first, the path reaches the right region in a
-  // few long steps, and the stiff stage only tightens it.
-  const std::vector<double> stages = ramp ? std::vector<double>{1e-4, 1e-2, 1.0} : std::vector<double>{1.0};
+  // Continuation: the hard limits' penalties start soft and end at full weight (OptimizeOptions::ramp), each
+  // stage starting where the last ended. A hinge that switches on mid-step makes the Gauss-Newton model
+  // wrong and the step rejected; soft first, the path reaches the right region in a few long steps, and the
+  // stiffer stages only tighten it.
+  std::vector<double> stages = ramp ? options_.ramp : std::vector<double>{};
+  if (stages.empty() || stages.back() != 1.0) stages.push_back(1.0);
   for (double scale : stages) {
     stiffness_->Reset(scale == 1.0 ? nullptr : new ceres::ScaledLoss(nullptr, scale, ceres::TAKE_OWNERSHIP),
                       ceres::TAKE_OWNERSHIP);
@@ -1437,6 +1446,44 @@ double PlanOptimizer::Objective() {
   return GoalCost();
 }
 
+double PlanOptimizer::ObjectiveAt(double alpha) {
+  const std::vector<Knot> solution = knots_;
+  for (auto& k : knots_) {
+    for (double& v : k) v *= alpha;
+  }
+  const double cost = GoalCost();
+  knots_ = solution;
+  return cost;
+}
+
+Json PlanOptimizer::RetryAtFullWeight(const LimitGuard& guard, GuardedPlan* kept) {
+  if (kept->alpha == 1.0 || warm() || options_.constrained_solver || options_.external_solver) return nullptr;
+  const std::vector<Knot> first = knots_;
+  const std::vector<std::set<std::string>> first_binding = binding_;
+  const double first_objective = ObjectiveAt(kept->alpha);
+  for (auto& k : knots_) k.fill(0.0);
+  Solve(false);
+  while (AddLimitsNearTheirBounds() > 0) Solve(false);
+  SolveUntilTheLimitsHold();
+  ResetMultipliers();
+  GuardedPlan second = KeepNeverWorse(guard, [&](double alpha) { return Apply(alpha); });
+  const double second_objective = ObjectiveAt(second.alpha);
+  const bool better = second_objective < first_objective;
+  Json r = Json::object();
+  r["first_alpha"] = kept->alpha;
+  r["first_objective"] = RoundToDecimals(first_objective, 6);
+  r["retry_alpha"] = second.alpha;
+  r["retry_objective"] = RoundToDecimals(second_objective, 6);
+  r["kept"] = better ? "retry" : "first";
+  if (better) {
+    *kept = std::move(second);
+  } else {
+    knots_ = first;
+    binding_ = first_binding;
+  }
+  return r;
+}
+
 OptimizeResult PlanOptimizer::Run() {
   Prepare();
   AddVisibilityTargets();
@@ -1457,6 +1504,7 @@ OptimizeResult PlanOptimizer::Run() {
   // fraction of its change that is (optimizer/limit_guard.h).
   const LimitGuard guard(plan_, GuardSetupFor());
   GuardedPlan kept = KeepNeverWorse(guard, [&](double alpha) { return Apply(alpha); });
+  const Json retry = RetryAtFullWeight(guard, &kept);
 
   // Costs before (every knot at zero: the plan as given) and after (the change kept; where a group was
   // refit, alpha times its change about the refit path).
@@ -1481,6 +1529,7 @@ OptimizeResult PlanOptimizer::Run() {
   g["alpha"] = kept.alpha;
   g["raw_broke"] = kept.raw_broke;
   g["still_broken"] = StillBroken(kept.measure, result.plan, &result.failure);
+  if (!retry.is_null()) g["retry"] = retry;
   result.report["guard"] = g;
 
   Json record = Json::object();

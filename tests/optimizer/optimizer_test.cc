@@ -258,6 +258,68 @@ TEST(Optimizer, TheFocusFollowsWhatThePlanRecordsItFollows) {
 // The wall asks for a climb of about 4 m for a few seconds of a 12 s orbit. With the default profile's
 // limits (jerk 4 m/s^3, descent 1.5 m/s) that barely fits in the shot (8 of 361 frames stay hidden, the
 // limits held to 1 %); an agile profile lets the test see the occlusion term work rather than the limits.
+// A minute's half orbit 40 m about a walker who turns at 30 s, framing and a background-blur goal the
+// deviation allowed holds back (bench/optimize_bench.cc's shot), the walker's keys moved by `east_m`.
+Trajectory WalkingOrbitPlan(double east_m) {
+  const std::string keys = "[{\"time_s\": 0, \"position_enu_m\": [0, 0, 0]}, {\"time_s\": 30, \"position_enu_m\": [" +
+                           std::to_string(40 + east_m) + ", 20, 0]}, {\"time_s\": 60, \"position_enu_m\": [" +
+                           std::to_string(60 - east_m) + ", 70, 0]}]";
+  return PlanFromShots(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 30,
+    "camera": {"filmback": "super35", "width_px": 3840, "height_px": 2160, "min_focal_length_mm": 24,
+               "max_focal_length_mm": 120, "min_f_number": 1.4, "max_f_number": 16},
+    "drone": "px4-multirotor",
+    "actors": [{"name": "walker", "height_m": 1.8, "keyframes": )" +
+                       keys + R"(}],
+    "shots": [{"name": "orbit", "type": "ORBIT", "subject": "walker", "duration_s": 60, "radius_m": 40,
+               "height_m": 15, "turns": 0.5, "easing": "smootherstep",
+               "lens": {"frame_height_fraction": 0.15, "background_blur_px": 12, "f_number": 4}}]})");
+}
+
+// The first solve's continuation, a decade a stage (OptimizeOptions::ramp): with 1e-4, 1e-2, 1 the walking
+// orbit's draft ended at the iteration cap outside the acceleration limit and the deviation, and the guard
+// kept 83 % of the change (objective 208,098 against standard's 28,811); on walkers moved by half a metre it
+// stopped at 35,000-40,000 in a quarter of the cases. Draft is held to 2 % of standard on three of them,
+// without the guard's cut or a second solve (AChangeTheGuardCutIsSolvedAgainAtFullWeightAndTheBetterKept).
+TEST(Optimizer, DraftReachesWithinTwoPerCentOfStandardOnAWalkingOrbit) {
+  for (double east_m : {0.0, 0.37, -0.21}) {
+    SCOPED_TRACE(east_m);
+    const Trajectory plan = WalkingOrbitPlan(east_m);
+    ASSERT_TRUE(plan.feasibility.feasible());
+    const OptimizeResult draft = Optimize(plan, nullptr, Quality::kDraft);
+    const OptimizeResult standard = Optimize(plan, nullptr, Quality::kStandard);
+    EXPECT_EQ(draft.report["guard"]["alpha"].get<double>(), 1.0);
+    EXPECT_FALSE(draft.report["guard"].contains("retry"));  // the ramp alone brought every limit back
+    EXPECT_TRUE(draft.report["feasible_after"].get<bool>());
+    const double d = draft.report["objective"].get<double>(), s = standard.report["objective"].get<double>();
+    EXPECT_LE(d, 1.02 * s) << "draft " << d << ", standard " << s;
+    EXPECT_LE(s, d);  // the ladder climbs
+  }
+}
+
+// When the guard cuts the change (the soft stages led the path where the stiff one could not bring every
+// limit back), the solve is tried again from the plan as given at full weight, and the guarded result with
+// the smaller objective is kept. The ramp before the decades (1e-4, 1e-2, 1) leads there on this plan.
+TEST(Optimizer, AChangeTheGuardCutIsSolvedAgainAtFullWeightAndTheBetterKept) {
+  const Trajectory plan = WalkingOrbitPlan(0);
+  OptimizeInput in;
+  in.plan = plan;
+  in.plan_source = "test_plan.json";
+  OptimizeOptions options = OptimizeOptions::ForQuality(Quality::kDraft);
+  options.ramp = {1e-4, 1e-2};
+  const OptimizeResult r = OptimizePlan(in, options);
+  const Json& guard = r.report["guard"];
+  ASSERT_TRUE(guard.contains("retry")) << guard.dump();
+  const Json& retry = guard["retry"];
+  EXPECT_LT(retry["first_alpha"].get<double>(), 1.0);
+  const bool kept_retry = retry["kept"] == "retry";
+  EXPECT_EQ(kept_retry, retry["retry_objective"].get<double>() < retry["first_objective"].get<double>());
+  EXPECT_EQ(guard["alpha"].get<double>(), retry[kept_retry ? "retry_alpha" : "first_alpha"].get<double>());
+  EXPECT_NEAR(r.report["objective"].get<double>(),
+              std::min(retry["retry_objective"].get<double>(), retry["first_objective"].get<double>()),
+              1e-6 * r.report["objective"].get<double>());
+  EXPECT_TRUE(r.report["feasible_after"].get<bool>());
+}
+
 TEST(Optimizer, WallBetweenOrbitAndSubjectIsSeenOver) {
   const Trajectory plan = PlanFromShots(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 30,
     "camera": {"filmback": "super35", "width_px": 1920, "height_px": 1080, "min_focal_length_mm": 24,
