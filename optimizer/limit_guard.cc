@@ -130,29 +130,74 @@ std::vector<std::string> LimitGuard::WorseThanInput(const LimitMeasure& candidat
   return worse;
 }
 
-GuardedPlan KeepNeverWorse(const LimitGuard& guard, const std::function<Trajectory(double)>& at, int steps) {
-  GuardedPlan out;
-  out.plan = at(1.0);
-  out.measure = guard.Measure(out.plan);
-  out.raw_broke = guard.WorseThanInput(out.measure);
-  if (out.raw_broke.empty()) return out;
-  // Bisection on [lo, hi], lo always never worse (alpha = 0 is the input itself).
-  double lo = 0, hi = 1;
-  std::optional<GuardedPlan> best;
-  for (int i = 0; i < steps; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    Trajectory plan = at(mid);
-    LimitMeasure measure = guard.Measure(plan);
-    if (guard.WorseThanInput(measure).empty()) {
-      lo = mid;
-      best = GuardedPlan{std::move(plan), mid, {}, std::move(measure)};
-    } else {
-      hi = mid;
+std::vector<bool> LimitGuard::WorseSamples(const LimitMeasure& candidate) const {
+  std::vector<bool> worse(input_.samples.size(), false);
+  for (size_t i = 0; i < candidate.size(); ++i) {
+    const LimitSeries& c = candidate[i];
+    const double slack = 1e-9 * std::max(1.0, std::fabs(c.limit_value));
+    for (size_t k = 0; k < c.values.size() && k < worse.size(); ++k) {
+      if (c.Excess(k) > allowed_[i][k] + slack) worse[k] = true;
     }
   }
-  if (!best) best = GuardedPlan{at(0.0), 0.0, {}, guard.input()};
-  best->raw_broke = std::move(out.raw_broke);
-  return std::move(*best);
+  return worse;
+}
+
+GuardedPlan KeepNeverWorse(const LimitGuard& guard, const std::function<Trajectory(double)>& at, int steps) {
+  const std::vector<int> one_group(guard.input().empty() ? 0 : guard.input().front().values.size(), 0);
+  return KeepNeverWorseByGroup(guard, one_group, [&](const std::vector<double>& a) { return at(a[0]); }, steps);
+}
+
+GuardedPlan KeepNeverWorseByGroup(const LimitGuard& guard, const std::vector<int>& group_of_sample,
+                                  const std::function<Trajectory(const std::vector<double>&)>& at, int steps) {
+  const int groups = group_of_sample.empty() ? 1 : *std::max_element(group_of_sample.begin(), group_of_sample.end()) + 1;
+  std::vector<double> alpha(groups, 1.0);
+  const auto finish = [&](GuardedPlan out) {
+    out.group_alpha = alpha;
+    out.alpha = *std::min_element(alpha.begin(), alpha.end());
+    return out;
+  };
+  GuardedPlan whole;
+  whole.plan = at(alpha);
+  whole.measure = guard.Measure(whole.plan);
+  whole.raw_broke = guard.WorseThanInput(whole.measure);
+  if (whole.raw_broke.empty()) return finish(std::move(whole));
+  // The groups with a sample worse start from their input (alpha 0); the others keep their whole change.
+  const std::vector<bool> worse = guard.WorseSamples(whole.measure);
+  std::vector<bool> cut(groups, groups == 1);
+  for (size_t k = 0; k < worse.size() && k < group_of_sample.size(); ++k) {
+    if (worse[k]) cut[group_of_sample[k]] = true;
+  }
+  for (int g = 0; g < groups; ++g) {
+    if (cut[g]) alpha[g] = 0;
+  }
+  GuardedPlan best{at(alpha), 0.0, {}, {}, {}};
+  best.measure = groups == 1 ? guard.input() : guard.Measure(best.plan);
+  if (!guard.WorseThanInput(best.measure).empty()) {  // a limit across groups: every group from its input
+    std::fill(alpha.begin(), alpha.end(), 0.0);
+    best = GuardedPlan{at(alpha), 0.0, {}, {}, guard.input()};
+    std::fill(cut.begin(), cut.end(), true);
+  }
+  // Bisection on [lo, hi] per group cut, lo always never worse.
+  for (int g = 0; g < groups; ++g) {
+    if (!cut[g]) continue;
+    double lo = 0, hi = 1;
+    for (int i = 0; i < steps; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      alpha[g] = mid;
+      Trajectory plan = at(alpha);
+      LimitMeasure measure = guard.Measure(plan);
+      if (guard.WorseThanInput(measure).empty()) {
+        lo = mid;
+        best.plan = std::move(plan);
+        best.measure = std::move(measure);
+      } else {
+        hi = mid;
+      }
+    }
+    alpha[g] = lo;
+  }
+  best.raw_broke = std::move(whole.raw_broke);
+  return finish(std::move(best));
 }
 
 Json StillBroken(const LimitMeasure& measure, const Trajectory& plan, std::string* first_message) {

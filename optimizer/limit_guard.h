@@ -11,7 +11,9 @@
 //
 // When the solver's output is worse, the plan returned is input + alpha (output - input) over every
 // optimized channel, with the largest alpha found never worse (1, else a fixed number of bisection steps
-// from [0, 1]; alpha = 0 is the input itself): deterministic, and never worse by construction.
+// from [0, 1]; alpha = 0 is the input itself): deterministic, and never worse by construction. Each group
+// of samples between two cuts has its own alpha (its own variables; no limit is measured across a cut):
+// a group whose whole change is never worse keeps it, whatever another group breaks.
 #pragma once
 
 #include <functional>
@@ -55,6 +57,8 @@ class LimitGuard {
   const LimitMeasure& input() const { return input_measure_; }
   // The limits `candidate` breaks by more than the input at some sample (empty: never worse).
   std::vector<std::string> WorseThanInput(const LimitMeasure& candidate) const;
+  // Per sample: whether `candidate` breaks some limit there by more than the input.
+  std::vector<bool> WorseSamples(const LimitMeasure& candidate) const;
 
  private:
   const Trajectory& input_;
@@ -65,7 +69,8 @@ class LimitGuard {
 
 struct GuardedPlan {
   Trajectory plan;
-  double alpha = 1;                    // the fraction of the solver's change kept
+  double alpha = 1;                    // the fraction of the solver's change kept (the least of group_alpha)
+  std::vector<double> group_alpha;     // per group of samples between cuts
   std::vector<std::string> raw_broke;  // the limits the solver's own output made worse (empty: none)
   LimitMeasure measure;                // of `plan`
 };
@@ -73,6 +78,12 @@ struct GuardedPlan {
 // The plan at alpha = 1 if it is never worse than the input, else the largest alpha found so in `steps`
 // bisection steps (at least alpha = 0, the input). `at(alpha)` builds the plan for a fraction.
 GuardedPlan KeepNeverWorse(const LimitGuard& guard, const std::function<Trajectory(double)>& at, int steps = 12);
+// The same per group: `group_of_sample` numbers the groups from 0, `at(alphas)` builds the plan with alphas[g]
+// of group g's change. Every group's alpha is 1 if the whole change is never worse; else the groups with a
+// sample worse start at 0 and each (in order) gets the largest alpha found never worse with the others as
+// they are then.
+GuardedPlan KeepNeverWorseByGroup(const LimitGuard& guard, const std::vector<int>& group_of_sample,
+                                  const std::function<Trajectory(const std::vector<double>&)>& at, int steps = 12);
 
 // The report of the limits a plan still breaks ({limit, unit, limit, worst, shot, start_time_s,
 // end_time_s, by, hint} per broken range, in time order) and the first as a one-line message (empty when

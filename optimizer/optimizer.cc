@@ -314,11 +314,18 @@ class PlanOptimizer {
   // A solve within this much of every limit's aimed value (per unit of the limit) needs no other round.
   static constexpr double kConstraintTolerance = 1e-3;
   SampleState<double> StateAt(const SampleBase& base) const;
-  // The plan with `alpha` of the change: input + alpha (output - input) over every optimized channel
-  // (alpha = 1 is the solver's output, 0 the input itself).
-  Trajectory Apply(double alpha) const;
-  // GoalCost with `alpha` of the change (every knot scaled by it).
-  double ObjectiveAt(double alpha);
+  // The plan with `alpha[g]` of the change in each group g of samples between cuts: input + alpha (output -
+  // input) over every optimized channel (alpha = 1 is the solver's output, 0 the input itself).
+  Trajectory Apply(const std::vector<double>& alpha) const;
+  // The guard (optimizer/limit_guard.h) on Apply, each group with its own alpha.
+  GuardedPlan Guarded(const LimitGuard& guard) const {
+    return KeepNeverWorseByGroup(guard, split_.group_of_sample,
+                                 [&](const std::vector<double>& alpha) { return Apply(alpha); });
+  }
+  // Every knot times the alpha of its group, in place (the problem holds the knots' addresses).
+  void ScaleKnots(const std::vector<double>& alpha);
+  // GoalCost with `alpha[g]` of the change in each group g.
+  double ObjectiveAt(const std::vector<double>& alpha);
   // When the guard cut the change (alpha < 1: the soft stages led the path where the stiff stage and the
   // multiplier rounds could not bring every limit back), a second solve from the plan as given with the
   // limits at full weight from the first step; the guarded result with the smaller objective is kept, and
@@ -1153,14 +1160,14 @@ Json PlanOptimizer::TermCosts(double* total) {
   return out;
 }
 
-Trajectory PlanOptimizer::Apply(double alpha) const {
+Trajectory PlanOptimizer::Apply(const std::vector<double>& group_alpha) const {
   Trajectory out = plan_;
   std::optional<EnuFrame> frame;
   if (out.origin) frame.emplace(*out.origin);
   const ImageExtentMm image = out.camera.image_extent_mm();
   // The state at `alpha`: positions along the straight line from the input's (a refit group's base is not
   // the input), every other channel a multiple of its change.
-  const auto scaled = [&](const SampleBase& base, const Eigen::Vector3d& input_position) {
+  const auto scaled = [&](const SampleBase& base, const Eigen::Vector3d& input_position, double alpha) {
     SampleState<double> s = StateAt(base);
     if (alpha == 1.0) return s;
     s.position = input_position + alpha * (s.position - input_position);
@@ -1183,7 +1190,7 @@ Trajectory PlanOptimizer::Apply(double alpha) const {
   for (size_t k = 0; k < out.samples.size(); ++k) {
     TrajectorySample& sample = out.samples[k];
     const SampleBase& base = split_.bases[k];
-    const SampleState<double> s = scaled(base, plan_.samples[k].position_enu_m);
+    const SampleState<double> s = scaled(base, plan_.samples[k].position_enu_m, group_alpha[split_.group_of_sample[k]]);
     const bool moved = s.yaw != 0 || s.tilt != 0 || s.log_focal != 0 || s.position != plan_.samples[k].position_enu_m;
     apply(base, s, &sample.position_enu_m, &sample.world_from_camera, &sample.focal_length_mm, &sample.focus_distance_m,
           &sample.f_number);
@@ -1215,7 +1222,8 @@ Trajectory PlanOptimizer::Apply(double alpha) const {
            !(plan_.samples[k].shot == key.shot && plan_.samples[k].time_s >= key.time_s - 1e-9))
       ++k;
     if (k == out.samples.size()) continue;
-    const SampleGroup& g = split_.groups[split_.group_of_sample[k]];
+    const int group = split_.group_of_sample[k];
+    const SampleGroup& g = split_.groups[group];
     SampleBase base;
     base.knots = g.spline.At(key.time_s);
     base.knots.first_knot += g.first_knot;
@@ -1224,7 +1232,7 @@ Trajectory PlanOptimizer::Apply(double alpha) const {
     base.focal_length_mm = key.focal_length_mm;
     base.dioptre = std::isinf(key.focus_distance_m) ? 0.0 : 1.0 / key.focus_distance_m;
     base.f_number = key.f_number;
-    apply(base, scaled(base, key.position_enu_m), &key.position_enu_m, &key.world_from_camera, &key.focal_length_mm,
+    apply(base, scaled(base, key.position_enu_m, group_alpha[group]), &key.position_enu_m, &key.world_from_camera, &key.focal_length_mm,
           &key.focus_distance_m, &key.f_number);
   }
   std::unique_ptr<scene::CasterGround> ground;
@@ -1446,13 +1454,20 @@ double PlanOptimizer::Objective() {
   return GoalCost();
 }
 
-double PlanOptimizer::ObjectiveAt(double alpha) {
-  const std::vector<Knot> solution = knots_;
-  for (auto& k : knots_) {
-    for (double& v : k) v *= alpha;
+void PlanOptimizer::ScaleKnots(const std::vector<double>& alpha) {
+  for (size_t g = 0; g < split_.groups.size(); ++g) {
+    const SampleGroup& group = split_.groups[g];
+    for (int i = 0; i < group.spline.num_knots(); ++i) {
+      for (double& v : knots_[group.first_knot + i]) v *= alpha[g];
+    }
   }
+}
+
+double PlanOptimizer::ObjectiveAt(const std::vector<double>& alpha) {
+  const std::vector<Knot> solution = knots_;
+  ScaleKnots(alpha);
   const double cost = GoalCost();
-  knots_ = solution;
+  knots_ = solution;  // a copy into the same storage
   return cost;
 }
 
@@ -1460,14 +1475,14 @@ Json PlanOptimizer::RetryAtFullWeight(const LimitGuard& guard, GuardedPlan* kept
   if (kept->alpha == 1.0 || warm() || options_.constrained_solver || options_.external_solver) return nullptr;
   const std::vector<Knot> first = knots_;
   const std::vector<std::set<std::string>> first_binding = binding_;
-  const double first_objective = ObjectiveAt(kept->alpha);
+  const double first_objective = ObjectiveAt(kept->group_alpha);
   for (auto& k : knots_) k.fill(0.0);
   Solve(false);
   while (AddLimitsNearTheirBounds() > 0) Solve(false);
   SolveUntilTheLimitsHold();
   ResetMultipliers();
-  GuardedPlan second = KeepNeverWorse(guard, [&](double alpha) { return Apply(alpha); });
-  const double second_objective = ObjectiveAt(second.alpha);
+  GuardedPlan second = Guarded(guard);
+  const double second_objective = ObjectiveAt(second.group_alpha);
   const bool better = second_objective < first_objective;
   Json r = Json::object();
   r["first_alpha"] = kept->alpha;
@@ -1503,7 +1518,7 @@ OptimizeResult PlanOptimizer::Run() {
   // Rule 2: the solver's output only if it is never worse than the input in any limit, else the largest
   // fraction of its change that is (optimizer/limit_guard.h).
   const LimitGuard guard(plan_, GuardSetupFor());
-  GuardedPlan kept = KeepNeverWorse(guard, [&](double alpha) { return Apply(alpha); });
+  GuardedPlan kept = Guarded(guard);
   const Json retry = RetryAtFullWeight(guard, &kept);
 
   // Costs before (every knot at zero: the plan as given) and after (the change kept; where a group was
@@ -1513,9 +1528,7 @@ OptimizeResult PlanOptimizer::Run() {
   double total_before = 0, total_after = 0;
   const Json before = TermCosts(&total_before);
   knots_ = solution;
-  for (auto& k : knots_) {
-    for (double& v : k) v *= kept.alpha;
-  }
+  ScaleKnots(kept.group_alpha);
   const Json after = TermCosts(&total_after);
 
   OptimizeResult result;
@@ -1527,6 +1540,7 @@ OptimizeResult PlanOptimizer::Run() {
   result.report = Report(result.plan, before, after, total_before, total_after);
   Json g = Json::object();
   g["alpha"] = kept.alpha;
+  if (kept.group_alpha.size() > 1) g["group_alpha"] = kept.group_alpha;
   g["raw_broke"] = kept.raw_broke;
   g["still_broken"] = StillBroken(kept.measure, result.plan, &result.failure);
   if (!retry.is_null()) g["retry"] = retry;

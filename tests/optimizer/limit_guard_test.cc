@@ -120,6 +120,42 @@ TEST(LimitGuard, WithinAShotALimitTheInputBreaksMayMoveButNotGrowNorSpreadToAnot
   EXPECT_TRUE(guard.WorseThanInput(moved.measure).empty());
 }
 
+TEST(LimitGuard, EachGroupBetweenCutsKeepsTheLargestFractionOfItsOwnChange) {
+  // A cut before sample 61 (2.03 s): two groups with their own variables. The candidate flies the first at 7 m/s (never
+  // worse: kept whole) and the second at 18 m/s (the 12 m/s limit holds up to half of the change); with one
+  // fraction for the whole plan, the first group would lose half of its change too.
+  const Trajectory input = Flight([](double) { return 6.0; });
+  const Trajectory output = Flight([](double t) { return t < 2.02 ? 7.0 : 18.0; });  // 18 from sample 61
+  GuardSetup setup = SetupFor(input);
+  setup.cut_before[61] = true;
+  std::vector<int> group_of_sample(input.samples.size(), 0);
+  for (size_t k = 61; k < input.samples.size(); ++k) setup.shot_of_sample[k] = group_of_sample[k] = 1;
+  const LimitGuard guard(input, setup);
+  const auto between = [&](const std::vector<double>& alpha) {
+    Trajectory p = input;
+    for (size_t k = 0; k < p.samples.size(); ++k) {
+      p.samples[k].position_enu_m +=
+          alpha[group_of_sample[k]] * (output.samples[k].position_enu_m - input.samples[k].position_enu_m);
+    }
+    return p;
+  };
+  const GuardedPlan r = KeepNeverWorseByGroup(guard, group_of_sample, between);
+  ASSERT_EQ(r.group_alpha.size(), 2u);
+  EXPECT_EQ(r.group_alpha[0], 1.0);
+  EXPECT_LE(r.group_alpha[1], 0.5);
+  EXPECT_GT(r.group_alpha[1], 0.499);
+  EXPECT_EQ(r.alpha, r.group_alpha[1]);
+  EXPECT_EQ(r.raw_broke, std::vector<std::string>{"horizontal_speed"});
+  EXPECT_TRUE(guard.WorseThanInput(r.measure).empty());
+  EXPECT_EQ(r.plan.samples[30].position_enu_m, output.samples[30].position_enu_m);
+  // The measure returned is the plan's.
+  EXPECT_EQ(guard.Measure(r.plan)[0].values, r.measure[0].values);
+  // One group: the fraction of the plan as a whole.
+  const GuardedPlan whole = KeepNeverWorse(guard, [&](double a) { return between({a, a}); });
+  EXPECT_LE(whole.alpha, 0.5);
+  EXPECT_GT(whole.alpha, 0.499);
+}
+
 TEST(LimitGuard, TheDeviationAllowedIsALimitAndSaysWhatItNeeds) {
   const Trajectory input = Flight([](double) { return 6.0; });
   Trajectory output = input;
