@@ -1,5 +1,6 @@
 // cinepath plan: shot list -> keyframes, one sample per frame, lens tracks and a feasibility
 // report (docs/plan.md, plan.json format: docs/plan-format.md).
+#include <iostream>
 #include <optional>
 #include <string>
 
@@ -15,6 +16,7 @@
 #include "core/plan_file.h"
 #include "core/scene_file.h"
 #include "shots/plan_plot.h"
+#include "shots/plan_warnings.h"
 #include "shots/planner.h"
 #include "shots/shot_list.h"
 #include "shots/shot_type.h"
@@ -55,6 +57,7 @@ class PlanCommand : public Command {
     }
     const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin, ground);
     const TeamPlan plan = shots::PlanTeam(list);
+    for (const std::string& w : shots::StopsDeadWarnings(list, plan)) std::cerr << "cinepath plan: warning: " << w << "\n";
     if (strict_) RefuseBrokenLimits(plan);
 
     AtomicOutputs outputs;

@@ -1,0 +1,35 @@
+#include "shots/plan_warnings.h"
+
+#include <algorithm>
+
+#include "core/number_format.h"
+
+namespace cinepath::shots {
+
+std::vector<std::string> StopsDeadWarnings(const ShotList& list, const TeamPlan& plan) {
+  std::vector<std::string> warnings;
+  const double frame_s = 1.0 / plan.frame_rate_hz;
+  for (const DroneFlight& flight : plan.flights) {
+    for (const ShotSpan& shot : flight.plan.shots) {
+      const int index = list.FindActor(shot.subject);
+      if (index < 0) continue;
+      const Actor& actor = list.actors[index];
+      const std::vector<double>& times = actor.path().times();
+      if (times.size() < 2) continue;
+      const double last_s = times.back();
+      if (last_s < shot.start_time_s || last_s > shot.end_time_s - frame_s) continue;
+      // The speed arriving at the key (the path's own, from the segment before it).
+      const double speed = actor.path().Velocity(last_s - 1e-6 * std::max(1.0, last_s - times.front())).norm();
+      if (speed <= kStopsDeadMS) continue;
+      warnings.push_back("actor \"" + actor.name() + "\" stops dead at its last key (" + FormatSignificant(last_s, 6) +
+                         " s, from " + FormatSignificant(speed, 3) + " m/s), and shot \"" + shot.name + "\"" +
+                         (plan.single || plan.flights.size() == 1 ? "" : " of drone \"" + flight.name + "\"") +
+                         " follows it to " + FormatSignificant(shot.end_time_s, 6) +
+                         " s: the camera (its path, or its aim) stops with it; add a key where the actor comes to rest, or end "
+                         "the shot there");
+    }
+  }
+  return warnings;
+}
+
+}  // namespace cinepath::shots
