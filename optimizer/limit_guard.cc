@@ -144,12 +144,14 @@ std::vector<bool> LimitGuard::WorseSamples(const LimitMeasure& candidate) const 
 
 GuardedPlan KeepNeverWorse(const LimitGuard& guard, const std::function<Trajectory(double)>& at, int steps) {
   const std::vector<int> one_group(guard.input().empty() ? 0 : guard.input().front().values.size(), 0);
-  return KeepNeverWorseByGroup(guard, one_group, [&](const std::vector<double>& a) { return at(a[0]); }, steps);
+  return KeepNeverWorseByGroup(
+      guard, one_group, [&](const std::vector<double>& a) { return at(a[0]); }, steps);
 }
 
 GuardedPlan KeepNeverWorseByGroup(const LimitGuard& guard, const std::vector<int>& group_of_sample,
                                   const std::function<Trajectory(const std::vector<double>&)>& at, int steps) {
-  const int groups = group_of_sample.empty() ? 1 : *std::max_element(group_of_sample.begin(), group_of_sample.end()) + 1;
+  const int groups =
+      group_of_sample.empty() ? 1 : *std::max_element(group_of_sample.begin(), group_of_sample.end()) + 1;
   std::vector<double> alpha(groups, 1.0);
   const auto finish = [&](GuardedPlan out) {
     out.group_alpha = alpha;

@@ -1232,8 +1232,8 @@ Trajectory PlanOptimizer::Apply(const std::vector<double>& group_alpha) const {
     base.focal_length_mm = key.focal_length_mm;
     base.dioptre = std::isinf(key.focus_distance_m) ? 0.0 : 1.0 / key.focus_distance_m;
     base.f_number = key.f_number;
-    apply(base, scaled(base, key.position_enu_m, group_alpha[group]), &key.position_enu_m, &key.world_from_camera, &key.focal_length_mm,
-          &key.focus_distance_m, &key.f_number);
+    apply(base, scaled(base, key.position_enu_m, group_alpha[group]), &key.position_enu_m, &key.world_from_camera,
+          &key.focal_length_mm, &key.focus_distance_m, &key.f_number);
   }
   std::unique_ptr<scene::CasterGround> ground;
   if (scene_->caster) ground = std::make_unique<scene::CasterGround>(*scene_->caster, input_.scene_source);

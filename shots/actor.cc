@@ -30,9 +30,11 @@ Actor::Actor(std::string name, double height_m, double heading_deg, PathSpline p
 // placed rigidly from it copied each into velocity or acceleration steps. A walker's second is a metre or two:
 // its trend is kept, its kinks are not. For the averages the path runs on past its end keys at its end velocities,
 // so a shot that starts as its actor is keyed to be moving starts exactly with it; outside the keys' span the
-// splines hold their ends, as the actor does (a stop at full speed stays a stop, which the feasibility check
-// reports). A cubic B-spline path not kept on the ground is C2 already and is its own camera base; its heading is
-// still smoothed (the direction of a C2 path turns at a rate whose second derivative steps at its keys).
+// splines hold their ends, as the actor does. A shot that follows the actor past its last key (where it stops
+// dead) has the planner ease the camera into the stop instead (EaseCameraIntoTheStop): the averages see the
+// actor standing after the key, and the grid runs on for twice their reach. A cubic B-spline path not kept on
+// the ground is C2 already and is its own camera base; its heading is still smoothed (the direction of a C2
+// path turns at a rate whose second derivative steps at its keys).
 void Actor::SmoothForCameras() {
   const std::vector<double>& times = path_.times();
   if (times.size() < 2 || !(times.back() > times.front())) return;
@@ -42,7 +44,10 @@ void Actor::SmoothForCameras() {
   if (!moves) return;
   constexpr double kStepS = 0.5, kWindowS = 1.0;  // the grid's step; the average's reach on either side
   constexpr int kHalfPoints = 16;
-  const double from_s = times.front(), span_s = times.back() - times.front();
+  // Easing into the stop, the grid runs on past the last key for twice the averages' reach: the base is at rest
+  // from one reach on, and the spline through the rest flattens before it holds its end.
+  const double from_s = times.front(), last_s = times.back();
+  const double span_s = last_s + (ease_into_stop_ ? 2 * kWindowS : 0.0) - from_s;
   // At most 20,000 steps: over a span longer than ~2.8 h of keys the steps grow (and smooth more).
   const int steps = static_cast<int>(std::min(std::ceil(span_s / kStepS), 20000.0));
   const double step_s = span_s / steps;
@@ -57,10 +62,13 @@ void Actor::SmoothForCameras() {
       const double w = kHalfPoints + 1 - std::abs(k), at = t + k * kWindowS / kHalfPoints;
       // Past an end key the path runs on at its end velocity (horizontally), so that a path at a steady velocity
       // is its own average up to its ends: a shot that starts as its actor is keyed to be moving starts with it.
-      const double key_s = std::clamp(at, times.front(), times.back());
+      const double key_s = std::clamp(at, times.front(), last_s);
       Eigen::Vector3d v = VelocityAt(key_s);
       v.z() = 0;
-      position += w * (PositionAt(key_s) + (at - key_s) * v);
+      // Easing into the stop, the actor stands at its last key after it (for the position; the direction of
+      // travel still runs on, so that a chase stays behind where the actor was going).
+      const bool standing = ease_into_stop_ && at > last_s;
+      position += w * (standing ? PositionAt(last_s) : Eigen::Vector3d(PositionAt(key_s) + (at - key_s) * v));
       velocity += w * v;
       weights += w;
     }
@@ -77,8 +85,14 @@ void Actor::SmoothForCameras() {
   }
   camera_travel_.emplace(grid_s, std::move(directions), PathInterpolation::kCubicBSpline);
   // A cubic B-spline path is C2 already: its camera base is the path itself, unless the ground's kinks are in it.
-  if (path_.kind() != PathInterpolation::kCubicBSpline || ground_)
+  if (path_.kind() != PathInterpolation::kCubicBSpline || ground_ || ease_into_stop_)
     camera_base_.emplace(std::move(grid_s), std::move(positions), PathInterpolation::kCubicBSpline);
+}
+
+void Actor::EaseCameraIntoTheStop() {
+  if (ease_into_stop_) return;
+  ease_into_stop_ = true;
+  SmoothForCameras();
 }
 
 Eigen::Vector3d Actor::CameraBaseAt(double time_s) const {

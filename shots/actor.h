@@ -59,6 +59,11 @@ class Actor {
   // velocity there.
   double CameraTravelHeadingDegAt(double time_s) const;
   static constexpr double kMovingMS = 0.05;  // slower than this, an actor faces its stated heading
+  // For a shot that follows the actor past its last key, where it stops (PlanShots): the camera's base eases
+  // into the stop over the second on either side of the key, as the averages see the actor standing still
+  // after it, instead of running on at the key's velocity and stopping dead with it; the direction of travel
+  // holds its last.
+  void EaseCameraIntoTheStop();
 
   const PathSpline& path() const { return path_; }
 
@@ -70,6 +75,7 @@ class Actor {
   const Ground* ground_ = nullptr;  // set: on the ground at every time
   double above_ground_m_ = 0;
   void SmoothForCameras();
+  bool ease_into_stop_ = false;              // EaseCameraIntoTheStop
   std::optional<PathSpline> camera_base_;    // CameraBaseAt's positions
   std::optional<PathSpline> camera_travel_;  // CameraTravelHeadingDegAt's unit directions (z = 0)
 };

@@ -21,12 +21,13 @@ std::vector<std::string> StopsDeadWarnings(const ShotList& list, const TeamPlan&
       // The speed arriving at the key (the path's own, from the segment before it).
       const double speed = actor.path().Velocity(last_s - 1e-6 * std::max(1.0, last_s - times.front())).norm();
       if (speed <= kStopsDeadMS) continue;
-      warnings.push_back("actor \"" + actor.name() + "\" stops dead at its last key (" + FormatSignificant(last_s, 6) +
-                         " s, from " + FormatSignificant(speed, 3) + " m/s), and shot \"" + shot.name + "\"" +
-                         (plan.single || plan.flights.size() == 1 ? "" : " of drone \"" + flight.name + "\"") +
-                         " follows it to " + FormatSignificant(shot.end_time_s, 6) +
-                         " s: the camera (its path, or its aim) stops with it; add a key where the actor comes to rest, or end "
-                         "the shot there");
+      warnings.push_back(
+          "actor \"" + actor.name() + "\" stops dead at its last key (" + FormatSignificant(last_s, 6) + " s, from " +
+          FormatSignificant(speed, 3) + " m/s), and shot \"" + shot.name + "\"" +
+          (plan.single || plan.flights.size() == 1 ? "" : " of drone \"" + flight.name + "\"") + " follows it to " +
+          FormatSignificant(shot.end_time_s, 6) +
+          " s: the camera eases into the stop, but its aim stops dead with the actor; add a key where the "
+          "actor comes to rest, or end the shot there");
     }
   }
   return warnings;

@@ -1,8 +1,7 @@
 // What `cinepath plan` warns about in a shot list it can plan but a crew would not mean: a moving actor
 // whose last key is mid-stride stops dead there (before its first key and after its last an actor holds
-// still, docs/plan.md), and every shot that follows it past that key brakes with it, as hard as the
-// smoothing of the camera's frame allows (Actor::CameraBaseAt: over about two seconds), far past a drone's
-// jerk limit.
+// still, docs/plan.md). A shot that follows it past that key has its camera's path ease into the stop
+// (Actor::EaseCameraIntoTheStop), but the aim, on the actor itself, stops dead with it.
 #pragma once
 
 #include <string>

@@ -544,6 +544,29 @@ void Planner::AddKeyframes(Trajectory& plan) {
 
 }  // namespace
 
-Trajectory PlanShots(const ShotList& list, const PlanOptions& options) { return Planner(list).Run(options); }
+Trajectory PlanShots(const ShotList& list, const PlanOptions& options) {
+  // The actors a shot follows past a last key they reach moving (the shots run back to back): their cameras
+  // ease into the stop (Actor::EaseCameraIntoTheStop).
+  std::vector<size_t> stopping;
+  double start_s = 0;
+  for (const ShotSpec& shot : list.shots) {
+    const double end_s = start_s + shot.duration_s;
+    if (shot.subject >= 0) {
+      const Actor& actor = list.actors[shot.subject];
+      const std::vector<double>& times = actor.path().times();
+      const double last_s = times.back();
+      if (times.size() >= 2 && last_s >= start_s && last_s < end_s - 1.0 / list.frame_rate_hz &&
+          actor.path().Velocity(last_s - 1e-6 * std::max(1.0, last_s - times.front())).norm() > Actor::kMovingMS &&
+          std::find(stopping.begin(), stopping.end(), size_t(shot.subject)) == stopping.end()) {
+        stopping.push_back(shot.subject);
+      }
+    }
+    start_s = end_s;
+  }
+  if (stopping.empty()) return Planner(list).Run(options);
+  ShotList eased = list;
+  for (size_t a : stopping) eased.actors[a].EaseCameraIntoTheStop();
+  return Planner(eased).Run(options);
+}
 
 }  // namespace cinepath::shots

@@ -13,14 +13,16 @@ namespace {
 std::vector<std::string> WarningsFor(const std::string& keys, double duration_s) {
   const Json doc = Json::parse(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 30, "drone": "px4-multirotor",
     "camera": {"filmback": "super35", "min_focal_length_mm": 24, "max_focal_length_mm": 70},
-    "actors": [{"name": "walker", "height_m": 1.8, "keyframes": )" + keys + R"(}],
+    "actors": [{"name": "walker", "height_m": 1.8, "keyframes": )" +
+                               keys + R"(}],
     "shots": [{"name": "follow", "type": "CHASE", "subject": "walker", "duration_s": )" +
                                std::to_string(duration_s) + R"(, "distance_m": 12, "height_m": 5}]})");
   const ShotList list = ParseShotList(doc, "test_shots.json");
   return StopsDeadWarnings(list, PlanTeam(list));
 }
 
-const char* kMidStride = R"([{"time_s": 0, "position_enu_m": [0, 0, 0]}, {"time_s": 10, "position_enu_m": [15, 0, 0]}])";
+const char* kMidStride =
+    R"([{"time_s": 0, "position_enu_m": [0, 0, 0]}, {"time_s": 10, "position_enu_m": [15, 0, 0]}])";
 
 TEST(PlanWarnings, AnActorStoppingDeadAtItsLastKeyInsideTheShotIsNamed) {
   const std::vector<std::string> w = WarningsFor(kMidStride, 16);
@@ -38,8 +40,9 @@ TEST(PlanWarnings, NoWarningWhenTheShotEndsAtTheKeyOrTheActorComesToRest) {
                           20)
                   .empty());
   // Slower than kStopsDeadMS at the key: 2 m in 10 s.
-  EXPECT_TRUE(WarningsFor(R"([{"time_s": 0, "position_enu_m": [0, 0, 0]}, {"time_s": 10, "position_enu_m": [2, 0, 0]}])", 16)
-                  .empty());
+  EXPECT_TRUE(
+      WarningsFor(R"([{"time_s": 0, "position_enu_m": [0, 0, 0]}, {"time_s": 10, "position_enu_m": [2, 0, 0]}])", 16)
+          .empty());
 }
 
 }  // namespace

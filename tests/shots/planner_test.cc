@@ -273,6 +273,28 @@ TEST(PlanTransitions, ContinuousInPositionAndOrientation) {
 // walker ends at t = 6 s, the walker's second key, and a CHASE blends in from it. The join matches the
 // flyby's velocity: the first step of the chase is a normal frame step, not the 16 m/s dash the blend took
 // when the actor's direction of travel jumped by a millimetre's worth at its key.
+// A CHASE that runs on past its actor's last key, reached at 1.5 m/s: the actor stops dead there, and the
+// camera eases into the stop (Actor::EaseCameraIntoTheStop) within the drone's acceleration and jerk. With the
+// camera stopping with the actor the plan broke jerk by hundreds of m/s^3 at the key.
+TEST(PlanChase, TheCameraEasesIntoTheStopOfAnActorFollowedPastItsLastKey) {
+  const std::string walker = R"([{"name": "walker", "height_m": 1.8, "keyframes": [
+    {"time_s": 0, "position_enu_m": [0, 0, 0]}, {"time_s": 10, "position_enu_m": [15, 0, 0]}]}])";
+  const Trajectory plan =
+      Plan(R"([{"type": "CHASE", "subject": "walker", "duration_s": 16, "distance_m": 12, "height_m": 5}])", walker);
+  for (const auto& v : plan.feasibility.violations) {
+    EXPECT_NE(v.limit, "jerk") << v.start_time_s << "-" << v.end_time_s << " s: " << v.worst_value;
+    EXPECT_NE(v.limit, "horizontal_acceleration") << v.start_time_s << "-" << v.end_time_s << " s: " << v.worst_value;
+  }
+  // At rest a second after the key, 12 m behind where the walker stopped, 5 m up.
+  const TrajectorySample& end = plan.samples.back();
+  EXPECT_NEAR((end.position_enu_m - Vector3d(3, 0, 5)).norm(), 0.0, 1e-6);
+  const TrajectorySample& before = plan.samples[plan.samples.size() - 31];
+  EXPECT_NEAR((before.position_enu_m - end.position_enu_m).norm(), 0.0, 1e-6);
+  // Well before the key the camera is where it would be without easing: 12 m behind the walker.
+  const TrajectorySample& mid = plan.samples[5 * 30];
+  EXPECT_NEAR((mid.position_enu_m - Vector3d(7.5 - 12, 0, 5)).norm(), 0.0, 1e-6);
+}
+
 TEST(PlanTransitions, ABlendFromAShotEndingAtAnActorsKeyKeepsItsVelocity) {
   const std::string walker = R"([{"name": "walker", "height_m": 1.75, "interpolation": "catmull_rom", "keyframes": [
       {"time_s": 0, "position_enu_m": [-20, -12, 0]}, {"time_s": 6, "position_enu_m": [-8, -12, 0]},
