@@ -95,6 +95,13 @@ void Actor::EaseCameraIntoTheStop() {
   SmoothForCameras();
 }
 
+double Actor::SpeedAtLastKeyMS() const {
+  const std::vector<double>& times = path_.times();
+  if (times.size() < 2) return 0.0;
+  const double last_s = times.back();
+  return path_.Velocity(last_s - 1e-6 * std::max(1.0, last_s - times.front())).norm();  // from the segment before
+}
+
 Eigen::Vector3d Actor::CameraBaseAt(double time_s) const {
   return camera_base_ ? camera_base_->Position(time_s) : PositionAt(time_s);
 }

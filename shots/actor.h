@@ -64,6 +64,8 @@ class Actor {
   // after it, instead of running on at the key's velocity and stopping dead with it; the direction of travel
   // holds its last.
   void EaseCameraIntoTheStop();
+  // The speed (m/s) at which the actor arrives at its last key, where it stops (0 with one key).
+  double SpeedAtLastKeyMS() const;
 
   const PathSpline& path() const { return path_; }
 

@@ -1,7 +1,5 @@
 #include "shots/plan_warnings.h"
 
-#include <algorithm>
-
 #include "core/number_format.h"
 
 namespace cinepath::shots {
@@ -14,12 +12,9 @@ std::vector<std::string> StopsDeadWarnings(const ShotList& list, const TeamPlan&
       const int index = list.FindActor(shot.subject);
       if (index < 0) continue;
       const Actor& actor = list.actors[index];
-      const std::vector<double>& times = actor.path().times();
-      if (times.size() < 2) continue;
-      const double last_s = times.back();
+      const double last_s = actor.path().times().back();
       if (last_s < shot.start_time_s || last_s > shot.end_time_s - frame_s) continue;
-      // The speed arriving at the key (the path's own, from the segment before it).
-      const double speed = actor.path().Velocity(last_s - 1e-6 * std::max(1.0, last_s - times.front())).norm();
+      const double speed = actor.SpeedAtLastKeyMS();
       if (speed <= kStopsDeadMS) continue;
       warnings.push_back(
           "actor \"" + actor.name() + "\" stops dead at its last key (" + FormatSignificant(last_s, 6) + " s, from " +

@@ -553,10 +553,9 @@ Trajectory PlanShots(const ShotList& list, const PlanOptions& options) {
     const double end_s = start_s + shot.duration_s;
     if (shot.subject >= 0) {
       const Actor& actor = list.actors[shot.subject];
-      const std::vector<double>& times = actor.path().times();
-      const double last_s = times.back();
-      if (times.size() >= 2 && last_s >= start_s && last_s < end_s - 1.0 / list.frame_rate_hz &&
-          actor.path().Velocity(last_s - 1e-6 * std::max(1.0, last_s - times.front())).norm() > Actor::kMovingMS &&
+      const double last_s = actor.path().times().back();
+      if (last_s >= start_s && last_s < end_s - 1.0 / list.frame_rate_hz &&
+          actor.SpeedAtLastKeyMS() > Actor::kMovingMS &&
           std::find(stopping.begin(), stopping.end(), size_t(shot.subject)) == stopping.end()) {
         stopping.push_back(shot.subject);
       }
