@@ -11,12 +11,13 @@
 #             EXR writing), wall and user + sys CPU (/usr/bin/time);
 #   Cycles    render time only, with persistent data (the sum of its 30 `render_seconds`: scene sync and
 #             BVH once, then sampling): Blender's start-up and the glTF import not counted.
-# Then cinepath's presets as they are (PRESETS, default "draft standard": `--quality Q`, no --spp), timed
-# and compared the same way (Cycles has no such rows).
+# Then cinepath with its denoiser (DENOISE_SPPS, default "1 2": `--quality final --spp N --denoise`) and its
+# presets as they are (PRESETS, default "draft standard": `--quality Q`, no --spp), timed and compared the
+# same way (Cycles has no such rows).
 # Prints a markdown table, one row per N and per preset.
 #   bench/render_sequence_vs_cycles.sh BUILD_DIR [OUT_DIR]
 # Environment: WIDTH (320), FIRST (840), REF_SPP (512), CYCLES_REF_SPP (REF_SPP: Cycles' converged frames),
-# SPPS ("1 2 4 8 16 32 64"), PRESETS ("draft standard"), THREADS (2, Cycles).
+# SPPS ("1 2 4 8 16 32 64"), DENOISE_SPPS ("1 2"), PRESETS ("draft standard"), THREADS (2, Cycles).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 CINEPATH=$(cd "${1:?usage: $0 BUILD_DIR [OUT_DIR]}" && pwd)/cli/cinepath
@@ -27,6 +28,7 @@ LAST=$((FIRST + 29))
 REF_SPP=${REF_SPP:-512}
 CYCLES_REF_SPP=${CYCLES_REF_SPP:-$REF_SPP}
 SPPS=${SPPS:-1 2 4 8 16 32 64}
+DENOISE_SPPS=${DENOISE_SPPS-1 2}
 PRESETS=${PRESETS-draft standard}
 THREADS=${THREADS:-2}
 S=$ROOT/data/brighton_beach
@@ -90,6 +92,11 @@ for n in $SPPS; do
   cy_psnr=$(psnrs "$OUT/cy_$n" "$OUT/cy_ref")
   echo "| $n | $wall | $cpu | ${cp_psnr/ / \/ } | $cy_render | ${cy_psnr/ / \/ } | $(cut -d' ' -f1 /proc/loadavg) |"
 done | tee "$OUT/results.md"
+for n in $DENOISE_SPPS; do
+  read -r wall cpu <<< "$(cinepath_run cp_${n}_denoised final --spp "$n" --denoise)"
+  cp_psnr=$(psnrs "$OUT/cp_${n}_denoised" "$OUT/cp_ref")
+  echo "| $n, \`--denoise\` | $wall | $cpu | ${cp_psnr/ / \/ } | | | $(cut -d' ' -f1 /proc/loadavg) |"
+done | tee -a "$OUT/results.md"
 for q in $PRESETS; do
   read -r wall cpu <<< "$(cinepath_run cp_$q "$q")"
   cp_psnr=$(psnrs "$OUT/cp_$q" "$OUT/cp_ref")

@@ -68,6 +68,8 @@ class RenderCommand : public Command {
     app.add_option("--spp", spp_, "Cap on rays per pixel (overrides the preset's)")->check(CLI::PositiveNumber);
     app.add_option("--min-spp", min_spp_, "Rays for every pixel at least, sharp ones too (a converged reference)")
         ->check(CLI::PositiveNumber);
+    app.add_flag("--denoise", options_.denoise,
+                 "Filter the noise of few lens rays, guided by each pixel's blur (standard and final; draft has none)");
     app.add_option("--format", format_, "png | exr (linear float) | jpg")->check(CLI::IsMember({"png", "exr", "jpg"}));
     app.add_option("--width-px", width_px_, "Output width; the plan camera's aspect is kept")
         ->check(CLI::PositiveNumber);

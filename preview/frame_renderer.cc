@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "preview/denoiser.h"
 #include "preview/sample_sequence.h"
 #include "preview/thin_lens_camera.h"
 
@@ -279,6 +280,14 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
     image.subject_id[i] = pass.kind[i] >= 0 ? float(pass.kind[i] + 1) : 0.0f;
   }
 
+  const bool denoise = preset.denoise && !preset.gather_blur;
+  DenoiseGuide guide;
+  if (denoise) {
+    guide.width = w;
+    guide.height = h;
+    guide.blur_px = image.blur_px;
+    guide.noisy.assign(image.rgb_linear.size(), 0);
+  }
   const int max_samples = std::max(1, preset.max_samples);
   const CameraFrame frame_mid(PoseAt(plan, sample.time_s));
   const PreviewScene::Instant at_mid = scene.At(sample.time_s);
@@ -327,9 +336,14 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
           }
         }
         image.rgb_linear[i] = (sum / n).cast<float>();
+        if (denoise && lens) guide.noisy[i] = 1;
       }
     }
   });
+  if (denoise) {
+    guide.rays = image.samples;
+    image.rgb_linear = DenoiseBlurred(image.rgb_linear, guide);
+  }
   if (preset.gather_blur) image.rgb_linear = GatherBlur(image.rgb_linear, pass, pass.blur_px, tile_need, w, h);
   for (uint16_t n : image.samples) image.total_samples += n;
   if (settings.exposure == Exposure::kPhysical) {

@@ -277,6 +277,7 @@ FrameSettings SettingsFor(const RenderOptions& options, int width, int height) {
     settings.preset.min_samples = *options.min_samples;
     settings.preset.max_samples = std::max(settings.preset.max_samples, *options.min_samples);
   }
+  settings.preset.denoise = options.denoise;
   settings.exposure = options.exposure;
   settings.iso = options.iso;
   return settings;

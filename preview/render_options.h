@@ -38,6 +38,8 @@ struct SamplingPreset {
   int max_samples = 64;
   int min_samples = 1;  // every pixel gets at least this many (a converged reference: --min-spp)
   bool motion_blur = true;
+  // The lens rays' noise filtered away (preview/denoiser.h): off in every preset, `--denoise` turns it on.
+  bool denoise = false;
 };
 
 SamplingPreset PresetFor(Quality quality);
@@ -53,6 +55,7 @@ struct RenderOptions {
   Quality quality = Quality::kStandard;
   std::optional<int> max_samples;  // --spp: the cap on rays per pixel (overrides the preset's)
   std::optional<int> min_samples;  // --min-spp: rays for every pixel at least (raises the cap to it)
+  bool denoise = false;            // --denoise: the lens rays' noise filtered (preview/denoiser.h)
   ImageFormat format = ImageFormat::kPng;
   std::optional<int> width_px;  // the aspect of the plan's camera is kept
   Shading shading = Shading::kFlat;

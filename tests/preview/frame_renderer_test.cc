@@ -405,6 +405,34 @@ TEST(FrameRenderer, OneRayPerPixelStillGoesThroughTheLens) {
   EXPECT_GT(between, predicted / 2) << "columns between dark and bright: " << between;
 }
 
+// Few lens rays of an out-of-focus edge, denoised: closer to the converged frame than the same rays without
+// the filter (by the root-mean-square error over the image), and the edge about as wide as the blur circle.
+TEST(FrameRenderer, DenoisingFewLensRaysComesCloserToTheConvergedFrame) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  const Trajectory plan = StillCamera(camera, 100, 1.4, 3);
+  const FrameImage converged = Render(Wall(camera, 20), plan, Settings(Quality::kFinal, 512));
+  const double predicted = ThinLensCamera(plan.camera, kWidth, kHeight, 100, 1.4, 3).BlurPx(20);
+  auto rms = [&](const FrameImage& image) {
+    double sum = 0;
+    for (size_t i = 0; i < image.rgb_linear.size(); ++i) {
+      sum += (image.rgb_linear[i] - converged.rgb_linear[i]).squaredNorm() / 3;
+    }
+    return std::sqrt(sum / double(image.rgb_linear.size()));
+  };
+  for (int rays : {1, 2, 4}) {
+    FrameSettings settings = Settings(Quality::kFinal, rays);
+    const FrameImage noisy = Render(Wall(camera, 20), plan, settings);
+    settings.preset.denoise = true;
+    const FrameImage denoised = Render(Wall(camera, 20), plan, settings);
+    const double fitted = FitBlurDiameter(ColumnProfile(denoised), predicted);
+    std::printf("%d rays: rms %.4f -> %.4f denoised; edge blur fitted %.2f px, predicted %.2f px\n", rays, rms(noisy),
+                rms(denoised), fitted, predicted);
+    EXPECT_LT(rms(denoised), rms(noisy) / 2) << rays << " rays";
+    // The kernel's own width, 0.2 blur / sqrt(rays) as a standard deviation, widens the edge a little.
+    EXPECT_LT(std::abs(fitted - predicted), 0.2 * predicted / std::sqrt(rays)) << rays << " rays";
+  }
+}
+
 TEST(FrameRenderer, MinSamplesReachesEveryPixelSharpOnesToo) {
   const Eigen::Vector3d camera(0, 0, 0);
   FrameSettings settings = Settings(Quality::kStandard, 64);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `cinepath render` through the real binary, on the bundled sample:
 #   - two shards (--shard 0/2, 1/2) give exactly the files of one full run, byte for byte, and so does a run
-#     on one core;
+#     on one core (with --denoise too);
 #   - the GNU parallel example of docs/scale-out.md gives the same files again;
 #   - a missing mesh, a GLB without geometry, a frame range outside the plan and an unwritable output
 #     folder exit 2 and write nothing; --video without ffmpeg says so;
@@ -36,6 +36,14 @@ if command -v taskset > /dev/null; then
   taskset -c 0 "${render[@]}" -o "$work/one_core"
   diff -r "$work/full" "$work/one_core" > /dev/null || fail "one core gives other bytes than every core"
   echo "threads: $n frames identical on one core and on all"
+  # The denoiser too: few lens rays filtered, the same bytes on one core, and not the unfiltered frames.
+  few_rays=("$CINEPATH" render "$work/plan.json" --scene "$work/scene/scene.json" --every 40 --width-px 96 --spp 2)
+  "${few_rays[@]}" --denoise -o "$work/denoised"
+  taskset -c 0 "${few_rays[@]}" --denoise -o "$work/denoised_one_core"
+  diff -r "$work/denoised" "$work/denoised_one_core" > /dev/null || fail "--denoise: one core gives other bytes"
+  "${few_rays[@]}" -o "$work/noisy"
+  ! diff -r "$work/denoised" "$work/noisy" > /dev/null || fail "--denoise changed no frame"
+  echo "denoise: $n frames identical on one core and on all"
 fi
 
 # Memory at start-up: the textures stay 8-bit in memory, and no OpenImageIO is loaded. One small frame of the
