@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <functional>
+#include <limits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -44,37 +46,38 @@ void ForEachRow(int h, const std::function<void(int)>& row) {
 // One pass of the filter along x (axis 0) or y (axis 1): the kernel is separable in its space term, and
 // two passes of 2r + 1 taps cost what one of (2r + 1)^2 would cost 2r + 1 times over (the blur term makes
 // the pair an approximation of the two-dimensional kernel, as for separable bilateral filters).
+// `key`: each pixel's blur where it had lens rays, -inf elsewhere (such a neighbour's weight is then 0).
 std::vector<Eigen::Vector3f> FilterAlong(int axis, const std::vector<Eigen::Vector3f>& in, const DenoiseGuide& guide,
-                                         float blur_fraction) {
+                                         const std::vector<float>& key, float blur_fraction) {
   static const NegativeExp negative_exp;
   const int w = guide.width, h = guide.height;
+  const ptrdiff_t stride = axis == 0 ? 1 : w;
   std::vector<Eigen::Vector3f> out = in;
   ForEachRow(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const size_t p = size_t(y) * w + x;
-      const float blur_p = guide.blur_px[p];
-      if (!guide.noisy[p] || !(blur_p >= kSharpPx)) continue;
+      const float blur_p = std::min(key[p], 1e4f);
+      if (!(blur_p >= kSharpPx)) continue;  // sharp, or no lens rays
       const float rays = std::max<float>(1, guide.rays[p]);
       // Narrower than a third of a pixel, the kernel would give the neighbours under e^-4.5 of the weight.
-      const float sigma =
-          std::min(blur_fraction * std::min(blur_p, 1e4f) / 2 / std::sqrt(rays), kDenoiseMaxRadiusPx / 2.0f);
+      const float sigma = std::min(blur_fraction * blur_p / 2 / std::sqrt(rays), kDenoiseMaxRadiusPx / 2.0f);
       if (sigma < 1.0f / 3) continue;
       const int radius = std::min(kDenoiseMaxRadiusPx, int(std::ceil(2 * sigma)));
+      const int at = axis == 0 ? x : y, size = axis == 0 ? w : h;
+      const int d_first = std::max(-radius, -at), d_last = std::min(radius, size - 1 - at);
       const float inv_two_sigma2 = 1 / (2 * sigma * sigma);
       const float blur_scale = kDenoiseBlurTolerance * blur_p + 0.5f;
       const float inv_two_blur_scale2 = 1 / (2 * blur_scale * blur_scale);
+      const float* key_q = key.data() + ptrdiff_t(p) + d_first * stride;
+      const Eigen::Vector3f* in_q = in.data() + ptrdiff_t(p) + d_first * stride;
       Eigen::Vector3f sum = Eigen::Vector3f::Zero();
       float weight = 0;
-      for (int d = -radius; d <= radius; ++d) {
-        const int qx = axis == 0 ? x + d : x, qy = axis == 0 ? y : y + d;
-        if (qx < 0 || qx >= w || qy < 0 || qy >= h) continue;
-        const size_t q = size_t(qy) * w + qx;
-        if (!guide.noisy[q]) continue;
-        const float db = guide.blur_px[q] - blur_p;
+      for (int d = d_first; d <= d_last; ++d, key_q += stride, in_q += stride) {
+        const float db = *key_q - blur_p;
         const float exponent = float(d * d) * inv_two_sigma2 + db * db * inv_two_blur_scale2;
-        if (exponent > kNegligibleWeightExponent) continue;
+        if (!(exponent <= kNegligibleWeightExponent)) continue;
         const float wq = negative_exp(exponent);
-        sum += wq * in[q];
+        sum += wq * *in_q;
         weight += wq;
       }
       if (weight > 0) out[p] = sum / weight;
@@ -89,7 +92,9 @@ std::vector<Eigen::Vector3f> DenoiseBlurred(const std::vector<Eigen::Vector3f>& 
   const size_t n = size_t(guide.width) * size_t(guide.height);
   CINEPATH_CHECK(rgb_linear.size() == n && guide.blur_px.size() == n && guide.noisy.size() == n &&
                  guide.rays.size() == n);
-  return FilterAlong(1, FilterAlong(0, rgb_linear, guide, kDenoiseBlurFraction), guide, kDenoiseBlurFraction);
+  std::vector<float> key(n);
+  for (size_t p = 0; p < n; ++p) key[p] = guide.noisy[p] ? guide.blur_px[p] : -std::numeric_limits<float>::infinity();
+  return FilterAlong(1, FilterAlong(0, rgb_linear, guide, key, kDenoiseBlurFraction), guide, key, kDenoiseBlurFraction);
 }
 
 }  // namespace cinepath::preview
