@@ -122,6 +122,9 @@ class RenderCommand : public Command {
     if (!aov_.empty()) options_.aovs = ParseAovList(aov_);
     if (!contact_sheet_.empty()) options_.contact_sheet = contact_sheet_;
     if (!video_.empty()) options_.video = video_;
+    if (options_.denoise && options_.quality == Quality::kDraft) {
+      std::cerr << "cinepath render: warning: --denoise does nothing at --quality draft (it traces no lens rays)\n";
+    }
 
     std::optional<Progress> progress;
     RenderLog log;

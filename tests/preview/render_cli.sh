@@ -45,6 +45,10 @@ if command -v taskset > /dev/null; then
   ! diff -r "$work/denoised" "$work/noisy" > /dev/null || fail "--denoise changed no frame"
   echo "denoise: $n frames identical on one core and on all"
 fi
+# --denoise at draft, which traces no lens rays: a warning, not a silent no-op.
+"$CINEPATH" render "$work/plan.json" --scene "$work/scene/scene.json" --frames 0-0 --width-px 32 --quality draft \
+  --denoise -o "$work/draft_denoise" 2>&1 | grep -q "denoise does nothing at --quality draft" ||
+  fail "--denoise at draft says nothing"
 
 # Memory at start-up: the textures stay 8-bit in memory, and no OpenImageIO is loaded. One small frame of the
 # draft sample (a 2048² atlas) peaked at 234 MB when its texels were linear floats, 162-165 MB with 8-bit
