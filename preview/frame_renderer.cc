@@ -16,6 +16,9 @@ namespace {
 
 constexpr int kTile = 16;
 constexpr double kSharpPx = 0.5;  // under half a pixel of blur and motion: one ray
+// A frame in which no pixel's point moves this far across the shutter takes all its rays at the frame's
+// instant (eight to a packet): a twentieth of a pixel of streak is not to be seen.
+constexpr double kStillMotionPx = 0.05;
 constexpr double kEdgeDepthRatio = 0.02;
 constexpr int kMaxGatherRadiusPx = 48;  // draft: blur wider than 97 px is clipped
 
@@ -24,7 +27,8 @@ struct PrePass {
   std::vector<double> depth_m;
   std::vector<double> blur_px;  // the blur-circle diameter at the pixel centre's depth
   std::vector<double> need_px;  // max(blur, motion) at the pixel
-  std::vector<int> kind;        // -2 sky, -1 mesh, >= 0 subject
+  std::vector<double> motion_px;
+  std::vector<int> kind;  // -2 sky, -1 mesh, >= 0 subject
   std::vector<uint32_t> face;
 };
 
@@ -71,6 +75,7 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
   pass.depth_m.resize(n);
   pass.blur_px.resize(n);
   pass.need_px.resize(n);
+  pass.motion_px.resize(n);
   pass.kind.resize(n);
   pass.face.resize(n);
   const CameraPose pose = PoseAt(plan, t_mid);
@@ -106,6 +111,7 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
           pass.face[i] = hit.face;
           const double blur = pass.blur_px[i] = camera.BlurPx(pass.depth_m[i]);
           const double motion = moving ? MotionPx(camera, ends, hit, ray.direction_enu, ray.origin_enu_m) : 0;
+          pass.motion_px[i] = motion;
           pass.need_px[i] = std::max(blur, motion);
         }
       }
@@ -288,11 +294,29 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
     guide.blur_px = image.blur_px;
     guide.noisy.assign(image.rgb_linear.size(), 0);
   }
+  // Motion across the shutter, judged over the whole frame: a pixel that sees a still wall at the frame's
+  // instant may see a subject pass through it within the shutter.
+  const bool moving = motion && *std::max_element(pass.motion_px.begin(), pass.motion_px.end()) >= kStillMotionPx;
   const int max_samples = std::max(1, preset.max_samples);
   const CameraFrame frame_mid(PoseAt(plan, sample.time_s));
   const PreviewScene::Instant at_mid = scene.At(sample.time_s);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     PreviewScene::Instant at_ray;  // a ray's own instant across the shutter (storage kept between rays)
+    // The rays of the frame's instant go eight at a time as one packet, from one pixel or from several of
+    // the row (a pixel of one or two lens rays would otherwise send a packet of one or two); each pixel's
+    // rays are summed in their order. A row's packets depend on the row alone.
+    std::vector<Eigen::Vector3d> row_sum(static_cast<size_t>(w));
+    std::vector<int> row_rays(static_cast<size_t>(w));
+    Eigen::Vector3d origins[8], directions[8];
+    Eigen::Vector3f radiance[8];
+    int owner[8];
+    int queued = 0;
+    auto trace_queued = [&] {
+      if (queued == 0) return;
+      scene.Radiance8(origins, directions, queued, at_mid, radiance);
+      for (int j = 0; j < queued; ++j) row_sum[size_t(owner[j])] += radiance[j].cast<double>();
+      queued = 0;
+    };
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
@@ -301,42 +325,42 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
                                          : SamplesFor(need, edge[i] != 0, preset, max_samples);
         image.samples[i] = uint16_t(std::min(n, 65535));
         const bool lens = !preset.gather_blur && need >= kSharpPx;
+        row_sum[size_t(x)] = Eigen::Vector3d::Zero();
+        row_rays[size_t(x)] = 0;
         // One ray for a sharp pixel is the pinhole pass's; a blurred one still takes its ray through
         // the lens and the shutter (so `--spp 1` shows depth of field and motion, noisily).
         if (n == 1 && !lens) {
           image.rgb_linear[i] = pass.rgb[i];
           continue;
         }
+        row_rays[size_t(x)] = n;
+        if (denoise && lens) guide.noisy[i] = 1;
         const SampleSequence sequence(k, uint32_t(x), uint32_t(y));
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        const bool moves = motion && lens;
-        if (moves) {  // each ray at its own instant
+        if (moving && lens) {  // each ray at its own instant
           for (int s = 0; s < n; ++s) {
             const PixelSample ps = sequence.Get(uint32_t(s));
             const double t = t0 + ps.time * (t1 - t0);
             const Eigen::Vector2d disk = ConcentricDisk(ps.lens_u, ps.lens_v);
             scene.SetInstant(t, &at_ray, k);
             const CameraRay ray = camera.Ray(PoseAt(plan, t, k), x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
-            sum += scene.Radiance(ray.origin_enu_m, ray.direction_enu, at_ray).cast<double>();
+            row_sum[size_t(x)] += scene.Radiance(ray.origin_enu_m, ray.direction_enu, at_ray).cast<double>();
           }
-        } else {  // every ray at the frame's instant: eight at a time, as one packet, summed in the same order
-          Eigen::Vector3d origins[8], directions[8];
-          Eigen::Vector3f radiance[8];
-          for (int s0 = 0; s0 < n; s0 += 8) {
-            const int count = std::min(8, n - s0);
-            for (int j = 0; j < count; ++j) {
-              const PixelSample ps = lens ? sequence.Get(uint32_t(s0 + j)) : sequence.GetPixel(uint32_t(s0 + j));
-              const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
-              const CameraRay ray = camera.Ray(frame_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
-              origins[j] = ray.origin_enu_m;
-              directions[j] = ray.direction_enu;
-            }
-            scene.Radiance8(origins, directions, count, at_mid, radiance);
-            for (int j = 0; j < count; ++j) sum += radiance[j].cast<double>();
-          }
+          continue;
         }
-        image.rgb_linear[i] = (sum / n).cast<float>();
-        if (denoise && lens) guide.noisy[i] = 1;
+        for (int s = 0; s < n; ++s) {  // every ray at the frame's instant
+          const PixelSample ps = lens ? sequence.Get(uint32_t(s)) : sequence.GetPixel(uint32_t(s));
+          const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
+          const CameraRay ray = camera.Ray(frame_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
+          origins[queued] = ray.origin_enu_m;
+          directions[queued] = ray.direction_enu;
+          owner[queued] = x;
+          if (++queued == 8) trace_queued();
+        }
+      }
+      trace_queued();
+      for (int x = 0; x < w; ++x) {
+        if (row_rays[size_t(x)] == 0) continue;
+        image.rgb_linear[size_t(y) * w + x] = (row_sum[size_t(x)] / row_rays[size_t(x)]).cast<float>();
       }
     }
   });

@@ -281,6 +281,27 @@ TEST(FrameRenderer, AMotionStreakHasTheProjectedLengthOfSpeedTimesShutter) {
   std::printf("streak %.3f px, expected %.3f px\n", streak_px, expected_px);
 }
 
+// A shutter too short for anything to move a twentieth of a pixel: the rays all go at the frame's instant,
+// the same pixels as with motion blur off (each ray at its own instant, they would be other rays).
+TEST(FrameRenderer, AFrameWhereNothingMovesTracesEveryRayAtItsInstant) {
+  const Eigen::Vector3d camera(0, 0, 0);
+  Trajectory plan = StillCamera(camera, 100, 1.4, 3, 1e-6);
+  for (size_t k = 0; k < plan.samples.size(); ++k) plan.samples[k].position_enu_m.x() += 0.5 * double(k);
+  // Colours that change with every micrometre: a ray moved by the camera's motion within the shutter sees
+  // another colour.
+  scene::SceneMesh wall = Wall(camera, 20);
+  for (size_t v = 0; v < wall.colors_linear.size(); ++v) {
+    wall.colors_linear[v] = Eigen::Vector3f(0.1f + 0.1f * float(v), 0.9f - 0.1f * float(v), 0.3f + 0.05f * float(v));
+  }
+  FrameSettings settings = Settings(Quality::kFinal, 4);
+  const FrameImage short_shutter = Render(wall, plan, settings);
+  settings.preset.motion_blur = false;
+  const FrameImage no_motion_blur = Render(wall, plan, settings);
+  for (size_t i = 0; i < short_shutter.rgb_linear.size(); ++i) {
+    ASSERT_EQ(short_shutter.rgb_linear[i], no_motion_blur.rgb_linear[i]) << "pixel " << i;
+  }
+}
+
 TEST(FrameRenderer, PhysicalExposureDoublesWhenTheShutterDoubles) {
   const Eigen::Vector3d camera(0, 0, 0);
   const Eigen::Vector3f color(0.1f, 0.2f, 0.3f);
