@@ -25,10 +25,10 @@ constexpr int kMaxGatherRadiusPx = 48;  // draft: blur wider than 97 px is clipp
 struct PrePass {
   std::vector<Eigen::Vector3f> rgb;
   std::vector<double> depth_m;
-  std::vector<double> blur_px;  // the blur-circle diameter at the pixel centre's depth
-  std::vector<double> need_px;  // max(blur, motion) at the pixel
-  std::vector<double> motion_px;
-  std::vector<int> kind;  // -2 sky, -1 mesh, >= 0 subject
+  std::vector<double> blur_px;    // the blur-circle diameter at the pixel centre's depth
+  std::vector<double> need_px;    // max(blur, motion) at the pixel
+  std::vector<double> motion_px;  // how far the point at the pixel centre moves in the image across the shutter
+  std::vector<int> kind;          // -2 sky, -1 mesh, >= 0 subject
   std::vector<uint32_t> face;
 };
 
