@@ -184,6 +184,52 @@ std::vector<double> DilatedTileNeed(const PrePass& pass, int w, int h) {
   return dilated;
 }
 
+// One row's rays of the frame's instant, eight at a time as one packet, from one pixel or from several
+// of the row (a pixel of one or two lens rays would otherwise send a packet of one or two); each pixel's
+// rays are summed in their order. A row's packets depend on the row alone.
+class RowPackets {
+ public:
+  RowPackets(const PreviewScene& scene, const PreviewScene::Instant& at, int width)
+      : scene_(scene), at_(at), sum_(static_cast<size_t>(width)), rays_(static_cast<size_t>(width)) {}
+  // Pixel x starts over with `rays` rays to come (0: not traced here).
+  void Start(int x, int rays) {
+    sum_[size_t(x)] = Eigen::Vector3d::Zero();
+    rays_[size_t(x)] = rays;
+  }
+  void Queue(const CameraRay& ray, int x) {
+    origins_[queued_] = ray.origin_enu_m;
+    directions_[queued_] = ray.direction_enu;
+    owner_[queued_] = x;
+    if (++queued_ == 8) Trace();
+  }
+  // A ray traced elsewhere (at its own instant), added to pixel x.
+  void Add(int x, const Eigen::Vector3f& radiance) { sum_[size_t(x)] += radiance.cast<double>(); }
+  // Traces what is queued and writes the mean of each started pixel into `row` (the image's row).
+  void Finish(Eigen::Vector3f* row) {
+    Trace();
+    for (size_t x = 0; x < sum_.size(); ++x) {
+      if (rays_[x] > 0) row[x] = (sum_[x] / rays_[x]).cast<float>();
+    }
+  }
+
+ private:
+  void Trace() {
+    if (queued_ == 0) return;
+    scene_.Radiance8(origins_, directions_, queued_, at_, radiance_);
+    for (int j = 0; j < queued_; ++j) Add(owner_[j], radiance_[j]);
+    queued_ = 0;
+  }
+
+  const PreviewScene& scene_;
+  const PreviewScene::Instant& at_;
+  std::vector<Eigen::Vector3d> sum_;
+  std::vector<int> rays_;
+  Eigen::Vector3d origins_[8], directions_[8];
+  Eigen::Vector3f radiance_[8];
+  int owner_[8] = {};
+  int queued_ = 0;
+};
+
 int SamplesFor(double need_px, bool edge, const SamplingPreset& preset, int max_samples) {
   const int floor = std::min(preset.min_samples, max_samples);
   if (need_px < kSharpPx) return std::max(floor, std::min(edge ? preset.edge_samples : 1, max_samples));
@@ -302,21 +348,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   const PreviewScene::Instant at_mid = scene.At(sample.time_s);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     PreviewScene::Instant at_ray;  // a ray's own instant across the shutter (storage kept between rays)
-    // The rays of the frame's instant go eight at a time as one packet, from one pixel or from several of
-    // the row (a pixel of one or two lens rays would otherwise send a packet of one or two); each pixel's
-    // rays are summed in their order. A row's packets depend on the row alone.
-    std::vector<Eigen::Vector3d> row_sum(static_cast<size_t>(w));
-    std::vector<int> row_rays(static_cast<size_t>(w));
-    Eigen::Vector3d origins[8], directions[8];
-    Eigen::Vector3f radiance[8];
-    int owner[8];
-    int queued = 0;
-    auto trace_queued = [&] {
-      if (queued == 0) return;
-      scene.Radiance8(origins, directions, queued, at_mid, radiance);
-      for (int j = 0; j < queued; ++j) row_sum[size_t(owner[j])] += radiance[j].cast<double>();
-      queued = 0;
-    };
+    RowPackets packets(scene, at_mid, w);
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
@@ -325,15 +357,14 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
                                          : SamplesFor(need, edge[i] != 0, preset, max_samples);
         image.samples[i] = uint16_t(std::min(n, 65535));
         const bool lens = !preset.gather_blur && need >= kSharpPx;
-        row_sum[size_t(x)] = Eigen::Vector3d::Zero();
-        row_rays[size_t(x)] = 0;
         // One ray for a sharp pixel is the pinhole pass's; a blurred one still takes its ray through
         // the lens and the shutter (so `--spp 1` shows depth of field and motion, noisily).
         if (n == 1 && !lens) {
           image.rgb_linear[i] = pass.rgb[i];
+          packets.Start(x, 0);
           continue;
         }
-        row_rays[size_t(x)] = n;
+        packets.Start(x, n);
         if (denoise && lens) guide.noisy[i] = 1;
         const SampleSequence sequence(k, uint32_t(x), uint32_t(y));
         if (moving && lens) {  // each ray at its own instant
@@ -343,7 +374,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
             const Eigen::Vector2d disk = ConcentricDisk(ps.lens_u, ps.lens_v);
             scene.SetInstant(t, &at_ray, k);
             const CameraRay ray = camera.Ray(PoseAt(plan, t, k), x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
-            row_sum[size_t(x)] += scene.Radiance(ray.origin_enu_m, ray.direction_enu, at_ray).cast<double>();
+            packets.Add(x, scene.Radiance(ray.origin_enu_m, ray.direction_enu, at_ray));
           }
           continue;
         }
@@ -351,17 +382,10 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
           const PixelSample ps = lens ? sequence.Get(uint32_t(s)) : sequence.GetPixel(uint32_t(s));
           const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
           const CameraRay ray = camera.Ray(frame_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
-          origins[queued] = ray.origin_enu_m;
-          directions[queued] = ray.direction_enu;
-          owner[queued] = x;
-          if (++queued == 8) trace_queued();
+          packets.Queue(ray, x);
         }
       }
-      trace_queued();
-      for (int x = 0; x < w; ++x) {
-        if (row_rays[size_t(x)] == 0) continue;
-        image.rgb_linear[size_t(y) * w + x] = (row_sum[size_t(x)] / row_rays[size_t(x)]).cast<float>();
-      }
+      packets.Finish(image.rgb_linear.data() + size_t(y) * w);
     }
   });
   if (denoise) {
