@@ -8,7 +8,8 @@
 # its own converged frames (REF rays per pixel: cinepath `--spp REF --min-spp REF`, Cycles REF samples);
 # PSNR on sRGB-encoded float images (idiff). Timed:
 #   cinepath  the whole process for the 30 frames (`--quality final --spp N`: start-up, mesh, BVH, render,
-#             EXR writing), wall and user + sys CPU (/usr/bin/time);
+#             EXR writing: half floats, the default; the converged frames in float), wall and user + sys CPU
+#             (/usr/bin/time);
 #   Cycles    render time only, with persistent data (the sum of its 30 `render_seconds`: scene sync and
 #             BVH once, then sampling): Blender's start-up and the glTF import not counted.
 # Then cinepath with its denoiser (DENOISE_SPPS, default "1 2": `--quality final --spp N --denoise`) and its
@@ -81,7 +82,7 @@ psnrs() {  # psnrs DIR REF_DIR -> "min mean" PSNR over the 30 frames
   done | awk '{if (NR == 1 || $1 < m) m = $1; s += $1} END {printf "%.2f %.2f\n", m, s / NR}'
 }
 
-[[ -d $OUT/cp_ref ]] || cinepath_run cp_ref final --spp "$REF_SPP" --min-spp "$REF_SPP" > /dev/null
+[[ -d $OUT/cp_ref ]] || cinepath_run cp_ref final --spp "$REF_SPP" --min-spp "$REF_SPP" --exr-pixel float > /dev/null
 [[ -d $OUT/cy_ref ]] || cycles_run "$CYCLES_REF_SPP" cy_ref > /dev/null
 echo "| N rays/px | cinepath wall s | cinepath CPU s | cinepath PSNR min / mean dB | Cycles render s | Cycles PSNR min / mean dB | load |"
 echo "|---|---|---|---|---|---|---|"

@@ -90,7 +90,7 @@ cinepath_run() {  # cinepath_run TAG SPP NAME [ARGS...] -> "rays wall render"
   rm -rf "$OUT/$name"
   t0=$(now)
   "$CINEPATH" render "$OUT/plan_$tag.json" --scene "$OUT/scene/scene.json" --frames "$FRAME-$FRAME" \
-    --width-px "$WIDTH" --format exr --quality final --spp "$spp" "$@" -v --progress never -o "$OUT/$name" \
+    --width-px "$WIDTH" --format exr --exr-pixel float --quality final --spp "$spp" "$@" -v --progress never -o "$OUT/$name" \
     2> "$OUT/logs/$name.log"
   t1=$(now)
   # "render: frame 840 (1/1) 22.94 s, 256.0 rays/px"

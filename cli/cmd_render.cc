@@ -70,7 +70,9 @@ class RenderCommand : public Command {
         ->check(CLI::PositiveNumber);
     app.add_flag("--denoise", options_.denoise,
                  "Filter the noise of few lens rays, guided by each pixel's blur (standard and final; draft has none)");
-    app.add_option("--format", format_, "png | exr (linear float) | jpg")->check(CLI::IsMember({"png", "exr", "jpg"}));
+    app.add_option("--format", format_, "png | exr (linear) | jpg")->check(CLI::IsMember({"png", "exr", "jpg"}));
+    app.add_option("--exr-pixel", exr_pixel_, "half (default) | float: the values of an EXR frame (AOVs are float)")
+        ->check(CLI::IsMember({"half", "float"}));
     app.add_option("--width-px", width_px_, "Output width; the plan camera's aspect is kept")
         ->check(CLI::PositiveNumber);
     shading_option_ = app.add_option("--shading", shading_, "flat (vertex colours, unlit) | sun")
@@ -109,6 +111,7 @@ class RenderCommand : public Command {
     if (spp_) options_.max_samples = *spp_;
     if (min_spp_) options_.min_samples = *min_spp_;
     options_.format = ParseImageFormat(format_);
+    options_.exr_pixel = ParseExrPixel(exr_pixel_);
     options_.width_px = width_px_;
     options_.shading = ParseShading(shading_);
     if (!sun_.empty()) options_.sun = ParseSunDirection(sun_);
@@ -154,8 +157,8 @@ class RenderCommand : public Command {
 
  private:
   std::string plan_path_, scene_path_, output_dir_;
-  std::string frames_, shard_, quality_ = "standard", format_ = "png", shading_ = "flat", backdrop_ = "ground", sun_,
-                               exposure_ = "fixed";
+  std::string frames_, shard_, quality_ = "standard", format_ = "png", exr_pixel_ = "half", shading_ = "flat",
+                               backdrop_ = "ground", sun_, exposure_ = "fixed";
   std::string aov_, contact_sheet_, video_, sun_time_;
   CLI::Option* shading_option_ = nullptr;
   bool shading_given_ = false;

@@ -21,6 +21,7 @@
 // jpeglib.h needs FILE and size_t declared first.
 #include <jpeglib.h>
 
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -469,19 +470,26 @@ void WriteSrgb8Atomic(const fs::path& path, const Srgb8Image& image) {
 }
 
 std::vector<uint8_t> EncodeExr(int width, int height, const std::vector<std::string>& channels,
-                               const std::vector<float>& values) {
+                               const std::vector<float>& values, ExrPixel pixel) {
   const size_t nc = channels.size();
   if (values.size() != size_t(width) * height * nc) throw RuntimeError("EXR: pixel values do not match the size");
   Imf::Header header(width, height);  // windows (0, 0)-(w-1, h-1), increasing Y, pixel aspect 1
   header.compression() = Imf::ZIP_COMPRESSION;
   header.insert("software", Imf::StringAttribute("cinepath render"));
   Imf::FrameBuffer frame;
-  const size_t x_stride = nc * sizeof(float), y_stride = x_stride * size_t(width);
+  // Half values rounded to nearest even by Imath, here, so the file's bytes do not depend on OpenEXR's
+  // conversion path.
+  std::vector<Imath::half> halves;
+  if (pixel == ExrPixel::kHalf) halves.assign(values.begin(), values.end());
+  const Imf::PixelType type = pixel == ExrPixel::kHalf ? Imf::HALF : Imf::FLOAT;
+  const size_t value_bytes = pixel == ExrPixel::kHalf ? sizeof(Imath::half) : sizeof(float);
+  const size_t x_stride = nc * value_bytes, y_stride = x_stride * size_t(width);
   for (size_t c = 0; c < nc; ++c) {  // OpenEXR stores the channels in name order
-    header.channels().insert(channels[c], Imf::Channel(Imf::FLOAT));
+    header.channels().insert(channels[c], Imf::Channel(type));
     // Slice wants a char*, but OutputFile only reads through it.
-    char* base = reinterpret_cast<char*>(const_cast<float*>(values.data() + c));
-    frame.insert(channels[c], Imf::Slice(Imf::FLOAT, base, x_stride, y_stride));
+    char* base = pixel == ExrPixel::kHalf ? reinterpret_cast<char*>(halves.data() + c)
+                                          : reinterpret_cast<char*>(const_cast<float*>(values.data() + c));
+    frame.insert(channels[c], Imf::Slice(type, base, x_stride, y_stride));
   }
   ExrMemoryStream stream;
   {
@@ -494,9 +502,9 @@ std::vector<uint8_t> EncodeExr(int width, int height, const std::vector<std::str
 }
 
 void WriteExrAtomic(const fs::path& path, int width, int height, const std::vector<std::string>& channels,
-                    const std::vector<float>& values) {
+                    const std::vector<float>& values, ExrPixel pixel) {
   WriteFileAtomicWith(path, [&](FILE* file) {
-    const std::vector<uint8_t> bytes = EncodeExr(width, height, channels, values);
+    const std::vector<uint8_t> bytes = EncodeExr(width, height, channels, values, pixel);
     if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size()) throw RuntimeError(std::strerror(errno));
   });
 }

@@ -1,6 +1,6 @@
 // Frames and sheets on disk: PNG (its chunks written here, zlib; libpng decodes) and JPEG (libjpeg) hold
-// sRGB-encoded 8-bit colour (encoded here, by the sRGB transfer function, rounded), EXR linear 32-bit
-// float (the OpenEXR library, ZIP-compressed).
+// sRGB-encoded 8-bit colour (encoded here, by the sRGB transfer function, rounded), EXR linear half or
+// 32-bit float (the OpenEXR library, ZIP-compressed).
 // No OpenImageIO: its Debian build brings ~260 shared libraries whose loading took half a second of every
 // render's start. Every file is written to a temporary name beside its target and renamed once complete,
 // so a failed write leaves no partial file.
@@ -88,12 +88,12 @@ int JpegSecondBandStart(int height, int first_done);
 void WriteSrgb8Atomic(const std::filesystem::path& path, const Srgb8Image& image);
 // EXR (ZIP compression) from linear float channels, interleaved; channel names as given ("R,G,B", "Z").
 void WriteExrAtomic(const std::filesystem::path& path, int width, int height, const std::vector<std::string>& channels,
-                    const std::vector<float>& values);
+                    const std::vector<float>& values, ExrPixel pixel = ExrPixel::kFloat);
 
-// The bytes of that EXR file (OpenEXR's OutputFile without worker threads: single-part scanline, ZIP, FLOAT
-// channels stored in name order; the same bytes for the same input).
+// The bytes of that EXR file (OpenEXR's OutputFile without worker threads: single-part scanline, ZIP,
+// channels stored in name order, as `pixel` says; the same bytes for the same input).
 std::vector<uint8_t> EncodeExr(int width, int height, const std::vector<std::string>& channels,
-                               const std::vector<float>& values);
+                               const std::vector<float>& values, ExrPixel pixel = ExrPixel::kFloat);
 
 // RuntimeError when the labels' font is missing (checked before a run writes anything).
 void RequireLabelFont();

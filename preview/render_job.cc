@@ -353,7 +353,7 @@ void RenderFlightFrames(const PreviewScene& scene, const Trajectory& plan,
           for (size_t i = 0; i < frame->rgb_linear.size(); ++i) {
             for (int c = 0; c < 3; ++c) values[3 * i + c] = frame->rgb_linear[i][c];
           }
-          WriteExrAtomic(path, width, height, {"R", "G", "B"}, values);
+          WriteExrAtomic(path, width, height, {"R", "G", "B"}, values, options.exr_pixel);
         } else {
           WriteSrgb8Atomic(path, encoded);
         }

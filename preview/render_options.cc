@@ -41,6 +41,12 @@ ImageFormat ParseImageFormat(const std::string& text) {
   throw InputError("--format: expected png, exr or jpg, got '" + text + "'");
 }
 
+ExrPixel ParseExrPixel(const std::string& text) {
+  if (text == "half") return ExrPixel::kHalf;
+  if (text == "float") return ExrPixel::kFloat;
+  throw InputError("--exr-pixel: expected half or float, got '" + text + "'");
+}
+
 Shading ParseShading(const std::string& text) {
   if (text == "flat") return Shading::kFlat;
   if (text == "sun") return Shading::kSun;

@@ -36,6 +36,7 @@ namespace {
 struct ExrRead {
   std::vector<std::string> stored_channels;
   Imf::Compression compression = Imf::NO_COMPRESSION;
+  std::vector<Imf::PixelType> types;  // each stored channel's
   int width = 0, height = 0;
   std::vector<float> values;
 };
@@ -45,7 +46,7 @@ ExrRead ReadExr(const std::filesystem::path& path, const std::vector<std::string
   ExrRead r;
   const Imf::Header& header = file.header();
   for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
-    EXPECT_EQ(it.channel().type, Imf::FLOAT) << it.name();
+    r.types.push_back(it.channel().type);
     r.stored_channels.push_back(it.name());
   }
   r.compression = header.compression();
@@ -108,11 +109,45 @@ TEST(ExrWriter, OpenExrReadsEveryValueBackBitForBit) {
   EXPECT_EQ(read.width, w);
   EXPECT_EQ(read.height, h);
   EXPECT_EQ(read.stored_channels, (std::vector<std::string>{"B", "G", "R"}));  // OpenEXR's name order
+  EXPECT_EQ(read.types, std::vector<Imf::PixelType>(3, Imf::FLOAT));
   ExpectBitIdentical(values, read.values);
   // The same input, the same bytes: from the file and from two more encodings.
   const std::vector<uint8_t> bytes = EncodeExr(w, h, channels, values);
   EXPECT_EQ(bytes, FileBytes(path));
   EXPECT_EQ(bytes, EncodeExr(w, h, channels, values));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ExrWriter, HalfPixelsComeBackRoundedToElevenSignificantBits) {
+  const int w = 37, h = 41;
+  const std::vector<std::string> channels{"R", "G", "B"};
+  std::vector<float> values(size_t(w) * h * 3);
+  uint32_t state = 777;
+  for (float& v : values) {  // linear radiance over eight decades, both signs
+    state = state * 1664525u + 1013904223u;
+    v = std::pow(10.0f, float(state >> 8) / float(1 << 24) * 8 - 4) * ((state & 1) ? 1.0f : -1.0f);
+  }
+  values[0] = 0.0f;
+  values[1] = 65504.0f;  // the largest finite half
+  values[2] = 1.0f / 3;
+  const auto dir = TestDir("half");
+  WriteExrAtomic(dir / "frame.exr", w, h, channels, values, ExrPixel::kHalf);
+  const ExrRead read = ReadExr(dir / "frame.exr", channels);
+  EXPECT_EQ(read.types, std::vector<Imf::PixelType>(3, Imf::HALF));
+  EXPECT_EQ(read.compression, Imf::ZIP_COMPRESSION);
+  ASSERT_EQ(read.values.size(), values.size());
+  EXPECT_EQ(read.values[0], 0.0f);
+  EXPECT_EQ(read.values[1], 65504.0f);
+  EXPECT_EQ(read.values[2], 0.333251953125f);  // 1/3 to the nearest half: 1365 / 4096
+  for (size_t i = 0; i < values.size(); ++i) {
+    // Normal halves (|v| >= 2^-14) keep a relative error of at most 2^-11; smaller ones an absolute 2^-25.
+    const float bound = std::max(std::abs(values[i]) * 0x1p-11f, 0x1p-25f);
+    ASSERT_LE(std::abs(read.values[i] - values[i]), bound) << "value " << i << ": " << values[i];
+  }
+  // About half of float's bytes (this noise compresses in neither), and the same bytes every time.
+  const std::vector<uint8_t> half_bytes = EncodeExr(w, h, channels, values, ExrPixel::kHalf);
+  EXPECT_EQ(half_bytes, FileBytes(dir / "frame.exr"));
+  EXPECT_LT(double(half_bytes.size()), 0.55 * double(EncodeExr(w, h, channels, values).size()));
   std::filesystem::remove_all(dir);
 }
 

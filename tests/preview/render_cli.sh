@@ -151,7 +151,22 @@ if command -v oiiotool > /dev/null; then
   mask_range=$(oiiotool --stats "$work/mask/frame_000090.mask.exr" |
     awk '/Stats Min/ {min=$3} /Stats Max/ {max=$3} END {print min, max}')
   [[ $mask_range == "0.000000 1.000000" ]] || fail "mask AOV spans '$mask_range', expected 0 (ground) to 1 (the subject)"
+  # EXR frames hold half floats unless --exr-pixel float asks for 32 bits; the AOVs are data, always float.
+  exr_type() { oiiotool --info "$1" | awk 'NR == 1 {print $(NF - 3), $(NF - 2), $(NF - 1)}'; }
+  [[ $(exr_type "$work/extras/frame_000040.exr") == "3 channel, half" ]] || fail "EXR frame: $(exr_type "$work/extras/frame_000040.exr")"
+  [[ $(exr_type "$work/extras/frame_000040.depth.exr") == "1 channel, float" ]] || fail "depth AOV: $(exr_type "$work/extras/frame_000040.depth.exr")"
+  "${render[@]}" --frames 40 --format exr --exr-pixel float -o "$work/exr_float"
+  [[ $(exr_type "$work/exr_float/frame_000040.exr") == "3 channel, float" ]] || fail "--exr-pixel float: $(exr_type "$work/exr_float/frame_000040.exr")"
+  # The same picture to half precision (values under 2: an absolute error under 2^-11).
+  idiff -fail 0.0005 "$work/extras/frame_000040.exr" "$work/exr_float/frame_000040.exr" > /dev/null ||
+    fail "the half and float EXR frames differ by more than half's rounding"
 fi
+set +e
+"${render[@]}" --frames 40 --format exr --exr-pixel double -o "$work/exr_double" 2> "$work/stderr"
+code=$?
+set -e
+[[ $code -eq 2 ]] || fail "--exr-pixel double: exit $code, expected 2"
+[[ ! -e $work/exr_double ]] || fail "--exr-pixel double wrote $work/exr_double"
 echo "extras: EXR frames, depth, blur and mask AOVs, contact sheet; EXR bytes the same on a second run"
 
 # The horizon: a camera at the bundled scene's eastern edge (the easternmost photo's place), looking east and
