@@ -39,12 +39,12 @@ double AxisDepth(const CameraPose& pose, const Eigen::Vector3d& axis, const Eige
 
 // The camera and the subjects at the shutter's ends, for MotionPx (the same for every pixel).
 struct ShutterEnds {
-  CameraPose pose0, pose1;
+  CameraFrame frame0, frame1;
   std::vector<Eigen::Vector3d> move0, move1;  // each subject's base at t0 (t1) minus at t_mid
 };
 
 ShutterEnds ShutterEndsOf(const Trajectory& plan, const SubjectProxies& subjects, double t_mid, double t0, double t1) {
-  ShutterEnds ends{PoseAt(plan, t0), PoseAt(plan, t1), {}, {}};
+  ShutterEnds ends{CameraFrame(PoseAt(plan, t0)), CameraFrame(PoseAt(plan, t1)), {}, {}};
   for (size_t i = 0; i < plan.subjects.size(); ++i) {
     ends.move0.push_back(subjects.BaseAt(i, t0) - subjects.BaseAt(i, t_mid));
     ends.move1.push_back(subjects.BaseAt(i, t1) - subjects.BaseAt(i, t_mid));
@@ -56,14 +56,14 @@ ShutterEnds ShutterEndsOf(const Trajectory& plan, const SubjectProxies& subjects
 double MotionPx(const ThinLensCamera& camera, const ShutterEnds& ends, const TraceHit& hit,
                 const Eigen::Vector3d& direction, const Eigen::Vector3d& origin) {
   Eigen::Vector3d point = std::isinf(hit.distance_m) ? origin + 1e7 * direction : hit.position_enu_m;
-  auto at = [&](const CameraPose& pose, const std::vector<Eigen::Vector3d>& move) {
+  auto at = [&](const CameraFrame& frame, const std::vector<Eigen::Vector3d>& move) {
     Eigen::Vector3d p = point;
     if (hit.subject >= 0) p += move[size_t(hit.subject)];
     double depth = 0;
-    const Eigen::Vector2d xy = camera.Project(pose, p, &depth);
+    const Eigen::Vector2d xy = camera.Project(frame, p, &depth);
     return depth > 0 ? xy : Eigen::Vector2d(1e9, 1e9);
   };
-  return std::min(1e6, (at(ends.pose1, ends.move1) - at(ends.pose0, ends.move0)).norm());
+  return std::min(1e6, (at(ends.frame1, ends.move1) - at(ends.frame0, ends.move0)).norm());
 }
 
 PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const ThinLensCamera& camera, double t_mid,
@@ -84,7 +84,7 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
   const SubjectProxies subjects(plan);
   const PreviewScene::Instant at_mid = scene.At(t_mid);
   const bool moving = motion_blur && t1 > t0;
-  const ShutterEnds ends = moving ? ShutterEndsOf(plan, subjects, t_mid, t0, t1) : ShutterEnds{};
+  const ShutterEnds ends = moving ? ShutterEndsOf(plan, subjects, t_mid, t0, t1) : ShutterEnds{frame, frame, {}, {}};
   // Eight pixels of a row at a time, traced as one packet.
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     Eigen::Vector3d origins[8], directions[8];

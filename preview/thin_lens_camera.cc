@@ -65,7 +65,15 @@ CameraRay ThinLensCamera::Ray(const CameraFrame& frame, double x_px, double y_px
 
 Eigen::Vector2d ThinLensCamera::Project(const CameraPose& pose, const Eigen::Vector3d& point_enu_m,
                                         double* depth_m) const {
-  const Eigen::Vector3d p = pose.world_from_camera.conjugate() * (point_enu_m - pose.position_enu_m);
+  return ImagePoint(pose.world_from_camera.conjugate() * (point_enu_m - pose.position_enu_m), depth_m);
+}
+
+Eigen::Vector2d ThinLensCamera::Project(const CameraFrame& frame, const Eigen::Vector3d& point_enu_m,
+                                        double* depth_m) const {
+  return ImagePoint(frame.world_from_camera.transpose() * (point_enu_m - frame.position_enu_m), depth_m);
+}
+
+Eigen::Vector2d ThinLensCamera::ImagePoint(const Eigen::Vector3d& p, double* depth_m) const {
   *depth_m = p.z();
   const double x_mm = p.x() / p.z() * focal_length_mm_;
   const double y_mm = p.y() / p.z() * focal_length_mm_;

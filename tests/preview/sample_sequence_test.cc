@@ -41,6 +41,28 @@ TEST(SampleSequence, OwenScrambleIsAPermutationOfDyadicIntervals) {
   }
 }
 
+// Sobol's second dimension, against its definition bit by bit (direction numbers v_1 = 2^31,
+// v_k = v_(k-1) xor v_(k-1) >> 1): its first points, every 16-bit index, and full 32-bit ones (the
+// shuffled indices the lens uses).
+TEST(SampleSequence, Sobol2MatchesItsDirectionNumbers) {
+  auto by_bits = [](uint32_t index) {
+    uint32_t result = 0;
+    for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1) {
+      if (index & 1) result ^= v;
+    }
+    return result * (1.0 / 4294967296.0);
+  };
+  const double first[] = {0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875};
+  for (uint32_t i = 0; i < 8; ++i) EXPECT_EQ(Sobol2(i), first[i]) << i;
+  for (uint32_t i = 0; i < (1u << 16); ++i) ASSERT_EQ(Sobol2(i), by_bits(i)) << i;
+  uint32_t state = 99;
+  for (int n = 0; n < 100000; ++n) {
+    state = state * 1664525u + 1013904223u;
+    ASSERT_EQ(Sobol2(state), by_bits(state)) << state;
+  }
+  EXPECT_EQ(Sobol2(0xffffffffu), by_bits(0xffffffffu));
+}
+
 // GetPixel is Get's pixel offsets, to the bit, with the lens and time at their centres.
 TEST(SampleSequence, GetPixelIsGetsPixelOffsets) {
   for (uint32_t x : {0u, 7u, 639u}) {
