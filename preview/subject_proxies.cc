@@ -51,14 +51,15 @@ std::optional<ProxyHit> SubjectProxies::Intersect(const Eigen::Vector3d& origin,
     const double c = o.x() * o.x() + o.y() * o.y() - radius * radius;
     if (a > 0) {
       const double disc = b * b - a * c;
-      if (disc >= 0) {
-        const double root = std::sqrt(disc);
-        for (double t : {(-b - root) / a, (-b + root) / a}) {
-          const Eigen::Vector3d p = o + t * direction;
-          if (p.z() >= 0 && p.z() <= height) {
-            consider(t, Eigen::Vector3d(p.x(), p.y(), 0).normalized());
-            break;
-          }
+      // The ray's line passes outside the circle seen from above: neither the side nor the top cap (a
+      // disk of the same circle) can be hit. Most rays of a frame end here.
+      if (disc < 0) continue;
+      const double root = std::sqrt(disc);
+      for (double t : {(-b - root) / a, (-b + root) / a}) {
+        const Eigen::Vector3d p = o + t * direction;
+        if (p.z() >= 0 && p.z() <= height) {
+          consider(t, Eigen::Vector3d(p.x(), p.y(), 0).normalized());
+          break;
         }
       }
     }
