@@ -18,7 +18,7 @@ enum class ImageFormat { kPng, kExr, kJpg };
 // How an EXR stores its values: 16-bit half float (the usual choice for a picture in compositing:
 // 11 significant bits, a relative rounding error under 2^-11, finite up to 65,504; half the bytes before
 // compression, and ZIP compresses it where a float's noisy low bits do not: a rendered 320 x 180 frame
-// takes 181 kB against 669 kB, and its ZIP half the time) or 32-bit float (data such as
+// takes 190 kB against 669 kB, and its ZIP half the time) or 32-bit float (data such as
 // depth, whose metres need more than 11 bits).
 enum class ExrPixel { kHalf, kFloat };
 enum class Exposure { kFixed, kPhysical };
