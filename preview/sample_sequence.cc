@@ -98,8 +98,7 @@ SampleSequence::SampleSequence(uint64_t frame, uint32_t x, uint32_t y) {
   uint64_t state = Mix(frame * 0x100000001b3ULL ^ (uint64_t(x) << 32 | y));
   for (double& shift : shift_) {
     state = Mix(state);
-    // 53 bits: a signed conversion holds them exactly, and is one instruction where an unsigned one is not.
-    shift = double(int64_t(state >> 11)) * (1.0 / 9007199254740992.0);
+    shift = (state >> 11) * (1.0 / 9007199254740992.0);
   }
   for (uint32_t& seed : lens_seeds_) {
     state = Mix(state);

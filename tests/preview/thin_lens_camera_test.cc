@@ -33,6 +33,29 @@ TEST(ThinLensCamera, ProjectInvertsThePinholeRayAndUsesTheSensorFit) {
   EXPECT_NEAR(up_deg, std::atan(24.89 * 2160 / 3840 / 2 / 35) * 180 / M_PI, 1e-9);
 }
 
+// Through a CameraFrame (the rotation as a matrix) a point lands where it does through the pose, for any
+// rotation and points in front of, beside and behind the camera.
+TEST(ThinLensCamera, ProjectThroughAFrameAgreesWithThePose) {
+  CameraSpec spec;
+  const ThinLensCamera camera(spec, 1920, 1080, 24, 4, 30);
+  const CameraPose pose{Eigen::Vector3d(120.5, -3400.25, 87),
+                        Eigen::Quaterniond(0.3, -0.5, 0.7, 0.2).normalized()};  // an arbitrary rotation
+  const CameraFrame frame(pose);
+  uint32_t state = 7;
+  auto uniform = [&] {
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) / double(1 << 24) * 2 - 1;
+  };
+  for (int n = 0; n < 1000; ++n) {
+    const Eigen::Vector3d point = pose.position_enu_m + 500 * Eigen::Vector3d(uniform(), uniform(), uniform());
+    double depth_pose = 0, depth_frame = 0;
+    const Eigen::Vector2d by_pose = camera.Project(pose, point, &depth_pose);
+    const Eigen::Vector2d by_frame = camera.Project(frame, point, &depth_frame);
+    ASSERT_NEAR(depth_frame, depth_pose, 1e-9) << n;
+    if (std::abs(depth_pose) > 1) ASSERT_LT((by_frame - by_pose).norm(), 1e-6) << n;
+  }
+}
+
 TEST(ThinLensCamera, LensRaysMeetOnThePlaneOfFocus) {
   CameraSpec spec;
   const ThinLensCamera camera(spec, 640, 360, 85, 1.4, 12);
