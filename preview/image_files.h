@@ -1,4 +1,4 @@
-// Frames and sheets on disk: PNG (its chunks written here, zlib; libpng decodes) and JPEG (libjpeg) hold
+// Frames and sheets on disk: PNG (its chunks written here, libdeflate; libpng decodes) and JPEG (libjpeg) hold
 // sRGB-encoded 8-bit colour (encoded here, by the sRGB transfer function, rounded), EXR linear half or
 // 32-bit float (the OpenEXR library, ZIP-compressed).
 // No OpenImageIO: its Debian build brings ~260 shared libraries whose loading took half a second of every
@@ -83,7 +83,7 @@ Srgb8Image DecodeJpegShared(const std::vector<uint8_t>& encoded, const std::stri
 // left is too little to share.
 int JpegSecondBandStart(int height, int first_done);
 
-// PNG (zlib level 1, the Sub filter, deflated in two bands of rows at once: the same bytes on any thread
+// PNG (the Sub filter, one zlib stream deflated by libdeflate at level 1: the same bytes on any thread
 // count) or JPEG (quality 95) from 8-bit sRGB; RuntimeError naming the file when it cannot be written.
 void WriteSrgb8Atomic(const std::filesystem::path& path, const Srgb8Image& image);
 // EXR (ZIP compression) from linear float channels, interleaved; channel names as given ("R,G,B", "Z").

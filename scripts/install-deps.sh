@@ -22,7 +22,7 @@ PACKAGES=(
   # libraries (docs/dependencies.md)
   libcgal-dev libopenmesh-dev libgeographiclib-dev libceres-dev libtinygltf-dev libdraco-dev
   libopenimageio-dev openimageio-tools libembree-dev libeigen3-dev nlohmann-json3-dev libsimdjson-dev libcli11-dev
-  libfmt-dev libtbb-dev libgtest-dev libbenchmark-dev libstb-dev libmeshoptimizer-dev zlib1g-dev
+  libfmt-dev libtbb-dev libgtest-dev libbenchmark-dev libstb-dev libmeshoptimizer-dev zlib1g-dev libdeflate-dev
   libpng-dev libjpeg62-turbo-dev libopenexr-dev libsqlite3-dev
   # data and tools the pipeline runs
   proj-data colmap fonts-dejavu-core ffmpeg

@@ -323,9 +323,9 @@ TEST(JpegDecode, BrokenBytesAreAnInputError) {
   EXPECT_THROW(DecodeSrgb8(std::vector<uint8_t>{1, 2, 3, 4}, "test"), InputError);
 }
 
-// The PNG writer (its own chunks, the zlib stream deflated in two bands of rows at once) read back by
-// libpng: the same size and bytes, for images of one band and of two; the same file bytes whether one
-// thread or several write it.
+// The PNG writer (its own chunks, the zlib stream deflated by libdeflate) read back by libpng: the same
+// size and bytes, for a small image and a tall one; the same file bytes whether one thread or several
+// write it.
 TEST(PngWriter, LibpngReadsBackEveryByteAndTheFileIsTheSameOnOneThread) {
   const auto dir = TestDir("png");
   for (const auto& [width, height] : {std::pair{7, 5}, std::pair{301, 777}}) {
