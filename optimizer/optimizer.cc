@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -898,6 +899,9 @@ void PlanOptimizer::SolveBandedStage(ceres::Problem* problem) {
   const BandedSolverSummary summary =
       SolveBanded(problem, knots_.front().data(), static_cast<int>(knots_.size()), fixed, o);
   solve_s_ += Seconds(start);
+  if (std::getenv("CINEPATH_CERES_TRACE"))
+    std::fprintf(stderr, "stage at %g of the limits' weight: %d blocks, %d iterations, %.2f ms, %s\n", stiffness_scale_,
+                 problem->NumResidualBlocks(), summary.iterations, 1e3 * Seconds(start), summary.message.c_str());
   iterations_ += summary.iterations;
   damping_ = summary.final_damping;
   termination_ = summary.message;
