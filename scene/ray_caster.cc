@@ -4,6 +4,8 @@
 #include <limits>
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 
@@ -24,6 +26,15 @@ namespace {
   const RTCError e = rtcGetDeviceError(device);
   throw RuntimeError(std::string("ray caster: ") + what + " (Embree error " + std::to_string(static_cast<int>(e)) +
                      ")");
+}
+
+// A face's (b - a) x (c - a), and its unit vector (UnitZ when it has none): what a hit on it reports.
+Eigen::Vector3d FaceNormal(const std::vector<Eigen::Vector3d>& vertices, const std::array<uint32_t, 3>& f) {
+  const Eigen::Vector3d a = vertices[f[0]], b = vertices[f[1]], c = vertices[f[2]];
+  return (b - a).cross(c - a);
+}
+Eigen::Vector3d UnitNormal(const Eigen::Vector3d& n) {
+  return n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
 }
 
 }  // namespace
@@ -64,6 +75,16 @@ RayCaster::RayCaster(const SceneMesh& mesh, BuildQuality quality) : embree_(std:
       if (faces_[f][k] >= vertices_enu_m_.size()) throw InputError("ray caster: a face refers to a missing vertex");
       indices[3 * f + k] = faces_[f][k];
     }
+  }
+  if (quality == BuildQuality::kHigh) {
+    face_normals_.resize(faces_.size());
+    face_unit_normals_.resize(faces_.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, faces_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t f = r.begin(); f != r.end(); ++f) {
+        face_normals_[f] = FaceNormal(vertices_enu_m_, faces_[f]);
+        face_unit_normals_[f] = UnitNormal(face_normals_[f]);
+      }
+    });
   }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(embree_->scene, geometry);
@@ -158,9 +179,9 @@ RayHit RayCaster::Refine(const Eigen::Vector3d& origin_enu_m, const Eigen::Vecto
                          float u, float v) const {
   RayHit hit;
   hit.face = face;
-  const auto& f = faces_[hit.face];
-  const Eigen::Vector3d a = vertices_enu_m_[f[0]], b = vertices_enu_m_[f[1]], c = vertices_enu_m_[f[2]];
-  const Eigen::Vector3d n = (b - a).cross(c - a);
+  const Eigen::Vector3d& a = vertices_enu_m_[faces_[hit.face][0]];
+  const bool kept = !face_normals_.empty();
+  const Eigen::Vector3d n = kept ? face_normals_[face] : FaceNormal(vertices_enu_m_, faces_[face]);
   const double denom = n.dot(d);
   double t = t_float;
   if (std::fabs(denom) > 1e-300) {
@@ -171,7 +192,7 @@ RayHit RayCaster::Refine(const Eigen::Vector3d& origin_enu_m, const Eigen::Vecto
   hit.position_enu_m = origin_enu_m + t * d;
   hit.u = u;
   hit.v = v;
-  hit.normal_enu = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
+  hit.normal_enu = kept ? face_unit_normals_[face] : UnitNormal(n);
   return hit;
 }
 
