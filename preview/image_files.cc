@@ -89,7 +89,7 @@ void AppendPngChunk(std::vector<uint8_t>* out, const char* type, const uint8_t* 
 // with the Sub filter (filter byte 1, each byte minus the one a pixel left), the whole as one zlib stream
 // deflated by libdeflate at level 1. On a 640 x 360 draft frame that took 5.8 ms of one core against 13.3
 // ms for zlib's level 1 (which the writer used before, in two bands of rows at once), for a file 2 % smaller
-// (docs/render.md, "The frame's PNG"). One stream on one thread: the same bytes on any thread count.
+// (docs/render.md, "Start-up: where the time goes"). One stream on one thread: the same bytes on any thread count.
 std::vector<uint8_t> EncodePng(const Srgb8Image& image) {
   const size_t row_bytes = size_t(image.width) * 3 + 1;
   std::vector<uint8_t> filtered(row_bytes * size_t(image.height));
