@@ -9,7 +9,9 @@
 
 #include "preview/denoiser.h"
 #include "preview/sample_sequence.h"
+#include "preview/subject_proxies.h"
 #include "preview/thin_lens_camera.h"
+#include "preview/uninitialized_allocator.h"
 
 namespace cinepath::preview {
 namespace {
@@ -22,14 +24,15 @@ constexpr double kStillMotionPx = 0.05;
 constexpr double kEdgeDepthRatio = 0.02;
 constexpr int kMaxGatherRadiusPx = 48;  // draft: blur wider than 97 px is clipped
 
+// Every element is written by the pass before it is read (so not zero-filled first).
 struct PrePass {
-  std::vector<Eigen::Vector3f> rgb;
-  std::vector<double> depth_m;
-  std::vector<double> blur_px;    // the blur-circle diameter at the pixel centre's depth
-  std::vector<double> need_px;    // max(blur, motion) at the pixel
-  std::vector<double> motion_px;  // how far the point at the pixel centre moves in the image across the shutter
-  std::vector<int> kind;          // -2 sky, -1 mesh, >= 0 subject
-  std::vector<uint32_t> face;
+  UninitializedVector<Eigen::Vector3f> rgb;
+  UninitializedVector<double> depth_m;
+  UninitializedVector<double> blur_px;    // the blur-circle diameter at the pixel centre's depth
+  UninitializedVector<double> need_px;    // max(blur, motion) at the pixel
+  UninitializedVector<double> motion_px;  // how far the point at the pixel centre moves in the image across the shutter
+  UninitializedVector<int> kind;          // -2 sky, -1 mesh, >= 0 subject
+  UninitializedVector<uint32_t> face;
 };
 
 // Depth along the optical axis (the camera's z axis in ENU, `axis`, worked out once per frame).
@@ -85,6 +88,8 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
   const PreviewScene::Instant at_mid = scene.At(t_mid);
   const bool moving = motion_blur && t1 > t0;
   const ShutterEnds ends = moving ? ShutterEndsOf(plan, subjects, t_mid, t0, t1) : ShutterEnds{frame, frame, {}, {}};
+  const SubjectsInImage seen = subjects.InImage(at_mid.subject_bases, camera, frame);
+  const PinholeRays rays(camera, frame);
   // Eight pixels of a row at a time, traced as one packet.
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     Eigen::Vector3d origins[8], directions[8];
@@ -93,12 +98,14 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x0 = 0; x0 < w; x0 += 8) {
         const int count = std::min(8, w - x0);
+        unsigned may_see_subject = 0;
         for (int j = 0; j < count; ++j) {
-          const CameraRay ray = camera.Ray(frame, x0 + j + 0.5, y + 0.5);
+          const CameraRay ray = rays.At(x0 + j, y);
           origins[j] = ray.origin_enu_m;
           directions[j] = ray.direction_enu;
+          if (seen.MaySee(x0 + j + 0.5, y + 0.5)) may_see_subject |= 1u << j;
         }
-        scene.Radiance8(origins, directions, count, at_mid, radiance, hits);
+        scene.Radiance8(origins, directions, count, at_mid, radiance, hits, may_see_subject);
         for (int j = 0; j < count; ++j) {
           const int x = x0 + j;
           const size_t i = size_t(y) * w + x;
@@ -146,10 +153,15 @@ std::vector<uint8_t> FindEdges(const PrePass& pass, int w, int h, float edge_col
   });
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
-      for (int x = 0; x < w; ++x) {
-        const size_t i = size_t(y) * w + x;
-        edge[i] = right[i] || (x > 0 && right[i - 1]) || below[i] || (y > 0 && below[i - w]);
-      }
+      // The pairs as bytes of 0 or 1, or'ed without a branch: the pixel's right and lower pairs, its left
+      // one (none at x = 0) and its upper one (none in the first row).
+      const size_t row = size_t(y) * w;
+      const uint8_t* r = right.data() + row;
+      const uint8_t* b = below.data() + row;
+      const uint8_t* up = y > 0 ? below.data() + row - w : b;
+      uint8_t* e = edge.data() + row;
+      if (w > 0) e[0] = r[0] | b[0] | up[0];
+      for (int x = 1; x < w; ++x) e[x] = r[x] | r[x - 1] | b[x] | up[x];
     }
   });
   return edge;
@@ -196,10 +208,12 @@ class RowPackets {
     sum_[size_t(x)] = Eigen::Vector3d::Zero();
     rays_[size_t(x)] = rays;
   }
-  void Queue(const CameraRay& ray, int x) {
+  // `may_see_subject` false: the ray is known to miss every subject (SubjectsInImage).
+  void Queue(const CameraRay& ray, int x, bool may_see_subject = true) {
     origins_[queued_] = ray.origin_enu_m;
     directions_[queued_] = ray.direction_enu;
     owner_[queued_] = x;
+    if (may_see_subject) may_see_subject_ |= 1u << queued_;
     if (++queued_ == 8) Trace();
   }
   // A ray traced elsewhere (at its own instant), added to pixel x.
@@ -215,9 +229,10 @@ class RowPackets {
  private:
   void Trace() {
     if (queued_ == 0) return;
-    scene_.Radiance8(origins_, directions_, queued_, at_, radiance_);
+    scene_.Radiance8(origins_, directions_, queued_, at_, radiance_, nullptr, may_see_subject_);
     for (int j = 0; j < queued_; ++j) Add(owner_[j], radiance_[j]);
     queued_ = 0;
+    may_see_subject_ = 0;
   }
 
   const PreviewScene& scene_;
@@ -228,6 +243,7 @@ class RowPackets {
   Eigen::Vector3f radiance_[8];
   int owner_[8] = {};
   int queued_ = 0;
+  unsigned may_see_subject_ = 0;
 };
 
 int SamplesFor(double need_px, bool edge, const SamplingPreset& preset, int max_samples) {
@@ -243,8 +259,8 @@ int SamplesFor(double need_px, bool edge, const SamplingPreset& preset, int max_
 // blur disk (weight 1 / disk area); a neighbour behind p only where p is itself blurred that far, so
 // a sharp foreground does not take in the background.
 std::vector<Eigen::Vector3f> GatherBlur(const std::vector<Eigen::Vector3f>& rgb, const PrePass& pass,
-                                        const std::vector<double>& blur_px, const std::vector<double>& tile_need, int w,
-                                        int h) {
+                                        const UninitializedVector<double>& blur_px,
+                                        const std::vector<double>& tile_need, int w, int h) {
   std::vector<Eigen::Vector3f> out(rgb.size());
   const int tw = (w + kTile - 1) / kTile;
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
@@ -346,6 +362,8 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   const int max_samples = std::max(1, preset.max_samples);
   const CameraFrame frame_mid(PoseAt(plan, sample.time_s));
   const PreviewScene::Instant at_mid = scene.At(sample.time_s);
+  // Where a pinhole ray of the frame's instant may meet a subject (a lens ray is tested against them all).
+  const SubjectsInImage seen = SubjectProxies(plan).InImage(at_mid.subject_bases, camera, frame_mid);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     PreviewScene::Instant at_ray;  // a ray's own instant across the shutter (storage kept between rays)
     RowPackets packets(scene, at_mid, w);
@@ -382,7 +400,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
           const PixelSample ps = lens ? sequence.Get(uint32_t(s)) : sequence.GetPixel(uint32_t(s));
           const Eigen::Vector2d disk = lens ? ConcentricDisk(ps.lens_u, ps.lens_v) : Eigen::Vector2d::Zero();
           const CameraRay ray = camera.Ray(frame_mid, x + ps.pixel_x, y + ps.pixel_y, disk.x(), disk.y());
-          packets.Queue(ray, x);
+          packets.Queue(ray, x, lens || seen.MaySee(x + ps.pixel_x, y + ps.pixel_y));
         }
       }
       packets.Finish(image.rgb_linear.data() + size_t(y) * w);

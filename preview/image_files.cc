@@ -318,8 +318,12 @@ Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width
   Srgb8Image image{width, height, ImageBytes(size_t(width) * height * 3)};
   const SrgbTable& table = SrgbTableOnce();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rgb_linear.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i) {
-      for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = LinearToSrgb8ByTable(table, rgb_linear[i][c]);
+    uint8_t* out = image.rgb.data() + 3 * r.begin();
+    for (size_t i = r.begin(); i < r.end(); ++i, out += 3) {
+      const Eigen::Vector3f& pixel = rgb_linear[i];
+      out[0] = LinearToSrgb8ByTable(table, pixel.x());
+      out[1] = LinearToSrgb8ByTable(table, pixel.y());
+      out[2] = LinearToSrgb8ByTable(table, pixel.z());
     }
   });
   return image;

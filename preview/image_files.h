@@ -18,30 +18,10 @@
 #include <Eigen/Core>
 
 #include "preview/render_options.h"
+#include "preview/uninitialized_allocator.h"
 
 namespace cinepath::preview {
 
-// std::allocator, except that resize() leaves the new elements uninitialised: image buffers are written
-// in full by their decoder or encoder, and zero-filling a 4096² atlas's 50 MB first (on one core, then
-// the decoders' own writes) was ~50 M instructions and every page fault on the loading thread.
-template <typename T>
-struct UninitializedAllocator : std::allocator<T> {
-  template <typename U>
-  struct rebind {
-    using other = UninitializedAllocator<U>;
-  };
-  UninitializedAllocator() = default;
-  template <typename U>
-  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
-  template <typename U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
 using ImageBytes = std::vector<uint8_t, UninitializedAllocator<uint8_t>>;
 
 // An 8-bit sRGB image, RGB interleaved, rows from the top.

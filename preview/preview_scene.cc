@@ -65,25 +65,26 @@ Eigen::Vector3f Texture::Sample(const Eigen::Vector2f& uv) const {
   const float fx = FloorOf(x), fy = FloorOf(y);
   const float wx = x - fx, wy = y - fy;
   const float* linear = kLinearFromSrgb8.data();
-  // Wrapped once per axis (a division each), not per texel: the neighbour is the next or the first.
+  // Wrapped once per axis (a division each, only off the texture), not per texel: the neighbour is the
+  // next or the first.
   auto wrap = [](long i, long n) { return i >= 0 && i < n ? i : ((i % n) + n) % n; };
   const long i0 = wrap(long(fx), width), j0 = wrap(long(fy), height);
-  const long i1 = i0 + 1 == width ? 0 : i0 + 1, j1 = j0 + 1 == height ? 0 : j0 + 1;
-  const uint8_t* texels = srgb.data();
-  const uint8_t* p00 = texels + (size_t(j0) * size_t(width) + size_t(i0)) * 3;
-  const uint8_t* p10 = texels + (size_t(j0) * size_t(width) + size_t(i1)) * 3;
-  const uint8_t* p01 = texels + (size_t(j1) * size_t(width) + size_t(i0)) * 3;
-  const uint8_t* p11 = texels + (size_t(j1) * size_t(width) + size_t(i1)) * 3;
+  const size_t step_x = i0 + 1 == width ? size_t(0) - size_t(i0) * 3 : 3;  // to the next texel, or back to the first
+  const size_t row = size_t(width) * 3;
+  const size_t step_y = j0 + 1 == height ? size_t(0) - size_t(j0) * row : row;
+  const uint8_t* p00 = srgb.data() + size_t(j0) * row + size_t(i0) * 3;
+  const uint8_t* p10 = p00 + step_x;
+  const uint8_t* p01 = p00 + step_y;
+  const uint8_t* p11 = p01 + step_x;
   // Per channel, in the order of the vector expression it replaces, (1 - wy) ((1 - wx) t00 + wx t10) +
-  // wy ((1 - wx) t01 + wx t11): the same floats.
+  // wy ((1 - wx) t01 + wx t11): the same floats. Written out channel by channel (no loop to count).
   const float ax = 1 - wx, ay = 1 - wy;
-  Eigen::Vector3f out;
-  for (int c = 0; c < 3; ++c) {
+  auto channel = [&](int c) {
     const float top = ax * linear[p00[c]] + wx * linear[p10[c]];
     const float bottom = ax * linear[p01[c]] + wx * linear[p11[c]];
-    out[c] = ay * top + wy * bottom;
-  }
-  return out;
+    return ay * top + wy * bottom;
+  };
+  return Eigen::Vector3f(channel(0), channel(1), channel(2));
 }
 
 namespace {
@@ -287,16 +288,19 @@ Eigen::Vector3f PreviewScene::Radiance(const Eigen::Vector3d& origin, const Eige
 }
 
 void PreviewScene::Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count,
-                             const Instant& at, Eigen::Vector3f* radiance, TraceHit* hits_out) const {
+                             const Instant& at, Eigen::Vector3f* radiance, TraceHit* hits_out,
+                             unsigned may_see_subject) const {
   std::optional<scene::RayHit> mesh_hits[8];
   caster_->Intersect8(origins, directions, count, mesh_hits);
   for (int i = 0; i < count; ++i) {
-    radiance[i] = Shade(origins[i], directions[i], at, mesh_hits[i], hits_out ? &hits_out[i] : nullptr);
+    radiance[i] = Shade(origins[i], directions[i], at, mesh_hits[i], hits_out ? &hits_out[i] : nullptr,
+                        (may_see_subject >> i) & 1u);
   }
 }
 
 Eigen::Vector3f PreviewScene::Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
-                                    const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out) const {
+                                    const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out,
+                                    bool may_see_subject) const {
   double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();
   // The ground past the edge: only where the mesh is missed (under the mesh it is hidden anyway).
   double ground_distance = std::numeric_limits<double>::infinity();
@@ -305,7 +309,8 @@ Eigen::Vector3f PreviewScene::Shade(const Eigen::Vector3d& origin, const Eigen::
     mesh_distance = ground_distance;
   }
   std::optional<ProxyHit> proxy;
-  if (!subjects_.empty()) proxy = subjects_.Intersect(origin, direction, at.subject_bases, mesh_distance);
+  if (may_see_subject && !subjects_.empty())
+    proxy = subjects_.Intersect(origin, direction, at.subject_bases, mesh_distance);
   if (!mesh_hit && !proxy && std::isfinite(ground_distance)) {
     const Eigen::Vector3d position = origin + ground_distance * direction;
     if (hit_out) *hit_out = TraceHit{ground_distance, position, -1, kGroundFace};
@@ -315,7 +320,7 @@ Eigen::Vector3f PreviewScene::Shade(const Eigen::Vector3d& origin, const Eigen::
     return color + haze * (Sky(Eigen::Vector3d(direction.x(), direction.y(), 0.0)) - color);
   }
   if (!mesh_hit && !proxy) {
-    if (hit_out) *hit_out = TraceHit{std::numeric_limits<double>::infinity(), {}, -1, 0};
+    if (hit_out) *hit_out = TraceHit{std::numeric_limits<double>::infinity(), Eigen::Vector3d::Zero(), -1, 0};
     return Sky(direction);
   }
   Eigen::Vector3f color;

@@ -123,9 +123,10 @@ class PreviewScene {
     return Radiance(origin, direction, At(time_s), hit_out);
   }
   // The same for `count` (1 to 8) rays at once, traced as one packet (the pinhole pass's rows): radiance[i]
-  // and hits_out[i] (when not null) are what Radiance gives ray i.
+  // and hits_out[i] (when not null) are what Radiance gives ray i. Bit i of `may_see_subject` clear: ray i
+  // is known to miss every subject (SubjectsInImage), and is not intersected with them.
   void Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count, const Instant& at,
-                 Eigen::Vector3f* radiance, TraceHit* hits_out = nullptr) const;
+                 Eigen::Vector3f* radiance, TraceHit* hits_out = nullptr, unsigned may_see_subject = 0xffu) const;
   Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
 
   const scene::SceneMesh& mesh() const { return mesh_; }
@@ -136,7 +137,8 @@ class PreviewScene {
   // What a ray sees, given the mesh's hit along it (or none): the closer of it and the subjects, the
   // ground past the edge, or the sky.
   Eigen::Vector3f Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
-                        const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out) const;
+                        const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out,
+                        bool may_see_subject = true) const;
   Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
   GroundBackdrop BorderGround(const scene::BorderRing& ring) const;
   // The sun's direction and the ground past the edge (from `ring` when given).

@@ -73,6 +73,46 @@ std::optional<ProxyHit> SubjectProxies::Intersect(const Eigen::Vector3d& origin,
   return best;
 }
 
+SubjectsInImage SubjectProxies::InImage(const std::vector<Eigen::Vector3d>& bases, const ThinLensCamera& camera,
+                                        const CameraFrame& frame) const {
+  // A pixel's worth of margin is far more than the rounding of a ray's direction (~1e-16 of it); two for
+  // the jitter of an edge pixel's rays within their pixel.
+  constexpr double kMarginPx = 2;
+  SubjectsInImage seen;
+  if (bases.size() != plan_->subjects.size()) return seen;
+  for (size_t i = 0; i < bases.size(); ++i) {
+    const double height = plan_->subjects[i].height_m;
+    const double radius = std::max(0.05, kProxyRadiusPerHeight * height);
+    // Each corner's image point and depth, and the four sides of the image (a margin wider) as planes
+    // through the camera's centre: x_px z / W >= -m z / W is the left one, and so on. A box wholly behind
+    // the camera or wholly outside one side (the box is convex) is not seen by any ray of the image.
+    const double w = camera.width_px(), h = camera.height_px();
+    Eigen::AlignedBox2d box;
+    int behind = 0, left = 0, right = 0, above = 0, below = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d p = bases[i] + Eigen::Vector3d(corner & 1 ? radius : -radius, corner & 2 ? radius : -radius,
+                                                           corner & 4 ? std::max(0.0, height) : std::min(0.0, height));
+      double z = 0;
+      const Eigen::Vector2d xy = camera.Project(frame, p, &z);
+      if (z == 0 || !std::isfinite(z) || !xy.allFinite()) return seen;  // on the camera's plane, or not a number
+      const double hx = xy.x() * z / w, hy = xy.y() * z / h;
+      behind += z <= 0;
+      left += hx < -kMarginPx * z / w;
+      right += hx > (w + kMarginPx) * z / w;
+      above += hy < -kMarginPx * z / h;
+      below += hy > (h + kMarginPx) * z / h;
+      box.extend(xy);
+    }
+    if (behind == 8 || left == 8 || right == 8 || above == 8 || below == 8) continue;
+    if (behind > 0) return seen;  // across the camera's plane and not outside a side: no bound
+    box.min().array() -= kMarginPx;
+    box.max().array() += kMarginPx;
+    seen.boxes_.push_back(box);
+  }
+  seen.everywhere_ = false;
+  return seen;
+}
+
 Eigen::Vector3f SubjectColor(size_t subject) {
   static const std::array<Eigen::Vector3f, 6> palette = {
       Eigen::Vector3f(0.90f, 0.30f, 0.02f), Eigen::Vector3f(0.80f, 0.05f, 0.60f), Eigen::Vector3f(0.02f, 0.65f, 0.80f),

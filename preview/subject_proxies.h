@@ -8,8 +8,10 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "core/trajectory.h"
+#include "preview/thin_lens_camera.h"
 
 namespace cinepath::preview {
 
@@ -20,6 +22,30 @@ struct ProxyHit {
 };
 
 inline constexpr double kProxyRadiusPerHeight = 0.14;
+
+// Where in one pinhole image the subjects can be seen: a rectangle of pixel coordinates per subject around
+// its proxy's bounding box's eight corners as the camera projects them, wider by a margin that covers the
+// rounding of the ray's direction; the whole image when a box reaches behind the camera. A pinhole ray
+// through a pixel point outside every rectangle misses every proxy, so it need not be intersected with
+// them (in a draft frame the subjects' tests were 7 % of the instructions).
+class SubjectsInImage {
+ public:
+  static SubjectsInImage Everywhere() { return SubjectsInImage(); }
+  // May a pinhole ray through the image point (x_px, y_px) hit a proxy?
+  bool MaySee(double x_px, double y_px) const {
+    if (everywhere_) return true;
+    for (const Eigen::AlignedBox2d& box : boxes_) {
+      if (box.contains(Eigen::Vector2d(x_px, y_px))) return true;
+    }
+    return false;
+  }
+
+ private:
+  friend class SubjectProxies;
+  SubjectsInImage() = default;
+  bool everywhere_ = true;
+  std::vector<Eigen::AlignedBox2d> boxes_;
+};
 
 class SubjectProxies {
  public:
@@ -37,6 +63,9 @@ class SubjectProxies {
   // The same, with the subjects standing on `bases` (from BasesAt).
   std::optional<ProxyHit> Intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                     const std::vector<Eigen::Vector3d>& bases, double max_distance_m) const;
+  // Where the proxies standing on `bases` can be seen in the pinhole image of `camera` at `frame`.
+  SubjectsInImage InImage(const std::vector<Eigen::Vector3d>& bases, const ThinLensCamera& camera,
+                          const CameraFrame& frame) const;
 
  private:
   const Trajectory* plan_;

@@ -25,8 +25,7 @@ ThinLensCamera::ThinLensCamera(const CameraSpec& camera, int width_px, int heigh
 
 void ThinLensCamera::CameraRayInCamera(double x_px, double y_px, double lens_u, double lens_v,
                                        Eigen::Vector3d* origin_cam, Eigen::Vector3d* direction_cam) const {
-  const Eigen::Vector3d pinhole((x_px / width_px_ - 0.5) * sensor_width_mm_ / focal_length_mm_,
-                                (y_px / height_px_ - 0.5) * image_height_mm_ / focal_length_mm_, 1.0);
+  const Eigen::Vector3d pinhole(SlopeX(x_px), SlopeY(y_px), 1.0);
   *origin_cam = Eigen::Vector3d::Zero();
   *direction_cam = pinhole;
   if (lens_u != 0 || lens_v != 0) {
@@ -61,6 +60,15 @@ CameraRay ThinLensCamera::Ray(const CameraFrame& frame, double x_px, double y_px
   Eigen::Vector3d origin_cam, direction_cam;
   CameraRayInCamera(x_px, y_px, lens_u, lens_v, &origin_cam, &direction_cam);
   return InWorld(frame.position_enu_m, frame.world_from_camera, origin_cam, direction_cam);
+}
+
+PinholeRays::PinholeRays(const ThinLensCamera& camera, const CameraFrame& frame)
+    : origin_enu_m_(frame.position_enu_m),
+      world_from_camera_(frame.world_from_camera),
+      slope_x_(size_t(std::max(0, camera.width_px()))),
+      slope_y_(size_t(std::max(0, camera.height_px()))) {
+  for (size_t x = 0; x < slope_x_.size(); ++x) slope_x_[x] = camera.SlopeX(double(x) + 0.5);
+  for (size_t y = 0; y < slope_y_.size(); ++y) slope_y_[y] = camera.SlopeY(double(y) + 0.5);
 }
 
 Eigen::Vector2d ThinLensCamera::Project(const CameraPose& pose, const Eigen::Vector3d& point_enu_m,

@@ -139,10 +139,15 @@ void RayCaster::Intersect8(const Eigen::Vector3d* origins_enu_m, const Eigen::Ve
   Eigen::Vector3d d[8];
   RTCRayHit8 packet;
   for (int i = 0; i < 8; ++i) {
-    const bool used = i < count && origins_enu_m[i].allFinite() && unit_directions[i].norm() > 0;
+    // Normalized again, as Intersect does, so the packet's rays are its rays to the bit (the length taken
+    // once: it was two square roots a ray).
+    bool used = false;
+    if (i < count && origins_enu_m[i].allFinite()) {
+      const double length = unit_directions[i].norm();
+      used = length > 0;
+      if (used) d[i] = unit_directions[i] / length;
+    }
     valid[i] = used ? -1 : 0;
-    // Normalized again, as Intersect does, so the packet's rays are its rays to the bit.
-    if (used) d[i] = unit_directions[i] / unit_directions[i].norm();
     const RTCRay ray =
         used ? MakeRay(origins_enu_m[i] - centre_enu_m_, d[i], 0.0, std::numeric_limits<double>::infinity())
              : MakeRay(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), 0.0, 1.0);

@@ -56,6 +56,33 @@ TEST(ThinLensCamera, ProjectThroughAFrameAgreesWithThePose) {
   }
 }
 
+// PinholeRays gives Ray()'s pinhole rays through the pixel centres to the bit, for any rotation, lens and
+// image size (the render's frames depend on it).
+TEST(PinholeRays, AreThePixelCentresPinholeRaysToTheBit) {
+  CameraSpec spec;
+  uint32_t state = 3;
+  auto uniform = [&] {
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) / double(1 << 24) * 2 - 1;
+  };
+  for (int trial = 0; trial < 20; ++trial) {
+    const int w = 40 + trial * 7, h = 30 + trial * 3;
+    const ThinLensCamera camera(spec, w, h, trial % 2 ? 4.5 : 1200, 2.8, 10);
+    const CameraPose pose{Eigen::Vector3d(uniform(), uniform(), uniform()) * 3000,
+                          Eigen::Quaterniond(uniform(), uniform(), uniform(), uniform()).normalized()};
+    const CameraFrame frame(pose);
+    const PinholeRays rays(camera, frame);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const CameraRay expected = camera.Ray(frame, x + 0.5, y + 0.5);
+        const CameraRay got = rays.At(x, y);
+        ASSERT_EQ(got.origin_enu_m, expected.origin_enu_m);
+        ASSERT_EQ(got.direction_enu, expected.direction_enu) << trial << " at " << x << ", " << y;
+      }
+    }
+  }
+}
+
 TEST(ThinLensCamera, LensRaysMeetOnThePlaneOfFocus) {
   CameraSpec spec;
   const ThinLensCamera camera(spec, 640, 360, 85, 1.4, 12);
