@@ -86,6 +86,14 @@ class ThinLensCamera {
   double f_number_;
   double focus_distance_m_;  // +inf = infinity
   double lens_radius_m_;
+  // BlurPx's terms that depend on the lens alone.
+  struct BlurTerms {
+    double focus_dioptre = 0;  // 1 / s
+    double f2_over_n = 0;      // f^2 / N (m^2)
+    double denominator = 1;    // 1 - f / s
+    double ray_traced = 1;     // (s - f) / s: the rays' convention (above); 1 at infinity
+    double pixels_per_mm = 0;
+  } blur_;
   // The ray's start (on the lens, z = 0) and direction in the camera frame.
   void CameraRayInCamera(double x_px, double y_px, double lens_u, double lens_v, Eigen::Vector3d* origin_cam,
                          Eigen::Vector3d* direction_cam) const;

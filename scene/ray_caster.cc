@@ -145,7 +145,8 @@ void RayCaster::Intersect8(const Eigen::Vector3d* origins_enu_m, const Eigen::Ve
     if (i < count && origins_enu_m[i].allFinite()) {
       const double length = unit_directions[i].norm();
       used = length > 0;
-      if (used) d[i] = unit_directions[i] / length;
+      // A unit direction (a camera's rays) is most often of length 1 exactly: dividing by it is a no-op.
+      if (used) d[i] = length == 1.0 ? unit_directions[i] : Eigen::Vector3d(unit_directions[i] / length);
     }
     valid[i] = used ? -1 : 0;
     const RTCRay ray =

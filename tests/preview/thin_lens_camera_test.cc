@@ -108,6 +108,27 @@ TEST(ThinLensCamera, BlurIsCoresBlurCircleTimesTheRayTracersFactor) {
   EXPECT_NEAR(at_infinity.BlurPx(100), 50.0 * 50 / 2 / 100000 * 1000 / spec.sensor_width_mm, 1e-9);
 }
 
+// BlurPx keeps the lens's terms from its constructor: the same bits as core's formula evaluated whole,
+// for 4-1200 mm lenses, focus near and at infinity, depths from the lens to 100 km.
+TEST(ThinLensCamera, BlurIsCoresFormulaToTheBit) {
+  CameraSpec spec;
+  for (const double focal_mm : {4.0, 24.0, 85.0, 1200.0}) {
+    for (const double f_number : {1.0, 2.8, 16.0}) {
+      for (const double focus_m : {1.3, 7.5, 250.0, std::numeric_limits<double>::infinity()}) {
+        const ThinLensCamera camera(spec, 640, 360, focal_mm, f_number, focus_m);
+        for (double depth_m = 1e-3; depth_m < 1e5; depth_m *= 1.37) {
+          double expected = 0;
+          if (depth_m > focal_mm / 1000) {
+            expected = BlurCircleDiameterM(focal_mm / 1000.0, f_number, 1.0 / focus_m, 1.0 / depth_m) * 1000.0 *
+                       (std::isinf(focus_m) ? 1.0 : (focus_m - focal_mm / 1000) / focus_m) * camera.pixels_per_mm();
+          }
+          ASSERT_EQ(camera.BlurPx(depth_m), expected) << focal_mm << " mm f/" << f_number << " at " << focus_m;
+        }
+      }
+    }
+  }
+}
+
 TEST(ThinLensCamera, ConcentricDiskStaysOnTheDiskAndCoversIt) {
   double max_r = 0;
   for (int i = 0; i <= 20; ++i) {
