@@ -88,7 +88,7 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
   const PreviewScene::Instant at_mid = scene.At(t_mid);
   const bool moving = motion_blur && t1 > t0;
   const ShutterEnds ends = moving ? ShutterEndsOf(plan, subjects, t_mid, t0, t1) : ShutterEnds{frame, frame, {}, {}};
-  const SubjectsInImage seen = subjects.InImage(at_mid.subject_bases, camera, frame);
+  const SubjectsInImage seen = scene.SubjectsSeen(at_mid, camera, frame);
   const PinholeRays rays(camera, frame);
   // Eight pixels of a row at a time, traced as one packet.
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
@@ -363,7 +363,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   const CameraFrame frame_mid(PoseAt(plan, sample.time_s));
   const PreviewScene::Instant at_mid = scene.At(sample.time_s);
   // Where a pinhole ray of the frame's instant may meet a subject (a lens ray is tested against them all).
-  const SubjectsInImage seen = SubjectProxies(plan).InImage(at_mid.subject_bases, camera, frame_mid);
+  const SubjectsInImage seen = scene.SubjectsSeen(at_mid, camera, frame_mid);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     PreviewScene::Instant at_ray;  // a ray's own instant across the shutter (storage kept between rays)
     RowPackets packets(scene, at_mid, w);

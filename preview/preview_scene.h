@@ -128,6 +128,11 @@ class PreviewScene {
   void Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count, const Instant& at,
                  Eigen::Vector3f* radiance, TraceHit* hits_out = nullptr, unsigned may_see_subject = 0xffu) const;
   Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
+  // Where a pinhole ray of `camera` at `frame` may meet one of the subjects Radiance draws, at instant `at`
+  // (for Radiance8's may_see_subject).
+  SubjectsInImage SubjectsSeen(const Instant& at, const ThinLensCamera& camera, const CameraFrame& frame) const {
+    return subjects_.InImage(at.subject_bases, camera, frame);
+  }
 
   const scene::SceneMesh& mesh() const { return mesh_; }
   const std::optional<GroundBackdrop>& ground() const { return ground_; }
