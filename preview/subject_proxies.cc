@@ -75,8 +75,7 @@ std::optional<ProxyHit> SubjectProxies::Intersect(const Eigen::Vector3d& origin,
 
 SubjectsInImage SubjectProxies::InImage(const std::vector<Eigen::Vector3d>& bases, const ThinLensCamera& camera,
                                         const CameraFrame& frame) const {
-  // A pixel's worth of margin is far more than the rounding of a ray's direction (~1e-16 of it); two for
-  // the jitter of an edge pixel's rays within their pixel.
+  // Far more than the rounding of a ray's direction (~1e-16 of it) and of the projection.
   constexpr double kMarginPx = 2;
   SubjectsInImage seen;
   if (bases.size() != plan_->subjects.size()) return seen;

@@ -25,7 +25,8 @@ inline constexpr double kProxyRadiusPerHeight = 0.14;
 
 // Where in one pinhole image the subjects can be seen: a rectangle of pixel coordinates per subject around
 // its proxy's bounding box's eight corners as the camera projects them, wider by a margin that covers the
-// rounding of the ray's direction; the whole image when a box reaches behind the camera. A pinhole ray
+// rounding of the ray's direction; none for a box wholly behind the camera or outside the image; the whole
+// image when a box stands across the camera's plane (and not outside the image). A pinhole ray
 // through a pixel point outside every rectangle misses every proxy, so it need not be intersected with
 // them (in a draft frame the subjects' tests were 7 % of the instructions).
 class SubjectsInImage {
