@@ -244,10 +244,15 @@ Eigen::Vector3f PreviewScene::Sky(const Eigen::Vector3d& direction) const {
 Eigen::Vector3f PreviewScene::SurfaceColor(const scene::RayHit& hit) const {
   const auto& f = mesh_.faces[hit.face];
   const float u = float(hit.u), v = float(hit.v), w = 1 - u - v;
+  // Written out per coordinate in the order the vector expressions w c0 + u c1 + v c2 sum (the same floats,
+  // fewer instructions than Eigen's 3-float packets).
+  auto blend3 = [w, u, v](const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c) {
+    return Eigen::Vector3f(w * a.x() + u * b.x() + v * c.x(), w * a.y() + u * b.y() + v * c.y(),
+                           w * a.z() + u * b.z() + v * c.z());
+  };
   Eigen::Vector3f color = kDefaultSurface;
-  if (mesh_.has_colors()) {
-    color = w * mesh_.colors_linear[f[0]] + u * mesh_.colors_linear[f[1]] + v * mesh_.colors_linear[f[2]];
-  }
+  if (mesh_.has_colors())
+    color = blend3(mesh_.colors_linear[f[0]], mesh_.colors_linear[f[1]], mesh_.colors_linear[f[2]]);
   if (!mesh_.face_material.empty()) {
     const int m = mesh_.face_material[hit.face];
     if (m >= 0 && size_t(m) < mesh_.materials.size()) {
@@ -255,7 +260,10 @@ Eigen::Vector3f PreviewScene::SurfaceColor(const scene::RayHit& hit) const {
       color = color.cwiseProduct(material.base_color_factor.head<3>());
       if (material.base_color_image >= 0 && size_t(material.base_color_image) < textures_.size() &&
           mesh_.has_texcoords()) {
-        const Eigen::Vector2f uv = w * mesh_.texcoords[f[0]] + u * mesh_.texcoords[f[1]] + v * mesh_.texcoords[f[2]];
+        const Eigen::Vector2f& t0 = mesh_.texcoords[f[0]];
+        const Eigen::Vector2f& t1 = mesh_.texcoords[f[1]];
+        const Eigen::Vector2f& t2 = mesh_.texcoords[f[2]];
+        const Eigen::Vector2f uv(w * t0.x() + u * t1.x() + v * t2.x(), w * t0.y() + u * t1.y() + v * t2.y());
         color = color.cwiseProduct(textures_[material.base_color_image].Sample(uv));
       }
     }
