@@ -51,10 +51,25 @@ double BlurCircleMm(double focal_length_mm, double f_number, double focus_distan
 //   blur-circle diameter c = (f^2 / N) |D - B| / (1 - f D)        focus at 1/D, point at 1/B
 //   depth of field: 1/near = D + K (1 - f D), 1/far = D - K (1 - f D), K = N c0 / f^2 (the limits of
 //   DepthOfFieldLimits, symmetric in dioptres about the focus); this returns K (1 - f D).
+// One lens focused at 1/D, for the blur circles of many points: its terms f^2 / N and 1 - f D worked out
+// once, the rest per point in the formula's own order (BlurCircleDiameterM is this, the same bits).
+template <typename T>
+struct FocusedLens {
+  FocusedLens(const T& focal_m, const T& f_number, const T& focus_dioptre)
+      : f2_over_n(focal_m * focal_m / f_number),
+        focus_dioptre(focus_dioptre),
+        denominator(T(1) - focal_m * focus_dioptre) {}
+  T BlurCircleDiameterM(const T& point_dioptre) const {
+    using std::abs;
+    return f2_over_n * abs(focus_dioptre - point_dioptre) / denominator;
+  }
+  T f2_over_n;
+  T focus_dioptre;
+  T denominator;
+};
 template <typename T>
 T BlurCircleDiameterM(const T& focal_m, const T& f_number, const T& focus_dioptre, const T& point_dioptre) {
-  using std::abs;
-  return focal_m * focal_m / f_number * abs(focus_dioptre - point_dioptre) / (T(1) - focal_m * focus_dioptre);
+  return FocusedLens<T>(focal_m, f_number, focus_dioptre).BlurCircleDiameterM(point_dioptre);
 }
 template <typename T>
 T DepthOfFieldHalfWidthDioptres(const T& focal_m, const T& f_number, const T& focus_dioptre, double coc_m) {

@@ -362,8 +362,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   const int max_samples = std::max(1, preset.max_samples);
   const CameraFrame frame_mid(PoseAt(plan, sample.time_s));
   const PreviewScene::Instant at_mid = scene.At(sample.time_s);
-  // Where a pinhole ray of the frame's instant may meet a subject (a lens ray is tested against them all).
-  const SubjectsInImage seen = scene.SubjectsSeen(at_mid, camera, frame_mid);
+  const SubjectsInImage seen = scene.SubjectsSeen(at_mid, camera, frame_mid);  // for the pinhole rays
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     PreviewScene::Instant at_ray;  // a ray's own instant across the shutter (storage kept between rays)
     RowPackets packets(scene, at_mid, w);

@@ -17,18 +17,12 @@ ThinLensCamera::ThinLensCamera(const CameraSpec& camera, int width_px, int heigh
       focal_length_mm_(focal_length_mm),
       f_number_(f_number),
       focus_distance_m_(focus_distance_m),
-      lens_radius_m_(focal_length_mm / f_number / 2 / 1000) {
+      lens_radius_m_(focal_length_mm / f_number / 2 / 1000),
+      lens_(focal_length_mm / 1000.0, f_number, 1.0 / focus_distance_m),
+      ray_traced_(std::isinf(focus_distance_m) ? 1.0 : (focus_distance_m - focal_length_mm / 1000) / focus_distance_m) {
   ValidateFocalLengthMm(focal_length_mm);
   ValidateFNumber(f_number);
   if (!std::isinf(focus_distance_m)) ValidateFocusDistanceM(focus_distance_m, focal_length_mm);
-  // BlurCircleDiameterM(f, N, 1 / s, 1 / z) is f f / N |1/s - 1/z| / (1 - f / s), evaluated left to right.
-  const double focal_m = focal_length_mm / 1000.0;
-  blur_.focus_dioptre = 1.0 / focus_distance_m;
-  blur_.f2_over_n = focal_m * focal_m / f_number;
-  blur_.denominator = 1.0 - focal_m * blur_.focus_dioptre;
-  blur_.ray_traced =
-      std::isinf(focus_distance_m) ? 1.0 : (focus_distance_m - focal_length_mm / 1000) / focus_distance_m;
-  blur_.pixels_per_mm = pixels_per_mm();
 }
 
 void ThinLensCamera::CameraRayInCamera(double x_px, double y_px, double lens_u, double lens_v,
@@ -98,11 +92,10 @@ Eigen::Vector2d ThinLensCamera::ImagePoint(const Eigen::Vector3d& p, double* dep
 
 double ThinLensCamera::BlurPx(double depth_m) const {
   if (!(depth_m > focal_length_mm_ / 1000)) return 0;
-  // BlurCircleDiameterM without its checks (the lens was checked once, in the constructor, and the depth
-  // above), its terms that depend on the lens alone worked out once (blur_), the rest in the same order:
-  // the same bits, with two divisions a pixel instead of seven.
-  const double c_mm = blur_.f2_over_n * std::abs(blur_.focus_dioptre - 1.0 / depth_m) / blur_.denominator * 1000.0;
-  return c_mm * blur_.ray_traced * blur_.pixels_per_mm;
+  // Core's blur circle of the lens (its terms worked out once, in the constructor; the lens was checked
+  // there and the depth above): the same bits as BlurCircleDiameterM, three divisions a pixel instead of seven.
+  const double c_mm = lens_.BlurCircleDiameterM(1.0 / depth_m) * 1000.0;
+  return c_mm * ray_traced_ * pixels_per_mm();
 }
 
 Eigen::Vector2d ConcentricDisk(double u1, double u2) {

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/optics.h"
 #include "core/trajectory.h"
 
 namespace cinepath::preview {
@@ -87,13 +88,8 @@ class ThinLensCamera {
   double focus_distance_m_;  // +inf = infinity
   double lens_radius_m_;
   // BlurPx's terms that depend on the lens alone.
-  struct BlurTerms {
-    double focus_dioptre = 0;  // 1 / s
-    double f2_over_n = 0;      // f^2 / N (m^2)
-    double denominator = 1;    // 1 - f / s
-    double ray_traced = 1;     // (s - f) / s: the rays' convention (above); 1 at infinity
-    double pixels_per_mm = 0;
-  } blur_;
+  FocusedLens<double> lens_;
+  double ray_traced_;  // (s - f) / s: the rays' convention (above); 1 at infinity
   // The ray's start (on the lens, z = 0) and direction in the camera frame.
   void CameraRayInCamera(double x_px, double y_px, double lens_u, double lens_v, Eigen::Vector3d* origin_cam,
                          Eigen::Vector3d* direction_cam) const;
