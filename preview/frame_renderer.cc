@@ -69,8 +69,9 @@ double MotionPx(const ThinLensCamera& camera, const ShutterEnds& ends, const Tra
   return std::min(1e6, (at(ends.frame1, ends.move1) - at(ends.frame0, ends.move0)).norm());
 }
 
+// `texture_lod`: each texture lookup at the level of its pyramid a pixel's footprint spans (draft).
 PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const ThinLensCamera& camera, double t_mid,
-                       double t0, double t1, bool motion_blur) {
+                       double t0, double t1, bool motion_blur, bool texture_lod) {
   const int w = camera.width_px(), h = camera.height_px();
   PrePass pass;
   const size_t n = size_t(w) * h;
@@ -90,6 +91,8 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
   const ShutterEnds ends = moving ? ShutterEndsOf(plan, subjects, t_mid, t0, t1) : ShutterEnds{frame, frame, {}, {}};
   const SubjectsInImage seen = scene.SubjectsSeen(at_mid, camera, frame);
   const PinholeRays rays(camera, frame);
+  // The angle one pixel spans at the image's centre (its slope step).
+  const float pixel_angle_rad = texture_lod ? float(camera.SlopeX(1) - camera.SlopeX(0)) : 0.0f;
   // Eight pixels of a row at a time, traced as one packet.
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     Eigen::Vector3d origins[8], directions[8];
@@ -105,7 +108,7 @@ PrePass PinholePrePass(const PreviewScene& scene, const Trajectory& plan, const 
           directions[j] = ray.direction_enu;
           if (seen.MaySee(x0 + j + 0.5, y + 0.5)) may_see_subject |= 1u << j;
         }
-        scene.Radiance8(origins, directions, count, at_mid, radiance, hits, may_see_subject);
+        scene.Radiance8(origins, directions, count, at_mid, radiance, hits, may_see_subject, pixel_angle_rad);
         for (int j = 0; j < count; ++j) {
           const int x = x0 + j;
           const size_t i = size_t(y) * w + x;
@@ -329,7 +332,7 @@ FrameImage RenderFrame(const PreviewScene& scene, const Trajectory& plan, size_t
   const bool motion = preset.motion_blur && t1 > t0;
   const int w = settings.width_px, h = settings.height_px;
 
-  const PrePass pass = PinholePrePass(scene, plan, camera, sample.time_s, t0, t1, motion);
+  const PrePass pass = PinholePrePass(scene, plan, camera, sample.time_s, t0, t1, motion, preset.texture_lod);
   const std::vector<uint8_t> edge = FindEdges(pass, w, h, preset.edge_color_step);
   const std::vector<double> tile_need = DilatedTileNeed(pass, w, h);
   const int tw = (w + kTile - 1) / kTile;

@@ -314,6 +314,11 @@ uint8_t LinearToSrgb8ByTable(const SrgbTable& table, float linear) {
 
 uint8_t LinearToSrgb8ByTable(float linear) { return LinearToSrgb8ByTable(SrgbTableOnce(), linear); }
 
+void LinearToSrgb8ByTable(const float* linear, size_t count, uint8_t* out) {
+  const SrgbTable& table = SrgbTableOnce();
+  for (size_t i = 0; i < count; ++i) out[i] = LinearToSrgb8ByTable(table, linear[i]);
+}
+
 Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width, int height) {
   Srgb8Image image{width, height, ImageBytes(size_t(width) * height * 3)};
   const SrgbTable& table = SrgbTableOnce();

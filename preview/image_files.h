@@ -36,6 +36,8 @@ uint8_t LinearToSrgb8(float linear);
 // The same values from a table of the 255 steps' thresholds (a search instead of a pow() per channel);
 // EncodeSrgb8 uses it.
 uint8_t LinearToSrgb8ByTable(float linear);
+// The same for `count` values at once (the table looked up once): out[i] = LinearToSrgb8ByTable(linear[i]).
+void LinearToSrgb8ByTable(const float* linear, size_t count, uint8_t* out);
 Srgb8Image EncodeSrgb8(const std::vector<Eigen::Vector3f>& rgb_linear, int width, int height);
 
 // Given an image's width and height, a flag per row: the rows its user will read (the rest may be left

@@ -1,7 +1,6 @@
 #include "preview/preview_scene.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -9,7 +8,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/error.h"
-#include "preview/image_files.h"
 #include "scene/border_ring.h"
 
 namespace cinepath::preview {
@@ -22,147 +20,10 @@ constexpr float kSunIrradiance = 1.0f;
 constexpr float kSunNormalisation = 1.0f / (0.70710678f + kSkyIrradiance);
 const Eigen::Vector3f kDefaultSurface(0.5f, 0.5f, 0.5f);  // a mesh without colours
 
-float SrgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
-
-// Linear light of each 8-bit sRGB value, as OpenImageIO's 8-bit to float conversion gives it (v times
-// 1/255 in float; measured: all 256 values equal) and then converted: the same texels as decoding to
-// floats first.
-// (Filled when the module loads, so a lookup reads it without a guard.)
-const std::array<float, 256> kLinearFromSrgb8 = [] {
-  std::array<float, 256> t{};
-  for (int v = 0; v < 256; ++v) t[size_t(v)] = SrgbToLinear(float(v) * (1.0f / 255.0f));
-  return t;
-}();
-
-Texture DecodeTexture(const scene::SceneMesh& mesh, size_t index) {
-  const scene::SceneImage& image = mesh.images[index];
-  Srgb8Image decoded = DecodeSrgb8(image.encoded, "images[" + std::to_string(index) + "] (" + image.mime_type + ")",
-                                   [&mesh, index](int, int height) { return TextureRowsSampled(mesh, index, height); });
-  Texture texture;
-  texture.width = decoded.width;
-  texture.height = decoded.height;
-  texture.srgb = std::move(decoded.rgb);
-  return texture;
-}
-
-}  // namespace
-
-namespace {
-
-// floor() without the library call (SSE2 has no rounding instruction): exact for |x| < 2^23, where every
-// float's truncation is an integer held exactly; anything else (huge, NaN) goes to std::floor.
-float FloorOf(float x) {
-  if (!(std::fabs(x) < 8388608.0f)) return std::floor(x);
-  const float t = float(long(x));
-  return t > x ? t - 1 : t;
-}
-
-}  // namespace
-
-Eigen::Vector3f Texture::Sample(const Eigen::Vector2f& uv) const {
-  if (srgb.empty()) return Eigen::Vector3f::Ones();
-  const float x = uv.x() * width - 0.5f, y = uv.y() * height - 0.5f;
-  const float fx = FloorOf(x), fy = FloorOf(y);
-  const float wx = x - fx, wy = y - fy;
-  const float* linear = kLinearFromSrgb8.data();
-  // Wrapped once per axis (a division each, only off the texture), not per texel: the neighbour is the
-  // next or the first.
-  auto wrap = [](long i, long n) { return i >= 0 && i < n ? i : ((i % n) + n) % n; };
-  const long i0 = wrap(long(fx), width), j0 = wrap(long(fy), height);
-  const size_t step_x = i0 + 1 == width ? size_t(0) - size_t(i0) * 3 : 3;  // to the next texel, or back to the first
-  const size_t row = size_t(width) * 3;
-  const size_t step_y = j0 + 1 == height ? size_t(0) - size_t(j0) * row : row;
-  const uint8_t* p00 = srgb.data() + size_t(j0) * row + size_t(i0) * 3;
-  const uint8_t* p10 = p00 + step_x;
-  const uint8_t* p01 = p00 + step_y;
-  const uint8_t* p11 = p01 + step_x;
-  // Per channel, in the order of the vector expression it replaces, (1 - wy) ((1 - wx) t00 + wx t10) +
-  // wy ((1 - wx) t01 + wx t11): the same floats. Written out channel by channel (no loop to count).
-  const float ax = 1 - wx, ay = 1 - wy;
-  auto channel = [&](int c) {
-    const float top = ax * linear[p00[c]] + wx * linear[p10[c]];
-    const float bottom = ax * linear[p01[c]] + wx * linear[p11[c]];
-    return ay * top + wy * bottom;
-  };
-  return Eigen::Vector3f(channel(0), channel(1), channel(2));
-}
-
-namespace {
-
 using Clock = std::chrono::steady_clock;
 double SecondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 }  // namespace
-
-std::vector<uint8_t> TextureRowsSampled(const scene::SceneMesh& mesh, size_t image, int height) {
-  std::vector<uint8_t> rows(size_t(std::max(0, height)), 0);
-  if (height <= 0 || !mesh.has_texcoords() || mesh.face_material.size() != mesh.faces.size()) return rows;
-  const long h = height;
-  constexpr long kRowMargin = 2;
-  // First the vertices' whole v range (a few instructions a vertex): when its rows, as below, span the
-  // texture, so may the faces' (a mesh mapped over its whole texture: the large scene's million faces
-  // cost 83 M instructions face by face), and every row is taken without looking at the faces.
-  const Eigen::Vector2f* uv = mesh.texcoords.data();
-  float v_min = uv[0].y(), v_max = uv[0].y();
-  for (size_t i = 0; i < mesh.texcoords.size(); ++i) {
-    v_min = std::min(v_min, uv[i].y());
-    v_max = std::max(v_max, uv[i].y());
-  }
-  if (!(v_min > -1e6f && v_max < 1e6f) ||  // an infinity, a far-off v: any row (a NaN is found face by face)
-      std::floor(double(v_max) * h - 0.5) - std::floor(double(v_min) * h - 0.5) + 1 + 2 * kRowMargin + 1 >= h) {
-    std::fill(rows.begin(), rows.end(), 1);
-    return rows;
-  }
-  // A difference array over the rows: +1 where a face's rows begin, -1 after they end.
-  std::vector<int> starts(size_t(height) + 1, 0);
-  std::vector<uint8_t> takes_image(mesh.materials.size());  // per material: its base colour is this image
-  for (size_t m = 0; m < takes_image.size(); ++m) takes_image[m] = mesh.materials[m].base_color_image == int(image);
-  for (size_t face = 0; face < mesh.faces.size(); ++face) {
-    const size_t m = size_t(mesh.face_material[face]);  // -1 (none) wraps past the end
-    if (m >= takes_image.size() || !takes_image[m]) continue;
-    const auto& f = mesh.faces[face];
-    const float v0 = uv[f[0]].y(), v1 = uv[f[1]].y(), v2 = uv[f[2]].y();
-    // A NaN, infinite or far-off v (the texture repeated a million times over): any row.
-    constexpr float kFar = 1e6f;
-    if (!(std::fabs(v0) < kFar && std::fabs(v1) < kFar && std::fabs(v2) < kFar)) {
-      std::fill(rows.begin(), rows.end(), 1);
-      return rows;
-    }
-    const double lo_v = std::min(v0, std::min(v1, v2)), hi_v = std::max(v0, std::max(v1, v2));
-    // Texture::Sample reads rows floor(v h - 1/2) and the next; kRowMargin more each side for the
-    // barycentric interpolation's rounding (a hit's u, v and the uv are floats). (A floor by truncation:
-    // exact here, where |v h| < 2^52, and without a library call for each of a million faces.)
-    auto floor_of = [](double y) {
-      const double t = double(long(y));
-      return long(t > y ? t - 1 : t);
-    };
-    const long lo_y = floor_of(lo_v * h - 0.5) - kRowMargin, hi_y = floor_of(hi_v * h - 0.5) + 1 + kRowMargin;
-    if (hi_y - lo_y + 1 >= h) {
-      std::fill(rows.begin(), rows.end(), 1);
-      return rows;
-    }
-    const long lo = lo_y >= 0 && lo_y < h ? lo_y : ((lo_y % h) + h) % h;  // REPEAT: rows wrap
-    const long hi = lo + (hi_y - lo_y);
-    if (hi < h) {
-      ++starts[size_t(lo)];
-      --starts[size_t(hi) + 1];
-    } else {
-      ++starts[size_t(lo)];
-      --starts[size_t(h)];
-      ++starts[0];
-      --starts[size_t(hi - h) + 1];
-    }
-  }
-  int open = 0;
-  for (size_t r = 0; r < rows.size(); ++r) rows[r] = (open += starts[r]) > 0;
-  return rows;
-}
-
-std::vector<Texture> DecodeTextures(const scene::SceneMesh& mesh) {
-  std::vector<Texture> textures;
-  for (size_t i = 0; i < mesh.images.size(); ++i) textures.push_back(DecodeTexture(mesh, i));
-  return textures;
-}
 
 PreviewScene::PreviewScene(scene::SceneMesh mesh, const Trajectory& plan, Shading shading, SunDirection sun,
                            Backdrop backdrop)
@@ -195,6 +56,8 @@ PreviewScene::PreviewScene(scene::SceneMesh mesh, std::vector<Texture> textures,
 }
 
 void PreviewScene::Finish(SunDirection sun, Backdrop backdrop, const scene::BorderRing* ring) {
+  if (std::any_of(textures_.begin(), textures_.end(), [](const Texture& t) { return t.levels() > 1; }))
+    face_texels_per_m_ = FaceTexelsPerMetre(mesh_, textures_);
   const double az = sun.azimuth_deg * kDegToRad, el = sun.elevation_deg * kDegToRad;
   sun_direction_enu_ = Eigen::Vector3d(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el));
   const auto ground_start = Clock::now();
@@ -241,7 +104,20 @@ Eigen::Vector3f PreviewScene::Sky(const Eigen::Vector3d& direction) const {
   return horizon + std::sqrt(up) * (zenith - horizon);
 }
 
-Eigen::Vector3f PreviewScene::SurfaceColor(const scene::RayHit& hit) const {
+int PreviewScene::TextureLevelAt(const scene::RayHit& hit, const Eigen::Vector3d& direction,
+                                 float pixel_angle_rad) const {
+  if (!(pixel_angle_rad > 0) || face_texels_per_m_.empty()) return 0;
+  // The pixel's footprint on the surface in texels of level 0: its width across the ray at the hit, over
+  // the square root of the cosine to the surface (the geometric mean of the footprint's two axes, so a
+  // slanted view reads neither the sharp axis's level nor the blurred one's), at the face's texel density.
+  const double cosine = std::max(std::fabs(hit.normal_enu.dot(direction)), 1.0 / 64);
+  const double across = hit.distance_m * pixel_angle_rad * face_texels_per_m_[hit.face];
+  const double texels2 = across * across / cosine;  // the footprint's side in texels, squared
+  return LevelOfFootprint(texels2);
+}
+
+Eigen::Vector3f PreviewScene::SurfaceColor(const scene::RayHit& hit, const Eigen::Vector3d& direction,
+                                           float pixel_angle_rad) const {
   const auto& f = mesh_.faces[hit.face];
   const float u = float(hit.u), v = float(hit.v), w = 1 - u - v;
   // Written out per coordinate in the order the vector expressions w c0 + u c1 + v c2 sum (the same floats,
@@ -264,7 +140,10 @@ Eigen::Vector3f PreviewScene::SurfaceColor(const scene::RayHit& hit) const {
         const Eigen::Vector2f& t1 = mesh_.texcoords[f[1]];
         const Eigen::Vector2f& t2 = mesh_.texcoords[f[2]];
         const Eigen::Vector2f uv(w * t0.x() + u * t1.x() + v * t2.x(), w * t0.y() + u * t1.y() + v * t2.y());
-        color = color.cwiseProduct(textures_[material.base_color_image].Sample(uv));
+        const Texture& texture = textures_[size_t(material.base_color_image)];
+        color = color.cwiseProduct(pixel_angle_rad > 0
+                                       ? texture.SampleLevel(uv, TextureLevelAt(hit, direction, pixel_angle_rad))
+                                       : texture.Sample(uv));
       }
     }
   }
@@ -296,19 +175,19 @@ Eigen::Vector3f PreviewScene::Radiance(const Eigen::Vector3d& origin, const Eige
 }
 
 void PreviewScene::Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count,
-                             const Instant& at, Eigen::Vector3f* radiance, TraceHit* hits_out,
-                             unsigned may_see_subject) const {
+                             const Instant& at, Eigen::Vector3f* radiance, TraceHit* hits_out, unsigned may_see_subject,
+                             float pixel_angle_rad) const {
   std::optional<scene::RayHit> mesh_hits[8];
   caster_->Intersect8(origins, directions, count, mesh_hits);
   for (int i = 0; i < count; ++i) {
     radiance[i] = Shade(origins[i], directions[i], at, mesh_hits[i], hits_out ? &hits_out[i] : nullptr,
-                        (may_see_subject >> i) & 1u);
+                        (may_see_subject >> i) & 1u, pixel_angle_rad);
   }
 }
 
 Eigen::Vector3f PreviewScene::Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
                                     const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out,
-                                    bool may_see_subject) const {
+                                    bool may_see_subject, float pixel_angle_rad) const {
   double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();
   // The ground past the edge: only where the mesh is missed (under the mesh it is hidden anyway).
   double ground_distance = std::numeric_limits<double>::infinity();
@@ -341,7 +220,7 @@ Eigen::Vector3f PreviewScene::Shade(const Eigen::Vector3d& origin, const Eigen::
   } else {
     position = mesh_hit->position_enu_m;
     normal = mesh_hit->normal_enu;
-    color = SurfaceColor(*mesh_hit);
+    color = SurfaceColor(*mesh_hit, direction, pixel_angle_rad);
     if (hit_out) *hit_out = TraceHit{mesh_hit->distance_m, position, -1, mesh_hit->face};
   }
   if (shading_ == Shading::kFlat) return color;

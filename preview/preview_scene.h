@@ -16,26 +16,14 @@
 
 #include <Eigen/Core>
 
-#include "preview/image_files.h"
 #include "preview/render_options.h"
 #include "preview/subject_proxies.h"
+#include "preview/texture.h"
 #include "scene/border_ring.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_mesh.h"
 
 namespace cinepath::preview {
-
-// A decoded base-colour texture, rows from the top (glTF uv: u right, v down). The texels stay 8-bit sRGB,
-// as the image holds them (3 bytes a texel: 50 MB for a 4096² atlas, where linear floats took 201 MB and
-// a quarter of a second of pow() at load); each lookup turns its four texels into linear light through a
-// 256-entry table, then interpolates, as renderers do with sRGB textures. The same linear values as
-// decoding to floats first, so the same frames.
-struct Texture {
-  int width = 0;
-  int height = 0;
-  ImageBytes srgb;                                          // width x height x RGB
-  Eigen::Vector3f Sample(const Eigen::Vector2f& uv) const;  // bilinear in linear light, wrapping (glTF REPEAT)
-};
 
 // TraceHit::face of the ground past the mesh's edge.
 constexpr uint32_t kGroundFace = 0xffffffffu;
@@ -72,17 +60,6 @@ struct SceneLoadTimes {
   double textures_s = 0;  // decoding the base-colour images (JPEG/PNG) to 8-bit texels
   double ground_s = 0;    // the ground past the edge (border ring, unless given found, and its colours)
 };
-
-// The rows of the mesh's image `image` (`height` rows) that a lookup can read: every row that
-// Texture::Sample's bilinear taps can reach from a uv inside a face whose material takes that image as its
-// base colour (the face's v range, the neighbour row, two rows' margin for rounding, wrapped as REPEAT
-// wraps). The rest of a texture is never read: no face maps onto it (a texture atlas's unused space).
-std::vector<uint8_t> TextureRowsSampled(const scene::SceneMesh& mesh, size_t image, int height);
-
-// The mesh's images decoded, one texture each (libjpeg, libpng). InputError for an image that cannot be.
-// A JPEG's rows no lookup can read (TextureRowsSampled) are left unwritten, and after the last row that
-// can be read nothing is decoded: the bundled 4096² atlas's charts fill its top 30 % of rows.
-std::vector<Texture> DecodeTextures(const scene::SceneMesh& mesh);
 
 class PreviewScene {
  public:
@@ -124,9 +101,12 @@ class PreviewScene {
   }
   // The same for `count` (1 to 8) rays at once, traced as one packet (the pinhole pass's rows): radiance[i]
   // and hits_out[i] (when not null) are what Radiance gives ray i. Bit i of `may_see_subject` clear: ray i
-  // is known to miss every subject (SubjectsInImage), and is not intersected with them.
+  // is known to miss every subject (SubjectsInImage), and is not intersected with them. `pixel_angle_rad`
+  // > 0 (draft's pinhole pass: the angle a pixel spans): each texture lookup reads the level of the
+  // texture's pyramid that the pixel's footprint on the surface spans (when the textures have levels).
   void Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector3d* directions, int count, const Instant& at,
-                 Eigen::Vector3f* radiance, TraceHit* hits_out = nullptr, unsigned may_see_subject = 0xffu) const;
+                 Eigen::Vector3f* radiance, TraceHit* hits_out = nullptr, unsigned may_see_subject = 0xffu,
+                 float pixel_angle_rad = 0) const;
   Eigen::Vector3f Sky(const Eigen::Vector3d& direction) const;
   // Where a pinhole ray of `camera` at `frame` may meet one of the subjects Radiance draws, at instant `at`
   // (for Radiance8's may_see_subject).
@@ -142,9 +122,15 @@ class PreviewScene {
   // What a ray sees, given the mesh's hit along it (or none): the closer of it and the subjects, the
   // ground past the edge, or the sky.
   Eigen::Vector3f Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
-                        const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out,
-                        bool may_see_subject = true) const;
-  Eigen::Vector3f SurfaceColor(const scene::RayHit& hit) const;
+                        const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out, bool may_see_subject = true,
+                        float pixel_angle_rad = 0) const;
+  // The surface's colour at a hit; with `pixel_angle_rad` > 0 its texture read at the level the footprint
+  // of a pixel of that angle spans there, seen along `direction`.
+  Eigen::Vector3f SurfaceColor(const scene::RayHit& hit, const Eigen::Vector3d& direction = Eigen::Vector3d::Zero(),
+                               float pixel_angle_rad = 0) const;
+  // Which level of the hit face's texture a lookup at `hit` reads for a pixel of `pixel_angle_rad` seen along
+  // `direction` (docs/render.md, "Texture levels").
+  int TextureLevelAt(const scene::RayHit& hit, const Eigen::Vector3d& direction, float pixel_angle_rad) const;
   GroundBackdrop BorderGround(const scene::BorderRing& ring) const;
   // The sun's direction and the ground past the edge (from `ring` when given).
   void Finish(SunDirection sun, Backdrop backdrop, const scene::BorderRing* ring = nullptr);
@@ -153,7 +139,8 @@ class PreviewScene {
   scene::SceneMesh mesh_;
   std::shared_ptr<const scene::RayCaster> caster_;
   SubjectProxies subjects_;
-  std::vector<Texture> textures_;  // one per mesh image
+  std::vector<Texture> textures_;         // one per mesh image
+  std::vector<float> face_texels_per_m_;  // FaceTexelsPerMetre, when a texture has coarser levels
   Shading shading_;
   Eigen::Vector3d sun_direction_enu_;  // towards the sun
   std::optional<GroundBackdrop> ground_;

@@ -185,19 +185,20 @@ SunDirection SunForOptions(const RenderOptions& options, const Trajectory& plan,
 // overlapped; the ring raises none).
 class SceneLoader {
  public:
-  // `ring`: also the mesh's border ring (for the ground past the edge).
-  SceneLoader(const SceneFile& scene_file, bool ring) {
-    group_.run([this, &scene_file, ring] {
+  // `ring`: also the mesh's border ring (for the ground past the edge); `texture_levels`: the levels of
+  // each texture's pyramid (1: the image alone).
+  SceneLoader(const SceneFile& scene_file, bool ring, int texture_levels) {
+    group_.run([this, &scene_file, ring, texture_levels] {
       using Clock = std::chrono::steady_clock;
       try {
         const auto start = Clock::now();
         mesh_ = scene::ReadGlbFile(scene_file.RequireMesh());
         glb_s_ = std::chrono::duration<double>(Clock::now() - start).count();
         tbb::parallel_invoke(
-            [this] {
+            [this, texture_levels] {
               const auto begin = Clock::now();
               try {
-                textures_ = DecodeTextures(mesh_);
+                textures_ = DecodeTextures(mesh_, texture_levels);
               } catch (...) {
                 textures_error_ = std::current_exception();
               }
@@ -535,7 +536,8 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
   };
   // Everything that can be refused, before anything is written.
   const SceneFile scene_file = ReadSceneFile(scene_json);
-  SceneLoader loader(scene_file, options.backdrop == Backdrop::kGround);
+  SceneLoader loader(scene_file, options.backdrop == Backdrop::kGround,
+                     PresetFor(options.quality).texture_lod ? kTextureLevels : 1);
   TeamPlan team = ReadTeamPlanFile(plan_json);
   summary.notes = TeamPlanNotes(team);
   summary.inputs.push_back(plan_json.string());

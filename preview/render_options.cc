@@ -11,6 +11,7 @@ SamplingPreset PresetFor(Quality quality) {
   switch (quality) {
     case Quality::kDraft:
       preset.gather_blur = true;
+      preset.texture_lod = true;
       preset.edge_samples = 4;
       // Only the edges a frame shows at a glance: objects, depth steps and strong colour steps (texture
       // detail below this is left to the pinhole ray; bench/RESULTS.md has the PSNR it costs).

@@ -35,6 +35,9 @@ enum class Aov { kDepth, kBlur, kMask };
 // min_blurred_samples, at most max_samples.
 struct SamplingPreset {
   bool gather_blur = false;  // draft: no lens rays; a depth-aware gather blur of the pinhole image
+  // draft: the pinhole pass reads each texture at the level of its pyramid the pixel's footprint spans
+  // (preview/texture.h), not one texel of the full image
+  bool texture_lod = false;
   int edge_samples = 4;
   // A colour step (linear, any channel) between neighbours above this marks both as an edge; a step in
   // depth over 2 % or another object always does.
@@ -49,6 +52,11 @@ struct SamplingPreset {
 };
 
 SamplingPreset PresetFor(Quality quality);
+
+// The levels of a texture's pyramid built for a preset with texture_lod: down to 1/64 of the image's side
+// (a 4096² atlas to 64², a texel of 64² of the image's). A coarser level would average rows no face reads
+// (the coarsest level's one row is the whole image's), and they would have to be decoded too.
+constexpr int kTextureLevels = 7;
 
 struct SunDirection {
   double azimuth_deg = 135;  // compass, clockwise from north

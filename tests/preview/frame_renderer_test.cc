@@ -162,6 +162,62 @@ TEST(FrameRenderer, AScenePreparedBesideItsTexturesRendersTheSameFrame) {
   EXPECT_EQ(no_ring.ground()->sector_color, built.ground()->sector_color);
 }
 
+// A wall 50 m north of the camera at (0, 0, 10) covered by a texture of one-texel black and white checks,
+// repeated so that a pixel of the 240-px frame spans ~23 texels: draft's pinhole pass, reading the level of
+// the pyramid the pixel spans, shows the checks' mean (linear 0.5) in every pixel of the wall; read from
+// the image itself, each pixel lands on one check (black or white: aliasing).
+TEST(FrameRenderer, DraftReadsAFineTextureAtTheLevelItsPixelsSpan) {
+  const Trajectory plan = StillCamera({0, 0, 10}, 24, 16, 50);
+  scene::SceneMesh mesh;
+  for (const auto& [x, z] : {std::pair{-40.0, -20.0}, {40.0, -20.0}, {40.0, 40.0}, {-40.0, 40.0}}) {
+    mesh.positions_enu_m.emplace_back(x, 50.0, z);
+    mesh.texcoords.emplace_back(float((x + 40) / 80 * 23.3), float((40 - z) / 60 * 17.7));
+    mesh.colors_linear.emplace_back(1.0f, 1.0f, 1.0f);  // the texture's colour alone
+  }
+  mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+  mesh.face_material = {0, 0};
+  mesh.materials.resize(1);
+  mesh.materials[0].base_color_image = 0;
+  mesh.images.resize(1);
+  // 23.3 repeats over 80 m: 75 texels a metre, 0.31 m a pixel at 50 m (not a whole number of texels a
+  // pixel, so the pixels land on both colours of the checks).
+  constexpr int kSize = 256;
+  std::vector<Texture> textures(1);
+  Texture& checks = textures[0];
+  checks.width = checks.height = kSize;
+  checks.srgb.resize(size_t(kSize) * kSize * 3);
+  for (size_t i = 0; i < checks.srgb.size(); ++i) {
+    const size_t texel = i / 3;
+    checks.srgb[i] = ((texel % kSize) + (texel / kSize)) % 2 ? 255 : 0;
+  }
+  std::vector<std::vector<uint8_t>> rows;
+  for (int h = kSize; h >= 1; h /= 2) rows.emplace_back(size_t(h), 1);
+  BuildCoarserLevels(&checks, rows);
+  PreviewScene::Prepared prepared;
+  prepared.caster = std::make_shared<const scene::RayCaster>(mesh);
+  const PreviewScene scene(mesh, textures, prepared, plan, Shading::kFlat, SunDirection{}, Backdrop::kNone);
+  // The wall's pixels: a range of the spread of their red values.
+  auto spread = [&](bool texture_lod) {
+    FrameSettings settings = Settings(Quality::kDraft, 4);
+    settings.preset.texture_lod = texture_lod;
+    const FrameImage image = RenderFrame(scene, plan, 1, settings);
+    float lo = 1, hi = 0;
+    for (size_t i = 0; i < image.rgb_linear.size(); ++i) {
+      if (!std::isfinite(image.depth_m[i])) continue;
+      lo = std::min(lo, image.rgb_linear[i].x());
+      hi = std::max(hi, image.rgb_linear[i].x());
+    }
+    return std::pair{lo, hi};
+  };
+  const auto [lo, hi] = spread(true);
+  EXPECT_GT(lo, 0.45f);
+  EXPECT_LT(hi, 0.55f);
+  // A bilinear lookup between one-texel checks gives anything from 0 to 1 (a spread of 0.36 over this frame's
+  // pixels, and the edge search's four rays where neighbours differ).
+  const auto [aliased_lo, aliased_hi] = spread(false);
+  EXPECT_GT(aliased_hi - aliased_lo, 0.3f);
+}
+
 // The red channel averaged down each column.
 std::vector<double> ColumnProfile(const FrameImage& image) {
   std::vector<double> profile(image.width, 0.0);
