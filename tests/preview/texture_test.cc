@@ -177,7 +177,7 @@ TEST(TexturePyramid, ATexelIsTheLinearMeanOfFourOfTheLevelAboveRounded) {
   EXPECT_EQ(texture.SampleLevel(Eigen::Vector2f(0.3f, 0.6f), 0), texture.Sample(Eigen::Vector2f(0.3f, 0.6f)));
 }
 
-// The pyramid built from the rows TextureLevelRowsSampled asks for (every other row of level 0 inverted,
+// The pyramid built from the rows TextureLevelRowsSampled asks for (the rows of level 0 it does not ask for inverted,
 // as bytes never decoded would hold anything) reads, at every level, what the pyramid of the whole image
 // reads wherever a face's lookup can land.
 TEST(TexturePyramid, LookupsInsideTheFacesReadWhatThePyramidOfTheWholeImageReads) {
