@@ -4,6 +4,7 @@
 // of one texel from the whole atlas (docs/render.md, "Texture levels").
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
