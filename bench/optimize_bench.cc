@@ -15,6 +15,7 @@
 #include <string>
 
 #include "bench/optimize_bench_scene.h"
+#include "core/heap_pages.h"
 #include "core/json.h"
 #include "optimizer/optimizer.h"
 
@@ -30,6 +31,7 @@ double ProcessCpuSeconds() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  PrepareHeapForLargeBuffers(kCommandHeapReserveBytes);  // as `cinepath optimize` does
   size_t faces = 1'000'000;
   std::string only_quality, only_mesh;  // empty: every preset, with and without the terrain
   bool ceres_solver = false;

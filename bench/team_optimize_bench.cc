@@ -12,6 +12,7 @@
 #include <ctime>
 #include <string>
 
+#include "core/heap_pages.h"
 #include "core/json.h"
 #include "optimizer/optimizer.h"
 #include "optimizer/team_optimizer.h"
@@ -65,6 +66,7 @@ size_t Count(const std::vector<TeamConflict>& conflicts, const char* limit) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  PrepareHeapForLargeBuffers(kCommandHeapReserveBytes);  // as `cinepath optimize` does
   int drones = 4;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--drones")) drones = std::stoi(argv[i + 1]);

@@ -12,6 +12,7 @@
 #include "cli/common_options.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/heap_pages.h"
 #include "core/plan_file.h"
 #include "core/reframe.h"
 #include "core/scene_file.h"
@@ -37,6 +38,9 @@ class OptimizeCommand : public Command {
   }
 
   int Run() override {
+    // Each stage of the ladder builds its problem (tens of thousands of small cost objects) and frees it:
+    // the next reuses those pages, and the main thread's come in 2 MiB pages (core/heap_pages.h).
+    PrepareHeapForLargeBuffers(kCommandHeapReserveBytes);
     TeamOptimizeInput input;
     input.plan = ReadTeamPlanFile(plan_path_);
     input.plan_source = plan_path_;

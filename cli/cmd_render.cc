@@ -27,7 +27,6 @@ namespace {
 using namespace cinepath::preview;
 
 // The main heap's part laid out in 2 MiB pages at the start (address space; pages come when touched).
-constexpr int kHeapReserveMiB = 128;
 
 // Wall-clock seconds since this process started (/proc: the kernel's start time in clock ticks against
 // the uptime; 10 ms resolution): what the dynamic loader and the module's libraries took before Run.
@@ -101,7 +100,7 @@ class RenderCommand : public Command {
   int Run() override {
     // Before the plan's DOM and the frames' buffers: those of the main thread in 2 MiB pages, reused
     // from frame to frame (core/heap_pages.h).
-    PrepareHeapForLargeBuffers(size_t(kHeapReserveMiB) << 20);
+    PrepareHeapForLargeBuffers(kCommandHeapReserveBytes);
     shading_given_ = shading_option_ && shading_option_->count() > 0;
     options_.output_dir = output_dir_;
     if (!frames_.empty()) options_.frames.range = ParseFrameRange(frames_);

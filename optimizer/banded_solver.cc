@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <utility>
 
 #include <ceres/ceres.h>
 #include <tbb/blocked_range.h>
@@ -225,7 +226,6 @@ class Solver {
       band_ = std::max(band_, hi - lo);
       most_rows_ = std::max(most_rows_, b.rows);
       most_params_ = std::max(most_params_, static_cast<int>(b.params.size()));
-      nonnegative_ = nonnegative_ && (!b.loss || LinearAndNonNegative(*b.loss));
       b.constant = b.loss ? nullptr : dynamic_cast<const ConstantJacobian*>(b.cost);
       blocks_.push_back(std::move(b));
     }
@@ -237,10 +237,13 @@ class Solver {
   }
 
   BandedSolverSummary Run(const BandedSolverOptions& o) {
+    // (Each run: a loss may have changed since the last, as a continuation stage's stiffness does.)
+    nonnegative_ = std::all_of(blocks_.begin(), blocks_.end(),
+                               [](const Block& b) { return !b.loss || LinearAndNonNegative(*b.loss); });
     BandedSolverSummary summary;
     summary.chunks = static_cast<int>(chunks_.size());
-    BlockBand h(n_, band_), damped(n_, band_);
-    std::vector<Vec8> g(n_), dx(n_), hdx(n_);
+    BlockBand h(n_, band_), damped(n_, band_), trial_h(n_, band_);
+    std::vector<Vec8> g(n_), dx(n_), hdx(n_), trial_g(n_);
     std::vector<double> saved(knots_, knots_ + n_ * kChannels);
     double cost = Evaluate(&h, &g);
     summary.initial_cost = summary.final_cost = cost;
@@ -284,9 +287,11 @@ class Solver {
       // The step is kept when rho = (cost - trial) / predicted > min_relative_decrease. With costs that are sums
       // of non-negative terms (nonnegative_), a partial sum of the trial's cost only grows in floating point
       // too: once rho from a partial sum says no, so does the whole sum's, and the evaluation stops there (a
-      // rejected trial's cost is not used). The same steps are kept.
+      // rejected trial's cost is not used). The same steps are kept. The trial takes its J^T J and J^T r as it
+      // goes (most steps are kept, and each block's residuals are then computed once, not again for the
+      // Jacobian), into buffers of its own: a rejected step leaves h and g as they were.
       const Rejection rejection{cost, predicted, o.min_relative_decrease};
-      const double trial = Evaluate(nullptr, nullptr, nonnegative_ ? &rejection : nullptr);
+      const double trial = Evaluate(&trial_h, &trial_g, nonnegative_ ? &rejection : nullptr);
       const double rho = (cost - trial) / predicted;
       if (trace_)
         std::fprintf(stderr, "%4d %.6e -> %s%.6e rho %.3f lambda %.2e\n", summary.iterations, cost,
@@ -298,7 +303,9 @@ class Solver {
         continue;
       }
       const double decrease = (cost - trial) / std::max(cost, std::numeric_limits<double>::min());
-      cost = Evaluate(&h, &g);
+      cost = trial;
+      std::swap(h, trial_h);
+      g.swap(trial_g);
       lambda *= std::max(1.0 / 3.0, 1.0 - std::pow(2 * rho - 1, 3));
       nu = 2;
       if (decrease <= o.function_tolerance) {
@@ -449,14 +456,17 @@ class Solver {
     }
   }
 
-  // The chunks of MakeChunks: consecutive blocks of about equal work, at most max_chunks, at least
-  // kLeastChunkWork each (a small problem is one chunk).
+  // The chunks of MakeChunks: consecutive blocks of about equal work, at most max_chunks; a small problem
+  // (under 2 kLeastChunkWork) is one chunk, a larger one a multiple of four chunks, so that they share two or
+  // four threads evenly (three chunks on two threads take as long as four: the draft's soft stages took
+  // ~25 % longer to evaluate).
   void MakeChunks(int max_chunks) {
     const auto work = [](const Block& b) { return b.constant ? 2.0 : b.state ? 4.0 * b.rows + 8 : b.rows + 4.0; };
     double total = 0;
     for (const Block& b : blocks_) total += work(b);
-    const int count =
-        static_cast<int>(std::clamp(std::floor(total / kLeastChunkWork), 1.0, double(std::max(1, max_chunks))));
+    double whole = std::floor(total / kLeastChunkWork);
+    if (whole >= 2) whole = 4 * std::ceil(whole / 4);
+    const int count = static_cast<int>(std::clamp(whole, 1.0, double(std::max(1, max_chunks))));
     double done = 0;
     size_t begin = 0;
     for (int c = 0; c < count; ++c) {
@@ -653,6 +663,32 @@ BandedSolverSummary SolveBanded(ceres::Problem* problem, double* knots, int num_
                                 const std::vector<std::array<bool, 8>>& fixed, const BandedSolverOptions& options) {
   Solver solver(problem, knots, num_knots, fixed, options.max_chunks);
   return solver.Run(options);
+}
+
+struct BandedSolver::Impl {
+  Impl(ceres::Problem* problem, double* knots, int num_knots, std::vector<std::array<bool, 8>> fixed_channels,
+       int max_chunks)
+      : problem(problem),
+        knots(knots),
+        fixed(std::move(fixed_channels)),
+        solver(problem, knots, num_knots, fixed, max_chunks) {}
+  const ceres::Problem* problem;
+  const double* knots;
+  const std::vector<std::array<bool, 8>> fixed;  // before the solver, which holds a reference to it
+  Solver solver;
+};
+
+BandedSolver::BandedSolver(ceres::Problem* problem, double* knots, int num_knots,
+                           std::vector<std::array<bool, 8>> fixed, int max_chunks)
+    : impl_(std::make_unique<Impl>(problem, knots, num_knots, std::move(fixed), max_chunks)) {}
+
+BandedSolver::~BandedSolver() = default;
+
+BandedSolverSummary BandedSolver::Solve(const BandedSolverOptions& options) { return impl_->solver.Run(options); }
+
+bool BandedSolver::SetUpFor(const ceres::Problem* problem, const double* knots,
+                            const std::vector<std::array<bool, 8>>& fixed) const {
+  return impl_->problem == problem && impl_->knots == knots && impl_->fixed == fixed;
 }
 
 }  // namespace cinepath::optimizer

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -52,5 +53,24 @@ struct BandedSolverSummary {
 // `fixed[i][c]`: channel c of knot i does not move (a constant block has every channel fixed).
 BandedSolverSummary SolveBanded(ceres::Problem* problem, double* knots, int num_knots,
                                 const std::vector<std::array<bool, 8>>& fixed, const BandedSolverOptions& options);
+
+// The same solver kept for several solves of one problem (a continuation's stages, the rounds of
+// multipliers): the set-up (the blocks read from the problem, the chunks, the constant blocks' J^T J) is
+// done once. Valid while no block is added to or removed from the problem; its losses may change (a stage's
+// stiffness). Each Solve is SolveBanded's, with options.max_chunks as the constructor's.
+class BandedSolver {
+ public:
+  BandedSolver(ceres::Problem* problem, double* knots, int num_knots, std::vector<std::array<bool, 8>> fixed,
+               int max_chunks);
+  ~BandedSolver();
+  BandedSolverSummary Solve(const BandedSolverOptions& options);
+  // Whether it was set up for this problem, these knots and these fixed channels.
+  bool SetUpFor(const ceres::Problem* problem, const double* knots,
+                const std::vector<std::array<bool, 8>>& fixed) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace cinepath::optimizer

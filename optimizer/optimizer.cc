@@ -430,6 +430,10 @@ class PlanOptimizer {
   std::vector<std::unique_ptr<ceres::CostFunction>> stiff_costs_;  // stiff_'s weighted sample blocks
   std::unique_ptr<ceres::Problem> stiff_;                          // StiffProblem, destroyed before both
   int problem_generation_ = 0, stiff_generation_ = -1;             // blocks added to or removed from problem_
+  // SolveBandedStage's solver, set up for one of the problems above at problem_generation_ banded_generation_
+  // (destroyed before them).
+  std::unique_ptr<BandedSolver> banded_;
+  int banded_generation_ = -1;
   static ceres::Problem::Options ProblemOptions() {
     ceres::Problem::Options o;
     o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -896,12 +900,21 @@ void PlanOptimizer::SolveBandedStage(ceres::Problem* problem) {
   // from Ceres' default of 1e-4, every solve first spent five to eight rejected steps raising it.
   if (damping_ > 0) o.initial_damping = damping_;
   const auto start = std::chrono::steady_clock::now();
-  const BandedSolverSummary summary =
-      SolveBanded(problem, knots_.front().data(), static_cast<int>(knots_.size()), fixed, o);
+  // The solver set up for this problem is kept while its blocks stay the same (the soft stages share the
+  // coarse problem; the stiff solves share theirs until limits join).
+  if (!banded_ || banded_generation_ != problem_generation_ ||
+      !banded_->SetUpFor(problem, knots_.front().data(), fixed)) {
+    banded_.reset();
+    banded_ = std::make_unique<BandedSolver>(problem, knots_.front().data(), static_cast<int>(knots_.size()),
+                                             std::move(fixed), o.max_chunks);
+    banded_generation_ = problem_generation_;
+  }
+  const BandedSolverSummary summary = banded_->Solve(o);
   solve_s_ += Seconds(start);
   if (std::getenv("CINEPATH_CERES_TRACE"))
-    std::fprintf(stderr, "stage at %g of the limits' weight: %d blocks, %d iterations, %.2f ms, %s\n", stiffness_scale_,
-                 problem->NumResidualBlocks(), summary.iterations, 1e3 * Seconds(start), summary.message.c_str());
+    std::fprintf(stderr, "stage at %g of the limits' weight: %d blocks, %d chunks, %d iterations, %.2f ms, %s\n",
+                 stiffness_scale_, problem->NumResidualBlocks(), summary.chunks, summary.iterations,
+                 1e3 * Seconds(start), summary.message.c_str());
   iterations_ += summary.iterations;
   damping_ = summary.final_damping;
   termination_ = summary.message;
@@ -1594,9 +1607,13 @@ OptimizeResult RunLadder(const OptimizeInput& input, const OptimizeOptions& opti
       stage_options.multiplier_rounds = preset.multiplier_rounds;
       stage_options.goals_on_coarse_grid = preset.goals_on_coarse_grid;
     }
-    PlanOptimizer stage(input, i == 0 ? input.plan : kept.plan, stage_options, scene, targets ? &*targets : nullptr);
-    OptimizeResult result = stage.Run();
-    if (i == 0) targets = stage.samples();
+    OptimizeResult result;
+    {
+      PlanOptimizer stage(input, i == 0 ? input.plan : kept.plan, stage_options, scene, targets ? &*targets : nullptr);
+      result = stage.Run();
+      if (i == 0) targets = stage.samples();
+    }  // its problem freed before the judge builds one: the judge's reuses its memory, whose pages are in
+       // (the commands keep freed memory, core/heap_pages.h)
     PlanOptimizer judge(input, result.plan, stage_options, scene, &*targets);
     const double objective = judge.Objective();
     iterations += result.report["solver"]["iterations"].get<int>();

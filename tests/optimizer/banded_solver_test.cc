@@ -6,7 +6,9 @@
 #include "optimizer/banded_solver.h"
 
 #include <cstring>
+#include <memory>
 #include <random>
+#include <utility>
 
 #include <ceres/ceres.h>
 #include <gtest/gtest.h>
@@ -265,6 +267,50 @@ TEST(BandedSolver, ChunksGiveTheSameBytesOnAnyNumberOfThreadsAndTheMinimumOfOneC
           << "knot " << i << " channel " << c;
     }
   }
+}
+
+// A solver kept across solves of one problem (the optimizer's continuation stages: the same blocks, a loss whose
+// scale changes between solves) gives the same bytes as one set up afresh for each solve.
+TEST(BandedSolver, AKeptSolverGivesTheBytesOfAFreshOneWhenALossChangesBetweenSolves) {
+  const auto solve = [](bool kept) {
+    Problem p(10, true);
+    p.Hold({{2, kYaw}});
+    auto* stiffness = new ceres::LossFunctionWrapper(nullptr, ceres::TAKE_OWNERSHIP);  // the problem owns it
+    for (size_t i = 0; i < p.knots.size(); i += 2) {
+      p.problem.AddResidualBlock(new ceres::AutoDiffCostFunction<KnotPull, kNumChannels, kNumChannels>(
+                                     new KnotPull{-0.3 * static_cast<double>(i)}),
+                                 stiffness, p.knots[i].data());
+    }
+    BandedSolverOptions o;
+    o.max_iterations = 7;
+    std::unique_ptr<BandedSolver> solver;
+    std::vector<int> iterations;
+    for (const double scale : {1e-3, 1e-1, 1.0}) {
+      stiffness->Reset(scale == 1.0 ? nullptr : new ceres::ScaledLoss(nullptr, scale, ceres::TAKE_OWNERSHIP),
+                       ceres::TAKE_OWNERSHIP);
+      const int n = static_cast<int>(p.knots.size());
+      if (kept && !solver) solver = std::make_unique<BandedSolver>(&p.problem, p.knots.front().data(), n, p.fixed, 8);
+      if (kept) EXPECT_TRUE(solver->SetUpFor(&p.problem, p.knots.front().data(), p.fixed));
+      const BandedSolverSummary s =
+          kept ? solver->Solve(o) : SolveBanded(&p.problem, p.knots.front().data(), n, p.fixed, o);
+      EXPECT_FALSE(s.failed);
+      iterations.push_back(s.iterations);
+    }
+    if (kept) {
+      std::vector<std::array<bool, 8>> other = p.fixed;
+      other[3][kTilt] = true;
+      EXPECT_FALSE(solver->SetUpFor(&p.problem, p.knots.front().data(), other)) << "other channels held";
+      ceres::Problem another;
+      EXPECT_FALSE(solver->SetUpFor(&another, p.knots.front().data(), p.fixed)) << "another problem";
+    }
+    return std::make_pair(p.knots, iterations);
+  };
+  const auto [fresh, fresh_iterations] = solve(false);
+  const auto [kept, kept_iterations] = solve(true);
+  EXPECT_EQ(fresh_iterations, kept_iterations);
+  ASSERT_EQ(fresh.size(), kept.size());
+  EXPECT_EQ(std::memcmp(fresh.data(), kept.data(), fresh.size() * sizeof(Knot)), 0);
+  EXPECT_NE(fresh[5], Knot{}) << "the solves moved the knots";
 }
 
 // A term on five knots: wider than a sample's four, which the band does not hold.
