@@ -26,8 +26,6 @@ namespace {
 
 using namespace cinepath::preview;
 
-// The main heap's part laid out in 2 MiB pages at the start (address space; pages come when touched).
-
 // Wall-clock seconds since this process started (/proc: the kernel's start time in clock ticks against
 // the uptime; 10 ms resolution): what the dynamic loader and the module's libraries took before Run.
 double ProcessAgeSeconds() {

@@ -253,6 +253,7 @@ TEST(BandedSolver, ChunksGiveTheSameBytesOnAnyNumberOfThreadsAndTheMinimumOfOneC
   const std::vector<Knot> on_one = solve(1, 8, &one), on_two = solve(2, 8, &two), on_four = solve(4, 8, &four);
   const std::vector<Knot> in_one_chunk = solve(2, 1, &single);
   EXPECT_GT(one.chunks, 1) << "the problem is long enough to be split";
+  EXPECT_EQ(one.chunks % 4, 0) << "a multiple of four chunks, so that two or four threads share them evenly";
   EXPECT_EQ(single.chunks, 1);
   EXPECT_EQ(one.iterations, two.iterations);
   EXPECT_EQ(one.iterations, four.iterations);
