@@ -43,6 +43,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_invoke.h>
 
+#include "core/heap_pages.h"
 #include "core/json.h"
 #include "photogrammetry/mesh/mesh_clean.h"
 #include "photogrammetry/mesh/mesh_decimate.h"
@@ -609,6 +610,7 @@ Json PresetTable(const pg::TriangleMesh& input) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cinepath::PrepareHeapForLargeBuffers(cinepath::kCommandHeapReserveBytes);  // as `cinepath mesh` does
   BenchArgs args;
   if (const auto exit_code = ParseArgs(argc, argv, args)) return *exit_code;
   const int64_t& faces = args.faces;

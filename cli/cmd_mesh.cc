@@ -21,6 +21,7 @@
 #include "cli/common_options.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/heap_pages.h"
 #include "core/json.h"
 #include "core/plan_file.h"
 #include "photogrammetry/pipeline/build_scene.h"
@@ -116,6 +117,9 @@ class MeshCommand : public Command {
   }
 
   int Run() override {
+    // The cleaning and the decimation allocate arrays over every face and vertex, and each tile its own:
+    // freed memory kept and the main thread's heap in 2 MiB pages (core/heap_pages.h).
+    PrepareHeapForLargeBuffers(kCommandHeapReserveBytes);
     options_.georeference.fit = fit_;
     options_.georeference.altitude_datum =
         altitude_datum_ == "amsl" ? AltitudeDatum::kAmslEgm96 : AltitudeDatum::kEllipsoidal;

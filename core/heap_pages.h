@@ -1,7 +1,8 @@
 // The heap of a command that allocates large short-lived buffers (render's per-frame images, optimize's
-// problem of tens of thousands of small cost objects, built again for each stage of its ladder) laid out so
-// that touching them costs few page faults. Each first touch of a 4 KiB page traps into the kernel; on a
-// virtual machine a trap costs microseconds, and one frame of the bundled scene touched ~9,000 pages.
+// problem of tens of thousands of small cost objects, built again for each stage of its ladder, mesh's
+// arrays over every face and vertex) laid out so that touching them costs few page faults. Each first touch of a 4 KiB
+// page traps into the kernel; on a virtual machine a trap costs microseconds, and one frame of the bundled scene
+// touched ~9,000 pages.
 #pragma once
 
 #include <cstddef>
@@ -27,7 +28,7 @@ struct HeapPreparation {
 // Only hints: where glibc or the kernel lacks them, nothing changes. Never changes what is computed.
 HeapPreparation PrepareHeapForLargeBuffers(size_t reserve_bytes);
 
-// The reserve the commands pass (render, optimize): address space, not memory.
+// The reserve the commands pass (render, optimize, mesh): address space, not memory.
 constexpr size_t kCommandHeapReserveBytes = size_t(128) << 20;
 
 }  // namespace cinepath
