@@ -24,6 +24,7 @@
 #include <Eigen/Dense>
 
 #include "photogrammetry/mesh/closest_on_triangle.h"
+#include "photogrammetry/mesh/kth_smallest.h"
 #include "photogrammetry/mesh/mesh_decimate.h"
 #include "photogrammetry/mesh/quaternary_heap.h"
 
@@ -735,18 +736,55 @@ struct QuadricStore {
 QuadricStore SumQuadrics(const std::vector<Piece>& pieces, const std::vector<std::array<uint32_t, 3>>& faces,
                          size_t n) {
   QuadricStore store;
-  store.slot.assign(n, kUnmapped);
-  uint32_t held = 0;
-  for (const auto& t : faces) {
-    for (uint32_t v : t) {
-      if (store.slot[v] == kUnmapped) store.slot[v] = held++;
+  // Slots in the vertices' order (marks, then each block's count and their running sum).
+  std::vector<char> held(n, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), kBlock), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t f = range.begin(); f != range.end(); ++f) {
+      for (uint32_t v : faces[f]) std::atomic_ref<char>(held[v]).store(1, std::memory_order_relaxed);
     }
-  }
-  store.values.assign(held, Quadric{});
+  });
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<uint32_t> block_start(blocks + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      block_start[b + 1] =
+          static_cast<uint32_t>(std::count(held.begin() + b * kBlock, held.begin() + std::min(n, (b + 1) * kBlock), 1));
+    }
+  });
+  for (size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
+  store.slot.resize(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      uint32_t slot = block_start[b];
+      for (size_t v = b * kBlock; v < std::min(n, (b + 1) * kBlock); ++v) store.slot[v] = held[v] ? slot++ : kUnmapped;
+    }
+  });
+  store.values.assign(block_start[blocks], Quadric{});
+  // A vertex in one piece takes that piece's quadric (in parallel); a cut vertex, in several, their sum
+  // in the pieces' order (after: the same additions as one serial pass).
+  std::vector<uint8_t> in_pieces(n, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      for (uint32_t v : pieces[p].vertices) {
+        std::atomic_ref<uint8_t> count(in_pieces[v]);  // 0, 1 or 2 (two or more)
+        uint8_t seen = count.load(std::memory_order_relaxed);
+        while (seen < 2 && !count.compare_exchange_weak(seen, seen + 1, std::memory_order_relaxed)) {}
+      }
+    }
+  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      const Piece& piece = pieces[p];
+      for (size_t k = 0; k < piece.vertices.size(); ++k) {
+        const uint32_t slot = store.slot[piece.vertices[k]];
+        if (slot != kUnmapped && in_pieces[piece.vertices[k]] == 1) store.values[slot] += piece.quadric(k);
+      }
+    }
+  });
   for (const Piece& piece : pieces) {
     for (size_t k = 0; k < piece.vertices.size(); ++k) {
       const uint32_t slot = store.slot[piece.vertices[k]];
-      if (slot != kUnmapped) store.values[slot] += piece.quadric(k);
+      if (slot != kUnmapped && in_pieces[piece.vertices[k]] > 1) store.values[slot] += piece.quadric(k);
     }
   }
   return store;
@@ -777,29 +815,47 @@ struct PieceJob {
 std::vector<std::vector<std::array<uint32_t, 3>>> Halos(const std::vector<std::vector<std::array<uint32_t, 3>>>& pieces,
                                                         size_t n) {
   constexpr uint32_t kNoPiece = 0xffffffffu, kCut = 0xfffffffeu;
+  // Each vertex's piece, or kCut when two or more have it: the same in any order of the pieces.
   std::vector<uint32_t> piece_of(n, kNoPiece);
-  for (uint32_t p = 0; p < pieces.size(); ++p) {
-    for (const auto& t : pieces[p]) {
-      for (uint32_t v : t) piece_of[v] = piece_of[v] == kNoPiece || piece_of[v] == p ? p : kCut;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      for (const auto& t : pieces[p]) {
+        for (uint32_t v : t) {
+          std::atomic_ref<uint32_t> of(piece_of[v]);
+          uint32_t seen = of.load(std::memory_order_relaxed);
+          while (seen != kCut && seen != p &&
+                 !of.compare_exchange_weak(seen, seen == kNoPiece ? static_cast<uint32_t>(p) : kCut,
+                                           std::memory_order_relaxed)) {}
+        }
+      }
     }
-  }
-  // The faces around each cut vertex, as (piece, face) references in one array.
+  });
+  // The faces around each cut vertex, as (piece, face) references in one array, in any order (each
+  // piece's halo sorts its own).
   std::vector<uint32_t> start(n + 1, 0);
-  for (const auto& piece : pieces) {
-    for (const auto& t : piece) {
-      for (uint32_t v : t) start[v + 1] += piece_of[v] == kCut ? 1 : 0;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      for (const auto& t : pieces[p]) {
+        for (uint32_t v : t) {
+          if (piece_of[v] == kCut) std::atomic_ref<uint32_t>(start[v + 1]).fetch_add(1, std::memory_order_relaxed);
+        }
+      }
     }
-  }
+  });
   for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
   std::vector<std::pair<uint32_t, uint32_t>> around(start[n]);
   std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-  for (uint32_t p = 0; p < pieces.size(); ++p) {
-    for (uint32_t f = 0; f < pieces[p].size(); ++f) {
-      for (uint32_t v : pieces[p][f]) {
-        if (piece_of[v] == kCut) around[fill[v]++] = {p, f};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      for (uint32_t f = 0; f < pieces[p].size(); ++f) {
+        for (uint32_t v : pieces[p][f]) {
+          if (piece_of[v] != kCut) continue;
+          const uint32_t at = std::atomic_ref<uint32_t>(fill[v]).fetch_add(1, std::memory_order_relaxed);
+          around[at] = {static_cast<uint32_t>(p), f};
+        }
       }
     }
-  }
+  });
   std::vector<std::vector<std::array<uint32_t, 3>>> halos(pieces.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t p = range.begin(); p != range.end(); ++p) {
@@ -967,23 +1023,29 @@ std::vector<int64_t> Apportion(const std::vector<int64_t>& sizes, int64_t total)
 std::vector<int64_t> CellTargets(const std::vector<PieceJob>& jobs, int64_t target_faces) {
   std::vector<int64_t> sizes(jobs.size(), 0);
   int64_t band_faces = 0;
-  std::vector<float> costs;
+  std::vector<std::vector<float>> costs(jobs.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, jobs.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t c = range.begin(); c != range.end(); ++c) {
+      if (jobs[c].simplifier) jobs[c].simplifier->ForQueuedCosts([&](float cost) { costs[c].push_back(cost); });
+    }
+  });
+  size_t queued = 0;
   for (size_t c = 0; c < jobs.size(); ++c) {
     if (!jobs[c].simplifier) continue;
     sizes[c] = jobs[c].own_faces_alive();
     band_faces += sizes[c];
-    jobs[c].simplifier->ForQueuedCosts([&](float cost) { costs.push_back(cost); });
+    queued += costs[c].size();
   }
   const int64_t collapses = (band_faces - std::max<int64_t>(0, target_faces) + 1) / 2;
-  if (collapses <= 0 || costs.empty()) return sizes;
-  const size_t edges = std::min(costs.size(), static_cast<size_t>(3 * collapses));
-  std::nth_element(costs.begin(), costs.begin() + static_cast<std::ptrdiff_t>(edges - 1), costs.end());
-  const float tau = costs[edges - 1];
+  if (collapses <= 0 || queued == 0) return sizes;
+  const size_t edges = std::min(queued, static_cast<size_t>(3 * collapses));
+  const float tau = KthSmallest(costs, edges - 1);
   std::vector<int64_t> cheap(jobs.size(), 0);
-  for (size_t c = 0; c < jobs.size(); ++c) {
-    if (!jobs[c].simplifier) continue;
-    jobs[c].simplifier->ForQueuedCosts([&](float cost) { cheap[c] += cost <= tau ? 1 : 0; });
-  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, jobs.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t c = range.begin(); c != range.end(); ++c) {
+      for (float cost : costs[c]) cheap[c] += cost <= tau ? 1 : 0;
+    }
+  });
   const std::vector<int64_t> shares = Apportion(cheap, collapses);
   std::vector<int64_t> targets(jobs.size(), 0);
   for (size_t c = 0; c < jobs.size(); ++c) targets[c] = std::max<int64_t>(0, sizes[c] - 2 * shares[c]);
@@ -1299,6 +1361,10 @@ std::vector<std::array<uint32_t, 3>> LastPassFaces(const std::vector<Piece>& pie
                                                    std::vector<std::array<uint32_t, 3>>& outside) {
   if (options.final_band_rings > 0) {
     std::vector<std::array<uint32_t, 3>> band;
+    // Room for the last pass's faces too (fewer than the band's), which are appended to these.
+    size_t tile_faces = 0;
+    for (const Piece& piece : pieces) tile_faces += piece.faces.size();
+    outside.reserve(tile_faces);
     SplitCutBand(pieces, n, rings, &band, &outside);
     if (with_goals) return band;  // the faces outside met their goals in the tiles
     if (target_faces > static_cast<int64_t>(outside.size())) {
