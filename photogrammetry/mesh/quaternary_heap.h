@@ -47,17 +47,49 @@ class QuaternaryHeap {
     items_[i] = item;
   }
 
-  // Removes and returns the first item. The heap must not be empty.
+  // Removes and returns the first item. The heap must not be empty. The hole left at the top goes down
+  // to a leaf along the first children, then the last item climbs back from there ("bottom-up", as in
+  // Wegener's heapsort): the last item belongs near the bottom, so this skips the comparison with it
+  // on every level down.
   T Pop() {
     T top = std::move(items_.front());
     T last = std::move(items_.back());
     items_.pop_back();
-    if (!items_.empty()) SiftDown(0, last);
+    const size_t n = items_.size();
+    if (n == 0) return top;
+    size_t i = 0;
+    for (;;) {
+      const size_t first = kArity * i + 1;
+      if (first >= n) break;
+      const size_t best = FirstChild(first, n);
+      items_[i] = std::move(items_[best]);
+      i = best;
+    }
+    while (i > 0) {
+      const size_t parent = (i - 1) / kArity;
+      if (!before_(last, items_[parent])) break;
+      items_[i] = std::move(items_[parent]);
+      i = parent;
+    }
+    items_[i] = std::move(last);
     return top;
   }
 
  private:
   static constexpr size_t kArity = 4;
+
+  // The first of the children first .. first + 3 (those below n), chosen without branches on the items
+  // (their order is a coin toss to the branch predictor): a tournament of pairs when all four exist.
+  size_t FirstChild(size_t first, size_t n) const {
+    if (first + kArity <= n) {
+      const size_t a = before_(items_[first + 1], items_[first]) ? first + 1 : first;
+      const size_t b = before_(items_[first + 3], items_[first + 2]) ? first + 3 : first + 2;
+      return before_(items_[b], items_[a]) ? b : a;
+    }
+    size_t best = first;
+    for (size_t c = first + 1; c < n; ++c) best = before_(items_[c], items_[best]) ? c : best;
+    return best;
+  }
 
   // Places `item` at the hole i or below it.
   void SiftDown(size_t i, T item) {
@@ -65,10 +97,7 @@ class QuaternaryHeap {
     for (;;) {
       const size_t first = kArity * i + 1;
       if (first >= n) break;
-      // The first child without branches on the items (their order is a coin toss to the predictor).
-      size_t best = first;
-      const size_t end = first + kArity < n ? first + kArity : n;
-      for (size_t c = first + 1; c < end; ++c) best = before_(items_[c], items_[best]) ? c : best;
+      const size_t best = FirstChild(first, n);
       if (!before_(items_[best], item)) break;
       items_[i] = std::move(items_[best]);
       i = best;
