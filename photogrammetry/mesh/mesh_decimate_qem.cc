@@ -1471,106 +1471,148 @@ void ToRoots(std::vector<uint32_t>& parent) {
   }
 }
 
-// The input vertices farther from the output than `share` × the largest such distance (the in→out
-// side of the Hausdorff distance), and that largest distance (`largest_m`). Each input vertex is measured against the
-// faces around the output vertex it merged into (`parent`: the vertex each removed one collapsed into), then, when that
-// is far enough to matter, against the faces around that vertex's neighbours as well: distances to some of the output's
-// faces, so never below the true distance. Deterministic: no order of threads enters.
-std::vector<char> SpikesToPin(const std::vector<Eigen::Vector3d>& input, const std::vector<Eigen::Vector3d>& output,
-                              const std::vector<std::array<uint32_t, 3>>& kept, std::vector<uint32_t>& parent,
-                              const std::vector<char>& used, double share, double* largest_m) {
-  const size_t n = input.size();
-  ToRoots(parent);
-  // The output's faces around each vertex.
-  std::vector<uint32_t> start(n + 1, 0);
-  for (const auto& t : kept) {
-    for (uint32_t v : t) ++start[v + 1];
-  }
-  for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<uint32_t> around(start[n]);
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+// The output's faces around each output vertex, to measure input vertices against the output: each
+// input vertex v against the faces around the output vertex it merged into (`roots`, after ToRoots),
+// or around that vertex and its neighbours. Distances to some of the output's faces, so never below
+// the true distance.
+class OutputFans {
+ public:
+  OutputFans(const std::vector<Eigen::Vector3d>& input, const std::vector<Eigen::Vector3d>& output,
+             const std::vector<std::array<uint32_t, 3>>& kept, const std::vector<uint32_t>& roots)
+      : input_(input), output_(output), kept_(kept), roots_(roots), start_(input.size() + 1, 0) {
+    const size_t n = input.size();
+    for (const auto& t : kept) {
+      for (uint32_t v : t) ++start_[v + 1];
+    }
+    for (size_t v = 0; v < n; ++v) start_[v + 1] += start_[v];
+    around_.resize(start_[n]);
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
     for (uint32_t f = 0; f < kept.size(); ++f) {
-      for (uint32_t v : kept[f]) around[fill[v]++] = f;
+      for (uint32_t v : kept[f]) around_[fill[v]++] = f;
     }
   }
-  const auto to_face = [&](const Eigen::Vector3d& x, uint32_t f) {
-    const auto& t = kept[f];
-    return SquaredDistanceToTriangle(x, output[t[0]], output[t[1]], output[t[2]]);
-  };
-  const auto one_ring = [&](size_t v) {
-    double best = INFINITY;
-    const uint32_t r = parent[v];
-    for (uint32_t k = start[r]; k < start[r + 1]; ++k) best = std::min(best, to_face(input[v], around[k]));
-    return std::isfinite(best) ? best : 0.0;  // (no face around it: not measured)
-  };
-  // Against the faces around r and around its neighbours (`ring`: scratch), each face once: at the
-  // first vertex of the ring it is around.
-  const auto two_rings = [&](size_t v, std::vector<uint32_t>& ring) {
-    const uint32_t r = parent[v];
+
+  // Whether some face around v's root has a squared distance below limit2 (or there is none).
+  bool OneRingWithin2(size_t v, double limit2) const {
+    const uint32_t r = roots_[v];
+    if (start_[r] == start_[r + 1]) return true;
+    for (uint32_t k = start_[r]; k < start_[r + 1]; ++k) {
+      if (ToFace(input_[v], around_[k]) < limit2) return true;
+    }
+    return false;
+  }
+
+  // Whether some face around v's root is nearer than limit_m (or there is none).
+  bool OneRingNearerThan(size_t v, double limit_m) const {
+    const uint32_t r = roots_[v];
+    if (start_[r] == start_[r + 1]) return true;
+    for (uint32_t k = start_[r]; k < start_[r + 1]; ++k) {
+      if (std::sqrt(ToFace(input_[v], around_[k])) < limit_m) return true;
+    }
+    return false;
+  }
+
+  // Squared, against the faces around v's root and around its neighbours (`ring`: scratch), each face
+  // once: at the first vertex of the ring it is around.
+  double TwoRings(size_t v, std::vector<uint32_t>& ring) const {
+    const uint32_t r = roots_[v];
     ring.assign(1, r);
-    for (uint32_t k = start[r]; k < start[r + 1]; ++k) {
-      for (uint32_t w : kept[around[k]]) {
+    for (uint32_t k = start_[r]; k < start_[r + 1]; ++k) {
+      for (uint32_t w : kept_[around_[k]]) {
         if (std::find(ring.begin(), ring.end(), w) == ring.end()) ring.push_back(w);
       }
     }
     double best = INFINITY;
     for (size_t i = 0; i < ring.size(); ++i) {
       const uint32_t w = ring[i];
-      for (uint32_t j = start[w]; j < start[w + 1]; ++j) {
-        const auto& t = kept[around[j]];
+      for (uint32_t j = start_[w]; j < start_[w + 1]; ++j) {
+        const auto& t = kept_[around_[j]];
         bool earlier = false;
         for (size_t q = 0; q < i && !earlier; ++q) earlier = t[0] == ring[q] || t[1] == ring[q] || t[2] == ring[q];
-        if (!earlier) best = std::min(best, to_face(input[v], around[j]));
+        if (!earlier) best = std::min(best, ToFace(input_[v], around_[j]));
       }
     }
     return std::isfinite(best) ? best : 0.0;
-  };
-  std::vector<double> near2(n, 0.0);  // squared, an upper bound
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t v = range.begin(); v != range.end(); ++v) {
-      if (used[v]) near2[v] = one_ring(v);
+  }
+
+ private:
+  double ToFace(const Eigen::Vector3d& x, uint32_t f) const {
+    const auto& t = kept_[f];
+    return SquaredDistanceToTriangle(x, output_[t[0]], output_[t[1]], output_[t[2]]);
+  }
+
+  const std::vector<Eigen::Vector3d>& input_;
+  const std::vector<Eigen::Vector3d>& output_;
+  const std::vector<std::array<uint32_t, 3>>& kept_;
+  const std::vector<uint32_t>& roots_;
+  std::vector<uint32_t> start_, around_;  // the output faces around vertex v: around_[start_[v] ..]
+};
+
+// The input vertices farther from the output than `share` × the largest such distance (the in→out
+// side of the Hausdorff distance), and that largest distance (`largest_m`), each measured by
+// OutputFans::TwoRings (`parent`: the vertex each removed one collapsed into; made roots here).
+// Deterministic: no order of threads enters.
+std::vector<char> SpikesToPin(const std::vector<Eigen::Vector3d>& input, const std::vector<Eigen::Vector3d>& output,
+                              const std::vector<std::array<uint32_t, 3>>& kept, std::vector<uint32_t>& parent,
+                              const std::vector<char>& used, double share, double* largest_m) {
+  const size_t n = input.size();
+  ToRoots(parent);
+  const OutputFans fans(input, output, kept, parent);
+  const double share2 = share * share;
+  // A lower bound of the largest distance: every 64th vertex measured in full. A vertex with a face
+  // nearer than share × that bound is then neither pinned nor the largest, which most vertices show
+  // at their root's first face; the others are measured in full.
+  constexpr size_t kSampleStep = 64;
+  std::vector<double> sample2((n + kSampleStep - 1) / kSampleStep, 0.0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, sample2.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<uint32_t> ring;
+    for (size_t k = range.begin(); k != range.end(); ++k) {
+      if (used[k * kSampleStep]) sample2[k] = fans.TwoRings(k * kSampleStep, ring);
     }
   });
-  const double largest_bound2 = *std::max_element(near2.begin(), near2.end());
-  std::vector<char> pinned(n, 0);
-  *largest_m = 0;
-  if (!(largest_bound2 > 0)) return pinned;
-  // Refined from the largest bound down, until the next bound is within share × the largest refined
-  // distance: what is left can neither be pinned nor raise the largest.
-  const double share2 = share * share;
-  double floor2 = 0.25 * largest_bound2;
-  std::vector<std::pair<double, uint32_t>> order;
-  std::vector<uint32_t> candidates;
-  std::vector<double> refined2;
-  double largest2 = 0;
-  for (;;) {
-    // The candidates refined in the vertices' order (which follows the surface: the output's faces stay
-    // in cache), then read in the bounds' order, largest first.
-    candidates.clear();
-    for (size_t v = 0; v < n; ++v) {
-      if (near2[v] > floor2) candidates.push_back(static_cast<uint32_t>(v));
+  const double floor2 = share2 * *std::max_element(sample2.begin(), sample2.end());
+  // (vertex, squared distance) of those measured in full, by blocks of vertices, in the vertices' order.
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::vector<std::pair<uint32_t, double>>> measured(blocks);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<uint32_t> ring;
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      for (size_t v = b * kBlock; v < std::min(n, (b + 1) * kBlock); ++v) {
+        if (used[v] && !fans.OneRingWithin2(v, floor2))
+          measured[b].push_back({static_cast<uint32_t>(v), fans.TwoRings(v, ring)});
+      }
     }
-    refined2.resize(candidates.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 64),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                        std::vector<uint32_t> ring;
-                        for (size_t k = range.begin(); k != range.end(); ++k)
-                          refined2[k] = two_rings(candidates[k], ring);
-                      });
-    order.clear();  // (−bound, index into candidates): ties by vertex
-    for (size_t k = 0; k < candidates.size(); ++k) order.push_back({-near2[candidates[k]], static_cast<uint32_t>(k)});
-    std::sort(order.begin(), order.end());
-    largest2 = 0;
-    size_t k = 0;
-    for (; k < order.size() && -order[k].first > share2 * largest2; ++k)
-      largest2 = std::max(largest2, refined2[order[k].second]);
-    if (k < order.size() || share2 * largest2 >= floor2 || floor2 == 0) break;
-    floor2 = floor2 > 1e-6 * largest_bound2 ? 0.25 * floor2 : 0;  // the walk reached the floor: lower it
+  });
+  double largest2 = 0;
+  for (const auto& block : measured) {
+    for (const auto& [v, d2] : block) largest2 = std::max(largest2, d2);
   }
-  for (size_t k = 0; k < candidates.size(); ++k) pinned[candidates[k]] = refined2[k] > share2 * largest2 ? 1 : 0;
+  std::vector<char> pinned(n, 0);
+  for (const auto& block : measured) {
+    for (const auto& [v, d2] : block) pinned[v] = d2 > share2 * largest2 ? 1 : 0;
+  }
   *largest_m = std::sqrt(largest2);
   return pinned;
+}
+
+// Whether every input vertex lies nearer than limit_m to the output, as SpikesToPin measures it (its
+// largest_m < limit_m, the same answer), without measuring each vertex in full: most are nearer than the
+// limit to the first face around their root already. `parent` is made roots, as SpikesToPin does.
+bool AllNearerThan(const std::vector<Eigen::Vector3d>& input, const std::vector<Eigen::Vector3d>& output,
+                   const std::vector<std::array<uint32_t, 3>>& kept, std::vector<uint32_t>& parent,
+                   const std::vector<char>& used, double limit_m) {
+  const size_t n = input.size();
+  ToRoots(parent);
+  const OutputFans fans(input, output, kept, parent);
+  std::atomic<bool> far{false};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<uint32_t> ring;
+    for (size_t v = range.begin(); v != range.end() && !far.load(std::memory_order_relaxed); ++v) {
+      if (!used[v] || fans.OneRingNearerThan(v, limit_m)) continue;
+      if (!(std::sqrt(fans.TwoRings(v, ring)) < limit_m)) far.store(true, std::memory_order_relaxed);
+    }
+  });
+  return !far.load();
 }
 
 // The spike pass's second run of the tiles: each tile holding a pinned vertex is simplified again (its
@@ -1862,7 +1904,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     for (const auto& t : mesh.faces) {
       if (IsValidFace(t)) used[t[0]] = used[t[1]] = used[t[2]] = 1;
     }
-    double first_m = 0, second_m = 0;
+    double first_m = 0;
     const std::vector<char> pinned = SpikesToPin(input, positions, kept, parent, used, options.spike_pass, &first_m);
     std::vector<std::array<uint32_t, 3>> first_kept = std::move(kept);
     std::vector<Eigen::Vector3d> first_positions = positions;
@@ -1877,8 +1919,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
     last_pass(kept);
     // The second run is kept only when its farthest input vertex is nearer than the first's (measured
     // the same way): the collapses it makes instead can leave other points farther.
-    SpikesToPin(input, positions, kept, parent, used, options.spike_pass, &second_m);
-    if (!(second_m < first_m)) {
+    if (!AllNearerThan(input, positions, kept, parent, used, first_m)) {
       kept = std::move(first_kept);
       positions = std::move(first_positions);
       parent = std::move(first_parent);
