@@ -731,35 +731,45 @@ struct QuadricStore {
   std::vector<Quadric> values;
 };
 
+// Dense ids, in increasing order, for the vertices `faces` use (kUnmapped for the others), and how many
+// (`count`): each block of vertices counts its used ones in parallel, the counts' running sums say where
+// each block's ids start. The same ids on any thread count.
+std::vector<uint32_t> IdsOfUsedVertices(const std::vector<std::array<uint32_t, 3>>& faces, size_t n, size_t* count) {
+  std::vector<char> used(n, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), kBlock), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t f = range.begin(); f != range.end(); ++f) {
+      // Threads may mark the same vertex: the same value, stored atomically.
+      for (uint32_t v : faces[f]) std::atomic_ref<char>(used[v]).store(1, std::memory_order_relaxed);
+    }
+  });
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<size_t> block_start(blocks + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      block_start[b + 1] =
+          static_cast<size_t>(std::count(used.begin() + b * kBlock, used.begin() + std::min(n, (b + 1) * kBlock), 1));
+    }
+  });
+  for (size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
+  std::vector<uint32_t> ids(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      auto id = static_cast<uint32_t>(block_start[b]);
+      for (size_t v = b * kBlock; v < std::min(n, (b + 1) * kBlock); ++v) ids[v] = used[v] ? id++ : kUnmapped;
+    }
+  });
+  *count = block_start[blocks];
+  return ids;
+}
+
 // The quadrics of the vertices of `faces`, each summed over the pieces it survived in (a cut vertex
 // belongs to several; each piece's quadric holds its own faces and what collapsed into it there).
 QuadricStore SumQuadrics(const std::vector<Piece>& pieces, const std::vector<std::array<uint32_t, 3>>& faces,
                          size_t n) {
   QuadricStore store;
-  // Slots in the vertices' order (marks, then each block's count and their running sum).
-  std::vector<char> held(n, 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), kBlock), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t f = range.begin(); f != range.end(); ++f) {
-      for (uint32_t v : faces[f]) std::atomic_ref<char>(held[v]).store(1, std::memory_order_relaxed);
-    }
-  });
-  const size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<uint32_t> block_start(blocks + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t b = range.begin(); b != range.end(); ++b) {
-      block_start[b + 1] =
-          static_cast<uint32_t>(std::count(held.begin() + b * kBlock, held.begin() + std::min(n, (b + 1) * kBlock), 1));
-    }
-  });
-  for (size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
-  store.slot.resize(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t b = range.begin(); b != range.end(); ++b) {
-      uint32_t slot = block_start[b];
-      for (size_t v = b * kBlock; v < std::min(n, (b + 1) * kBlock); ++v) store.slot[v] = held[v] ? slot++ : kUnmapped;
-    }
-  });
-  store.values.assign(block_start[blocks], Quadric{});
+  size_t held = 0;
+  store.slot = IdsOfUsedVertices(faces, n, &held);
+  store.values.assign(held, Quadric{});
   // A vertex in one piece takes that piece's quadric (in parallel); a cut vertex, in several, their sum
   // in the pieces' order (after: the same additions as one serial pass).
   std::vector<uint8_t> in_pieces(n, 0);
@@ -1237,43 +1247,23 @@ CentroidBox FaceCentroidBox(const std::vector<Eigen::Vector3d>& positions,
       });
 }
 
-// The surviving vertices (those `kept` uses) in their input order, then the faces. `remap`: n slots of
-// scratch. A vertex that never moved keeps its input coordinates exactly ((v − c) + c need not be v).
+// The surviving vertices (those `kept` uses) in their input order, then the faces. A vertex that never
+// moved keeps its input coordinates exactly ((v − c) + c need not be v).
 TriangleMesh CompactMesh(const TriangleMesh& mesh, const std::vector<std::array<uint32_t, 3>>& kept,
-                         const std::vector<Eigen::Vector3d>& positions, const Eigen::Vector3d& center,
-                         std::vector<uint32_t>& remap) {
+                         const std::vector<Eigen::Vector3d>& positions, const Eigen::Vector3d& center) {
   const size_t n = mesh.num_vertices();
   TriangleMesh out;
-  std::vector<char> used(n, 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, kept.size(), kBlock), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t f = range.begin(); f != range.end(); ++f) {
-      // Threads may mark the same vertex: the same value, stored atomically.
-      for (uint32_t v : kept[f]) std::atomic_ref<char>(used[v]).store(1, std::memory_order_relaxed);
-    }
-  });
-  // Output ids by blocks of input ids: each block's count, their running sum, then each block filled.
-  const size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<size_t> block_start(blocks + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t b = range.begin(); b != range.end(); ++b) {
-      block_start[b + 1] =
-          static_cast<size_t>(std::count(used.begin() + b * kBlock, used.begin() + std::min(n, (b + 1) * kBlock), 1));
-    }
-  });
-  for (size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
-  out.vertices_m.resize(block_start[blocks]);
-  if (mesh.has_colors()) out.colors_rgb.resize(block_start[blocks]);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t b = range.begin(); b != range.end(); ++b) {
-      size_t id = block_start[b];
-      for (size_t g = b * kBlock; g < std::min(n, (b + 1) * kBlock); ++g) {
-        if (!used[g]) continue;
-        remap[g] = static_cast<uint32_t>(id);
-        const bool moved = positions[g] != Eigen::Vector3d(mesh.vertices_m[g] - center);
-        out.vertices_m[id] = moved ? Eigen::Vector3d(positions[g] + center) : mesh.vertices_m[g];
-        if (mesh.has_colors()) out.colors_rgb[id] = mesh.colors_rgb[g];
-        ++id;
-      }
+  size_t count = 0;
+  const std::vector<uint32_t> remap = IdsOfUsedVertices(kept, n, &count);
+  out.vertices_m.resize(count);
+  if (mesh.has_colors()) out.colors_rgb.resize(count);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t g = range.begin(); g != range.end(); ++g) {
+      const uint32_t id = remap[g];
+      if (id == kUnmapped) continue;
+      const bool moved = positions[g] != Eigen::Vector3d(mesh.vertices_m[g] - center);
+      out.vertices_m[id] = moved ? Eigen::Vector3d(positions[g] + center) : mesh.vertices_m[g];
+      if (mesh.has_colors()) out.colors_rgb[id] = mesh.colors_rgb[g];
     }
   });
   out.faces.resize(kept.size());
@@ -1932,7 +1922,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   }
 
   // The surviving vertices in their input order, then the faces.
-  return CompactMesh(mesh, kept, positions, center, scratch);
+  return CompactMesh(mesh, kept, positions, center);
 }
 
 }  // namespace cinepath::photogrammetry::internal
