@@ -1688,7 +1688,7 @@ class Refit {
     // Every output vertex against the input faces around its cluster, in the vertices' order (which
     // follows the surface, so the faces of neighbouring clusters stay in cache). Refining from the
     // largest bound down (by r's own faces), as before, met 92 k of 116 k vertices at 10 % on the 2.5 M
-    // bench terrain and 61 k of 408 k at 40 %, in no spatial order: 2.5-4x slower.
+    // bench terrain and 61 k of 408 k at 40 %, in no spatial order: 2.2-5x slower.
     std::vector<double> far2(n, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t r = range.begin(); r != range.end(); ++r) {
