@@ -1482,22 +1482,13 @@ class OutputFans {
     }
   }
 
-  // Whether some face around v's root has a squared distance below limit2 (or there is none).
-  bool OneRingWithin2(size_t v, double limit2) const {
+  // Whether near(squared distance) holds for some face around v's root (or there is none).
+  template <typename Near>
+  bool SomeFaceAtRoot(size_t v, Near&& near) const {
     const uint32_t r = roots_[v];
     if (start_[r] == start_[r + 1]) return true;
     for (uint32_t k = start_[r]; k < start_[r + 1]; ++k) {
-      if (ToFace(input_[v], around_[k]) < limit2) return true;
-    }
-    return false;
-  }
-
-  // Whether some face around v's root is nearer than limit_m (or there is none).
-  bool OneRingNearerThan(size_t v, double limit_m) const {
-    const uint32_t r = roots_[v];
-    if (start_[r] == start_[r + 1]) return true;
-    for (uint32_t k = start_[r]; k < start_[r + 1]; ++k) {
-      if (std::sqrt(ToFace(input_[v], around_[k])) < limit_m) return true;
+      if (near(ToFace(input_[v], around_[k]))) return true;
     }
     return false;
   }
@@ -1568,7 +1559,7 @@ std::vector<char> SpikesToPin(const std::vector<Eigen::Vector3d>& input, const s
     std::vector<uint32_t> ring;
     for (size_t b = range.begin(); b != range.end(); ++b) {
       for (size_t v = b * kBlock; v < std::min(n, (b + 1) * kBlock); ++v) {
-        if (used[v] && !fans.OneRingWithin2(v, floor2))
+        if (used[v] && !fans.SomeFaceAtRoot(v, [&](double d2) { return d2 < floor2; }))
           measured[b].push_back({static_cast<uint32_t>(v), fans.TwoRings(v, ring)});
       }
     }
@@ -1598,7 +1589,7 @@ bool AllNearerThan(const std::vector<Eigen::Vector3d>& input, const std::vector<
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kBlock), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<uint32_t> ring;
     for (size_t v = range.begin(); v != range.end() && !far.load(std::memory_order_relaxed); ++v) {
-      if (!used[v] || fans.OneRingNearerThan(v, limit_m)) continue;
+      if (!used[v] || fans.SomeFaceAtRoot(v, [&](double d2) { return std::sqrt(d2) < limit_m; })) continue;
       if (!(std::sqrt(fans.TwoRings(v, ring)) < limit_m)) far.store(true, std::memory_order_relaxed);
     }
   });
