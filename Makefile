@@ -41,7 +41,11 @@ bench: build
 # tests run with leak checking; the tests that drive the binary run without it, because LeakSanitizer's
 # own tracer dies ("Tracer caught signal 11") in processes that loaded Embree's plugins (plan --scene,
 # render) or OpenImageIO's (mesh --images: a dynamic TLS block it reads at a bogus address), a failure of
-# the checker, not of the code; AddressSanitizer and UBSan still check them. A
+# the checker, not of the code; AddressSanitizer and UBSan still check them. The unit tests that load the
+# OpenImageIO plugin (ExifGps) run in that second pass too: whether the tracer dies there depends on how
+# many TLS modules the test binary already had when dlopen grew glibc's TLS vector (it began dying on
+# every run when the photogrammetry tests gained files, 2026-11-30; LSAN_OPTIONS=use_tls=0 instead
+# reports that vector itself as a leak). A
 # failing test fails the step: no test is run twice to hide a flake.
 # Also left out, because under the sanitizers they cost minutes each and add no code the other tests do
 # not already run there (measured 2026-11-25: the sanitize step took 30+ min with them): the browser
@@ -62,14 +66,14 @@ SANITIZE_WHOLE_SCENE_MESH = mesh_real\.sample_poisson|mesh_truth\.oblique|pipeli
 SANITIZE_SLOW = viewer\.browser|pipeline\.killed\.|pipeline\.determinism|pipeline\.texture_determinism|$(SANITIZE_WHOLE_SCENE_MESH)
 SANITIZE_SLOW_UNITS = DecimateForPlan\.AnOrbit|DecimateForPlan\.ATileOverTheBound
 SANITIZE_SKIP = interop\.|colmap_runner|repo\.|pipeline\.examples_makefile|$(SANITIZE_SLOW)|$(SANITIZE_SLOW_UNITS)
-BINARY_TESTS = golden\.|pipeline\.|preview\.|optimizer\.|viewer\.|extremes\.|mesh_truth\.|mesh_real\.
+NO_LEAK_CHECK = golden\.|pipeline\.|preview\.|optimizer\.|viewer\.|extremes\.|mesh_truth\.|mesh_real\.|ExifGps\.
 sanitize: deps
 	@cmake --preset sanitize > build-sanitize.configure.log 2>&1 || (cat build-sanitize.configure.log; exit 1)
 	@cmake --build build-sanitize -j $(JOBS)
 	@cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 $(SANITIZE_ENV) \
-	  ctest --output-on-failure -j $(JOBS) -E '^($(SANITIZE_SKIP)|$(BINARY_TESTS))'
+	  ctest --output-on-failure -j $(JOBS) -E '^($(SANITIZE_SKIP)|$(NO_LEAK_CHECK))'
 	@cd build-sanitize && ASAN_OPTIONS=detect_leaks=0 $(SANITIZE_ENV) \
-	  ctest --output-on-failure -j $(JOBS) -R '^($(BINARY_TESTS))' -E '^($(SANITIZE_SKIP))'
+	  ctest --output-on-failure -j $(JOBS) -R '^($(NO_LEAK_CHECK))' -E '^($(SANITIZE_SKIP))'
 
 FUZZ_SECONDS ?= 60
 fuzz:
