@@ -1756,7 +1756,7 @@ class Refit {
   }
 
   // Whether some input face around the vertices merged into r lies nearer than sqrt(limit2) to r's
-  // position, or there is none (then OutToIn says 0).
+  // position, or there is none (Farthest then counts r's distance as 0).
   bool SomeInputFaceNearer(uint32_t r, double limit2) const {
     bool none = true;
     for (uint32_t k = cluster_.begin(r); k < cluster_.end(r); ++k) {
