@@ -45,7 +45,8 @@ bench: build
 # OpenImageIO plugin (ExifGps) run in that second pass too: whether the tracer dies there depends on how
 # many TLS modules the test binary already had when dlopen grew glibc's TLS vector (it began dying on
 # every run when the photogrammetry tests gained files, 2026-11-30; LSAN_OPTIONS=use_tls=0 instead
-# reports that vector itself as a leak). A
+# reports that vector itself as a leak); scripts/check-leak-check-list.sh (ctest repo.leak_check_list)
+# fails when a test source that loads a plugin has a suite missing from NO_LEAK_CHECK. A
 # failing test fails the step: no test is run twice to hide a flake.
 # Also left out, because under the sanitizers they cost minutes each and add no code the other tests do
 # not already run there (measured 2026-11-25: the sanitize step took 30+ min with them): the browser
