@@ -9,8 +9,10 @@
 //   mesh_decimate_bench [--faces N] [--ratio R | --ratios R1,R2,...] [--samples S] [--methods a,b,...]
 //                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C] [--qem-rcond R]
 //                       [--qem-band-rings B] [--qem-band-cell-faces C] [--qem-area-floor F]
-//                       [--qem-distance-check D] [--qem-light-budget-keep K] [--qem-spike-pass S] [--qem-refit R]
+//                       [--qem-distance-check D] [--qem-check-midpoints 0|1] [--qem-light-budget-keep K]
+//                       [--qem-spike-pass S] [--qem-refit R]
 //                       [--error-goals E1,E2,...]
+//                       [--bound [--bound-depth N] [--bound-tolerance M]] [--sample-counts a,b,...]
 //                       [--presets] [--export-raw FILE] [--import-raw FILE --label NAME]
 //                       [--end-to-end] [--defects] [--threads T]
 //
@@ -277,9 +279,10 @@ struct BenchArgs {
   std::string error_goals;  // --error-goals e1,e2,...: error goals in metres instead of face budgets
   bool presets = false, end_to_end = false, defects = false;
   pg::internal::QemOptions qem;
-  int partitions = 0;         // > 0: tiles of both tiled methods (default: each method's own)
-  bool bound = false;         // --bound: also bound the true Hausdorff distance (both directions)
-  std::string sample_counts;  // --sample-counts a,b,...: the sampled estimate at each count (convergence)
+  int partitions = 0;                       // > 0: tiles of both tiled methods (default: each method's own)
+  bool bound = false;                       // --bound: also bound the true Hausdorff distance (both directions)
+  pg::HausdorffBoundOptions bound_options;  // --bound-depth N, --bound-tolerance M (metres, and 0 relative)
+  std::string sample_counts;                // --sample-counts a,b,...: the sampled estimate at each count (convergence)
   int threads = 0;
   std::string export_raw, import_raw, label = "external";
 };
@@ -317,7 +320,12 @@ std::optional<int> ParseArgs(int argc, char** argv, BenchArgs& args) {
       error_goals = next();
     else if (arg == "--bound")
       bound = true;
-    else if (arg == "--sample-counts")
+    else if (arg == "--bound-depth")
+      args.bound_options.max_depth = std::stoi(next());
+    else if (arg == "--bound-tolerance") {
+      args.bound_options.tolerance_m = std::stod(next());
+      args.bound_options.relative_tolerance = 0;
+    } else if (arg == "--sample-counts")
       sample_counts = next();
     else if (arg == "--partitions")
       partitions = std::stoi(next());
@@ -339,6 +347,8 @@ std::optional<int> ParseArgs(int argc, char** argv, BenchArgs& args) {
       qem.area_floor = std::stod(next());
     else if (arg == "--qem-distance-check")
       qem.distance_check = std::stod(next());
+    else if (arg == "--qem-check-midpoints")
+      qem.distance_check_midpoints = std::stoi(next()) != 0;
     else if (arg == "--qem-light-budget-keep")
       qem.light_budget_keep = std::stod(next());
     else if (arg == "--qem-spike-pass")
@@ -522,7 +532,7 @@ Json DecimationTable(const pg::TriangleMesh& input, const BenchArgs& args, const
       Json extra = Json::object();
       if (bound) {
         start = std::chrono::steady_clock::now();
-        const pg::HausdorffBoundOptions bound_options;
+        const pg::HausdorffBoundOptions& bound_options = args.bound_options;
         const pg::HausdorffInterval in_out = input_index->BoundDistanceTo(out_index, d.a_to_b_m, bound_options);
         const pg::HausdorffInterval out_in = out_index.BoundDistanceTo(*input_index, d.b_to_a_m, bound_options);
         const double bs = Seconds(start);

@@ -63,6 +63,9 @@ struct QemOptions {
   // edge's two vertices to the faces around the new point (the quadric's cost is a mean over its
   // planes; the Hausdorff error is a maximum). 0 = the quadric alone.
   double distance_check = 0.6;
+  // ... and that distance also from the midpoints of the two vertices' edges: the farthest input
+  // points were inside faces whose corners the collapses left on the surface (bench/RESULTS.md, run V).
+  bool distance_check_midpoints = true;
   // The spike pass, with a face budget that keeps less than `light_budget_keep` of the faces: once the
   // budget is met, the input vertices the output left farther than this share of the largest such
   // distance are pinned (locked as the cuts are), and the tiles that hold one run again with the band

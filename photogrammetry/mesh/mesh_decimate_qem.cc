@@ -494,19 +494,46 @@ class QemSimplifier {
     return ok;
   }
 
-  // The squared distance from x to the faces around keep and gone after the collapse to p (the two
-  // faces of the edge gone).
-  double FanSquaredDistance(const Eigen::Vector3d& x, uint32_t keep, uint32_t gone, const Eigen::Vector3d& p) {
-    double best = INFINITY;
-    const auto visit = [&](uint32_t f) {
+  // The largest squared distance from the points the collapse of (keep, gone) to p takes off the surface
+  // to the faces around keep and gone after it (the two faces of the edge gone): the two vertices, and
+  // with `midpoints` the midpoints of their edges (an input face whose corners stay on the surface can
+  // still leave it in between, where the new faces cut across its edges). A point's search stops once
+  // it is nearer than the largest so far (which leaves the maximum exact), and an edge's midpoint is
+  // measured first against the new faces at its far end, usually the nearest.
+  double FanSquaredDistance(uint32_t keep, uint32_t gone, const Eigen::Vector3d& p, bool midpoints) {
+    fan_.clear();
+    const auto gather = [&](uint32_t f) {
       const auto& t = faces_[f];
       if (Contains(t, keep) && Contains(t, gone)) return;
       const auto at = [&](uint32_t v) -> const Eigen::Vector3d& { return v == keep || v == gone ? p : pos_[v]; };
-      best = std::min(best, SquaredDistanceToTriangle(x, at(t[0]), at(t[1]), at(t[2])));
+      fan_.push_back({{at(t[0]), at(t[1]), at(t[2])}, t});
     };
-    ForFaces(keep, visit);
-    ForFaces(gone, visit);
-    return best;
+    ForFaces(keep, gather);
+    ForFaces(gone, gather);
+    double worst = 0;
+    // Measures x against the faces with corner `first` (kNone: none), then the others.
+    const auto measure = [&](const Eigen::Vector3d& x, uint32_t first) {
+      double best = INFINITY;
+      for (int pass = 0; pass < 2; ++pass) {
+        for (const FanFace& f : fan_) {
+          if (Contains(f.v, first) != (pass == 0)) continue;
+          best = std::min(best, SquaredDistanceToTriangle(x, f.p[0], f.p[1], f.p[2]));
+          if (best <= worst) return;
+        }
+      }
+      worst = best;
+    };
+    measure(pos_[gone], kNone);
+    measure(pos_[keep], kNone);
+    if (midpoints) {
+      for (const uint32_t v : {gone, keep}) {
+        ForNeighbours(v, [&](uint32_t w) {
+          if (v == keep && w == gone) return;  // the edge itself, measured from gone
+          measure(0.5 * (pos_[v] + pos_[w]), w);
+        });
+      }
+    }
+    return worst;
   }
 
   // Collapses edge (a, b) if it is an interior, manifold edge whose collapse keeps the mesh a
@@ -554,8 +581,7 @@ class QemSimplifier {
     if (options_.distance_check > 0 && goal2_.empty() && !e.checked) {
       // Hausdorff is a maximum: the quadric's cost is a mean over its planes, and a collapse can leave
       // one of its own vertices farther from the new faces than that mean says.
-      const double d2 =
-          std::max(FanSquaredDistance(pos_[a], keep, gone, p), FanSquaredDistance(pos_[b], keep, gone, p));
+      const double d2 = FanSquaredDistance(keep, gone, p, options_.distance_check_midpoints);
       const double fan_cost = options_.distance_check * (quadric_[a].Weight() + quadric_[b].Weight()) * d2;
       if (static_cast<float>(fan_cost) > e.cost) {
         *checked_cost = fan_cost;
@@ -606,6 +632,11 @@ class QemSimplifier {
   int64_t faces_alive_ = 0;
   CollapseQueue heap_;
   bool heap_built_ = false;
+  struct FanFace {
+    std::array<Eigen::Vector3d, 3> p;
+    std::array<uint32_t, 3> v;
+  };
+  std::vector<FanFace> fan_;  // FanSquaredDistance's scratch
 };
 
 // Plane quadric of each of the first face_count faces added to its three corners, weighted by the face's
