@@ -27,10 +27,11 @@ namespace {
 
 // The --quality presets (docs/mesh.md; figures in bench/RESULTS.md): a speed/accuracy ladder. Every
 // preset simplifies with qem_tiled, quadric collapse with optimal placement in parallel tiles, the most
-// accurate simplifier measured at 10 %, 40 % and 80 % of the 2.5 M-face bench terrain (at 80 %, final's
-// share there, its true error is proven below 0.027 m where CGAL's Garland–Heckbert, final's simplifier
-// until 2026-11-30, is at least 0.040 m, at 13× CGAL's speed); they differ in the budget and in the
-// Hausdorff samples (20 k / 200 k / 1 M). Every preset also measures every vertex of both meshes.
+// accurate simplifier measured on the bench terrain at 10 %, 40 % and 80 % of its faces: at 80 % of the
+// 2.5 M-face one, final's share there, its true error is proven below 0.027 m where that of CGAL's
+// Garland–Heckbert (final's simplifier until 2026-11-30) is at least 0.040 m, at 9–13× CGAL's speed.
+// The presets differ in the budget and in the Hausdorff samples (20 k / 200 k / 1 M). Every preset also
+// measures every vertex of both meshes.
 struct QualityDefaults {
   int64_t face_budget;            // default decimation target
   DecimationMethod method;        // simplifier
