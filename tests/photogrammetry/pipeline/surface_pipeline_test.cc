@@ -173,6 +173,8 @@ TEST(BuildSurfaceFromMesh, RecordsTheHausdorffSamplingAndThePresetsMethod) {
     ASSERT_NE(decimate, nullptr);
     EXPECT_TRUE((*decimate)["hausdorff_vertex_samples"].get<bool>());
     EXPECT_EQ((*decimate)["hausdorff_seed"], 1);
+    // Every preset's simplifier (final's too since 2026-11-30: bench/RESULTS.md, "--quality presets").
+    EXPECT_EQ((*decimate)["method"], "qem_tiled");
     const int64_t samples = (*decimate)["hausdorff_samples"].get<int64_t>();
     // Every face sample and every vertex of both meshes.
     EXPECT_EQ((*decimate)["hausdorff_points_measured"].get<int64_t>(),
