@@ -188,12 +188,14 @@ void PreviewScene::Radiance8(const Eigen::Vector3d* origins, const Eigen::Vector
 Eigen::Vector3f PreviewScene::Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Instant& at,
                                     const std::optional<scene::RayHit>& mesh_hit, TraceHit* hit_out,
                                     bool may_see_subject, float pixel_angle_rad) const {
-  double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();
-  // The ground past the edge: only where the mesh is missed (under the mesh it is hidden anyway).
+  const double mesh_distance = mesh_hit ? mesh_hit->distance_m : std::numeric_limits<double>::infinity();
+  // The ground past the edge: only where the mesh is missed (under the mesh it is hidden anyway). It
+  // stands in for ground nobody measured, so it hides no subject: a plane at the border's height also
+  // passes over the lower parts of the mesh, and would cut a subject standing there in two (as the
+  // previs page draws it: behind everything).
   double ground_distance = std::numeric_limits<double>::infinity();
   if (!mesh_hit && ground_ && direction.z() < 0 && origin.z() > ground_->height_m) {
     ground_distance = (ground_->height_m - origin.z()) / direction.z();
-    mesh_distance = ground_distance;
   }
   std::optional<ProxyHit> proxy;
   if (may_see_subject && !subjects_.empty())

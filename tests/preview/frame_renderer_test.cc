@@ -137,6 +137,34 @@ TEST(FrameRenderer, TheGroundContinuesPastTheMeshToTheHorizon) {
   }
 }
 
+// The ground past the edge hides no subject. The plane lies at the border's height (2 m), and a subject
+// standing lower (1.8 m tall on z = 0, 15 m past the patch's far edge) is seen by rays that miss the patch
+// and cross the plane before they reach it: the subject is drawn whole, in both passes, as with
+// --backdrop none.
+TEST(FrameRenderer, TheGroundPastTheEdgeHidesNoSubject) {
+  Trajectory tall = StillCamera({0, 0, 10}, 24, 8, 60);
+  tall.camera.width_px = 240;
+  tall.camera.height_px = 160;
+  SubjectTrack person;
+  person.height_m = 1.8;
+  person.positions_enu_m.assign(3, Eigen::Vector3d(0, 60, 0));
+  tall.subjects.push_back(person);
+  for (Quality quality : {Quality::kDraft, Quality::kStandard}) {
+    FrameSettings settings = Settings(quality, 4);
+    settings.width_px = 240;
+    settings.height_px = 160;
+    std::array<int, 2> seen{};
+    for (Backdrop backdrop : {Backdrop::kGround, Backdrop::kNone}) {
+      const PreviewScene scene(GroundPatch(), tall, Shading::kFlat, SunDirection{}, backdrop);
+      if (backdrop == Backdrop::kGround) ASSERT_DOUBLE_EQ(scene.ground()->height_m, 2.0);
+      const FrameImage image = RenderFrame(scene, tall, 1, settings);
+      for (float id : image.subject_id) seen[backdrop == Backdrop::kGround ? 0 : 1] += id == 1 ? 1 : 0;
+    }
+    EXPECT_GT(seen[1], 4) << "quality " << int(quality);
+    EXPECT_EQ(seen[0], seen[1]) << "quality " << int(quality);
+  }
+}
+
 // render builds the BVH and finds the border ring beside the textures' decoding and hands them to the
 // scene: the same pixels, depths and ground as the scene that builds them itself.
 TEST(FrameRenderer, AScenePreparedBesideItsTexturesRendersTheSameFrame) {
