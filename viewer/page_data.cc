@@ -18,10 +18,11 @@ Json FiniteOrNull(double value, int decimals) {
 }
 
 // What every flight's camera is drawn from, per sample: time, position and camera orientation in
-// three.js's frame, vertical angle of view, focus (null at infinity).
+// three.js's frame, its lens (focal length, vertical angle of view, f-number, focus: null at infinity),
+// so that the camera view through any drone reads that drone's lens.
 Json CameraTrackJson(const Trajectory& plan) {
   Json time = Json::array(), position = Json::array(), quaternion = Json::array(), vfov = Json::array();
-  Json focus = Json::array();
+  Json focus = Json::array(), focal = Json::array(), f_number = Json::array();
   for (const TrajectorySample& s : plan.samples) {
     time.push_back(RoundToDecimals(s.time_s, 6));
     AppendVector(&position, ThreeFromEnu(s.position_enu_m), 3);
@@ -29,12 +30,12 @@ Json CameraTrackJson(const Trajectory& plan) {
     for (double c : {q.x(), q.y(), q.z(), q.w()}) quaternion.push_back(RoundToDecimals(c, 6));
     vfov.push_back(RoundToDecimals(VerticalFieldOfViewDeg(plan.camera, s.focal_length_mm), 4));
     focus.push_back(FiniteOrNull(s.focus_distance_m, 3));
+    focal.push_back(RoundToDecimals(s.focal_length_mm, 3));
+    f_number.push_back(RoundToDecimals(s.f_number, 3));
   }
-  return {{"time_s", time},
-          {"position_m", position},
-          {"quaternion", quaternion},
-          {"vertical_fov_deg", vfov},
-          {"focus_distance_m", focus}};
+  return {{"time_s", time},           {"position_m", position},    {"quaternion", quaternion},
+          {"vertical_fov_deg", vfov}, {"focus_distance_m", focus}, {"focal_length_mm", focal},
+          {"f_number", f_number}};
 }
 
 // The samples a cut lies before (CutBeforeSamples), by index.
@@ -98,12 +99,10 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
                     {"height_px", plan.camera.height_px}};
   data["drone"] = plan.drone.name;
 
-  Json focal = Json::array(), f_number = Json::array(), speed = Json::array(), shot_index = Json::array();
+  Json speed = Json::array(), shot_index = Json::array();
   const std::vector<double> speeds = SampleSpeedsMps(plan);
   for (size_t k = 0; k < plan.samples.size(); ++k) {
     const TrajectorySample& s = plan.samples[k];
-    focal.push_back(RoundToDecimals(s.focal_length_mm, 3));
-    f_number.push_back(RoundToDecimals(s.f_number, 3));
     speed.push_back(RoundToDecimals(speeds[k], 3));
     int index = -1;
     for (size_t i = 0; i < plan.shots.size(); ++i) {
@@ -113,8 +112,6 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
   }
   data["cuts_before_sample"] = CutsJson(plan);
   Json samples = CameraTrackJson(plan);
-  samples["focal_length_mm"] = focal;
-  samples["f_number"] = f_number;
   samples["speed_m_s"] = speed;
   samples["shot"] = shot_index;
   data["samples"] = samples;

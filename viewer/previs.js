@@ -496,7 +496,8 @@ const subjectMarkers = data.subjects.map((subject, i) => {
 const cameraBox = $('camera-box');
 cameraBox.style.aspectRatio = `${data.camera.width_px} / ${data.camera.height_px}`;
 const origin = data.origin;
-$('hud-plan').textContent = `${data.plan} · ${N} samples at ${FPS} fps · ${data.shots.length} shots` +
+$('hud-plan').textContent = `${data.plan} · ${N} samples at ${FPS} fps · ${data.shots.length} ` +
+  `shot${data.shots.length === 1 ? '' : 's'}` +
   (meshInfo ? ` · ${meshInfo.source}: ${meshInfo.triangles} triangles` : ' · no scene mesh') +
   (data.photos && data.photos.length ? ` · ${data.photos.length} photos (blue)` : '');
 $('hud-origin').textContent = origin
@@ -730,7 +731,8 @@ function readoutText(flight, j, live) {
   }
   return `t ${fmt(t, 3)} s   frame ${k} / ${N - 1}${drone}${liveText}\n` +
     `${position}${j < k ? '   (flight ended: holding)' : ''}\n` +
-    `lens    focus ${fmt(focus, 2)} m (${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(flight.s.vertical_fov_deg[j], 1)}°` +
+    `lens    ${fmt(flight.s.focal_length_mm[j], 1)} mm  f/${fmt(flight.s.f_number[j], 1)}  focus ${fmt(focus, 2)} m ` +
+    `(${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(flight.s.vertical_fov_deg[j], 1)}°` +
     `   (lens graphs: ${team.flights[team.primary].name})`;
 }
 // Every flight at sample k (a flight that has ended holds its last sample), the camera view through the
@@ -768,10 +770,11 @@ function setSample(index) {
   readout.dataset.e = fmt(p.x, 3);
   readout.dataset.n = fmt(-p.z, 3);
   readout.dataset.u = fmt(p.y, 3);
-  readout.dataset.focal = fmt(S.focal_length_mm[k], 3);
+  // The camera view's lens is the viewed drone's (the lens graphs stay the primary's).
+  readout.dataset.focal = fmt(flight.s.focal_length_mm[j], 3);
   readout.textContent = readoutText(flight, j, live);
-  const focus = S.focus_distance_m[k];
-  $('lens-overlay').textContent = `${fmt(S.focal_length_mm[k], 1)} mm  f/${fmt(S.f_number[k], 1)}  ` +
+  const focus = flight.s.focus_distance_m[j];
+  $('lens-overlay').textContent = `${fmt(flight.s.focal_length_mm[j], 1)} mm  f/${fmt(flight.s.f_number[j], 1)}  ` +
     `focus ${focus === null ? '∞' : fmt(focus, 2) + ' m'}  ${fmt(S.time_s[k], 2)} s`;
   $('time').textContent = `${fmt(S.time_s[k], 2)} s / ${fmt(t1, 2)} s · ${k}`;
   // Rendered frames (--frames) belong to one sequence: the edit's when the plan has one, else the primary's.

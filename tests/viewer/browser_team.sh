@@ -26,7 +26,11 @@ browse() {
 }
 attr() { grep -o "$1=\"[^\"]*\"" "$2" | head -1 | sed 's/.*="\(.*\)"/\1/'; }
 scene=$SRC/tests/golden/mesh/brighton6_binary/expected/scene.json
-"$CINEPATH" plan "$SRC/tests/export/data/two_drones_shots.json" -o "$work/plan.json" || fail plan
+# South with a lens of its own (50 mm f/5.6; north keeps 35 mm f/4): its camera view must read it.
+sed '/"s_orbit"/,/}}/ s/"focal_length_mm": 35, "f_number": 4/"focal_length_mm": 50, "f_number": 5.6/' \
+  "$SRC/tests/export/data/two_drones_shots.json" > "$work/shots.json"
+grep -q '"focal_length_mm": 50' "$work/shots.json" || fail "the test's shots did not take south's lens"
+"$CINEPATH" plan "$work/shots.json" -o "$work/plan.json" || fail plan
 "$CINEPATH" view "$work/plan.json" --scene "$scene" -o "$work/team.html" || fail view
 browse "file://$work/team.html#t=1.25" --dump-dom > "$work/dom.html"
 state=$(attr data-state "$work/dom.html")
@@ -47,6 +51,11 @@ for d in north south edit; do
 done
 grep -q 'id="readout"[^>]*data-drone="south"' "$work/dom.html" ||
   fail "at 1.25 s the camera view is not south's (live): $(grep -o 'id="readout"[^>]*' "$work/dom.html")"
+# ... and reads south's lens, not the primary's (north: 35 mm f/4).
+grep -q 'id="readout"[^>]*data-focal="50.000"' "$work/dom.html" ||
+  fail "the readout's lens is not south's: $(grep -o 'id="readout"[^>]*' "$work/dom.html")"
+grep -q 'id="lens-overlay">50.0 mm  f/5.6' "$work/dom.html" ||
+  fail "the camera view's lens is not south's: $(grep -o 'id="lens-overlay">[^<]*' "$work/dom.html")"
 browse "file://$work/team.html#t=1.25&view=top" --screenshot="$ARTIFACTS/team_top.png" > /dev/null
 browse "file://$work/team.html#t=0.5" --screenshot="$ARTIFACTS/team_3d.png" > /dev/null
 [[ -s $ARTIFACTS/team_top.png ]] || fail "no screenshot"

@@ -79,7 +79,11 @@ TEST(PageData, JsonInThreeJsFrameWithInfinityAsNull) {
 TEST(PageData, EveryFlightOfATeamAboutItsPrimary) {
   Trajectory other = TwoShots();
   other.samples.resize(4);
-  for (auto& s : other.samples) s.position_enu_m.y() += 30;  // 30 m north
+  for (auto& s : other.samples) {
+    s.position_enu_m.y() += 30;  // 30 m north
+    s.focal_length_mm = 85;      // its own lens, which its camera view reads
+    s.f_number = 5.6;
+  }
   TeamPlan team = TeamOf({other, TwoShots()});
   team.edit.push_back({.at_s = 1, .drone = "drone1"});
   const Json data = PageDataJson(team, 1, "plan.json", std::nullopt);
@@ -88,6 +92,9 @@ TEST(PageData, EveryFlightOfATeamAboutItsPrimary) {
   ASSERT_EQ(flights.size(), 2u);
   EXPECT_EQ(flights[0]["time_s"].size(), 4u);
   EXPECT_EQ(flights[0]["position_m"][2], -30.0);  // north is three.js's -z
+  EXPECT_EQ(flights[0]["focal_length_mm"][3], 85.0);
+  EXPECT_EQ(flights[0]["f_number"][3], 5.6);
+  EXPECT_NE(data["samples"]["focal_length_mm"][3], 85.0);
   EXPECT_NE(flights[0]["colour"], flights[1]["colour"]);
   EXPECT_FALSE(flights[1].contains("position_m"));
   EXPECT_EQ(data["team"]["edit"][0]["drone"], "drone1");
