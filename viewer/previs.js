@@ -645,7 +645,9 @@ const series = [
   for (let k = 0; k < N; ++k) { lo = Math.min(lo, s.value(k)); hi = Math.max(hi, s.value(k)); }
   if (!(hi > lo)) { lo -= 1; hi += 1; }
   const pad = (hi - lo) * 0.08;
-  return { ...s, lo: lo - pad, hi: hi + pad };
+  // Focal length, dioptres and f-number are never negative: neither is an axis (a constant focus of
+  // 0.05 dpt would otherwise span -1.1 .. 1.2).
+  return { ...s, lo: Math.max(0, lo - pad), hi: hi + pad };
 });
 function drawGraphs(k) {
   const dpr = window.devicePixelRatio || 1;
@@ -936,6 +938,7 @@ document.body.dataset.timing = [moduleStartMs, meshReadyMs, performance.now()].m
 document.body.dataset.triangles = String(triangles);
 document.body.dataset.samples = String(N);
 document.body.dataset.flights = String(flights.length);
+document.body.dataset.graphRanges = series.map((s) => `${fmt(s.lo, 3)}..${fmt(s.hi, 3)}`).join(' ');
 document.body.dataset.flightPaths = String(flightPaths);
 document.body.dataset.editCuts = String(team.edit.length);
 document.body.dataset.conflicts = String(team.conflicts.length);

@@ -43,6 +43,10 @@ browse "file://$work/team.html#t=1.25" --window-size=1024,700 --dump-dom > "$wor
 [[ $(attr data-text-overflow "$work/dom_narrow.html") == 0 ]] ||
   fail "text overflow at 1024 px: $(attr data-text-overflow "$work/dom_narrow.html")"
 [[ $(attr data-flight-paths "$work/dom.html") == 2 ]] || fail "flight paths: $(attr data-flight-paths "$work/dom.html")"
+# The lens graphs' axes (focal length, dioptres, f-number) start at 0 or above, also for north's constant
+# lens, whose focus would otherwise span negative dioptres.
+ranges=$(attr data-graph-ranges "$work/dom.html")
+[[ -n $ranges && $ranges != *-* ]] || fail "lens graph axes below 0: '$ranges'"
 [[ $(attr data-edit-cuts "$work/dom.html") == 2 ]] || fail "edit cuts: $(attr data-edit-cuts "$work/dom.html")"
 [[ $(grep -o 'class="edit"' "$work/dom.html" | wc -l) == 2 ]] || fail "the timeline lacks the two cuts"
 for d in north south edit; do
