@@ -57,6 +57,8 @@ class PlanCommand : public Command {
     }
     const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin, ground);
     const TeamPlan plan = shots::PlanTeam(list);
+    for (const std::string& w : shots::FloatingActorWarnings(list))
+      std::cerr << "cinepath plan: warning: " << w << "\n";
     for (const std::string& w : shots::StopsDeadWarnings(list, plan))
       std::cerr << "cinepath plan: warning: " << w << "\n";
     if (strict_) RefuseBrokenLimits(plan);

@@ -226,6 +226,13 @@ Actor ParseActor(const JsonField& f, const PositionContext& context) {
   // its keys too (a path spline through points on uneven ground floats over the ground between them).
   std::optional<double> keys_above_ground_m;
   bool keys_on_ground = true;
+  std::vector<Actor::AbsoluteHeightKey> absolute;
+  // The field a key's position came from, when its height is absolute.
+  const auto note_absolute = [&](const JsonField& parent, size_t key) {
+    if (GroundOffsetM(parent, "position_enu_m", "position")) return;
+    const JsonField given = parent.Has("position_enu_m") ? parent["position_enu_m"] : parent["position"];
+    absolute.push_back({key, given.path()});
+  };
   if (auto keys = f.Find("keyframes")) {
     if (f.Has("position_enu_m") || f.Has("position")) f.Fail("give either a position or keyframes, not both");
     if (keys->size() == 0) keys->Fail("must hold at least one keyframe");
@@ -239,10 +246,12 @@ Actor ParseActor(const JsonField& f, const PositionContext& context) {
       const std::optional<double> above = GroundOffsetM(k, "position_enu_m", "position");
       if (!above || (keys_above_ground_m && *keys_above_ground_m != *above)) keys_on_ground = false;
       keys_above_ground_m = above;
+      note_absolute(k, times.size() - 1);
     }
   } else {
     times.push_back(0.0);
     points.push_back(ParsePosition(f, "position_enu_m", "position", context));
+    note_absolute(f, 0);
   }
   PathSpline path(std::move(times), std::move(points), kind);
   if (f.BoolOr("on_ground", false)) {
@@ -252,7 +261,9 @@ Actor ParseActor(const JsonField& f, const PositionContext& context) {
   if (!f.Has("on_ground") && f.Has("keyframes") && keys_on_ground && path.times().size() > 1) {
     return Actor(name, height_m, heading_deg, std::move(path), context.ground, *keys_above_ground_m);
   }
-  return Actor(name, height_m, heading_deg, std::move(path));
+  Actor actor(name, height_m, heading_deg, std::move(path));
+  actor.SetAbsoluteHeightKeys(std::move(absolute));
+  return actor;
 }
 
 }  // namespace cinepath::shots

@@ -68,6 +68,16 @@ class Actor {
   double SpeedAtLastKeyMS() const;
 
   const PathSpline& path() const { return path_; }
+  bool kept_on_ground() const { return ground_ != nullptr; }
+
+  // The keys whose height the shot list gave as an absolute up value ([e, n, u], or lat/lon with a
+  // height), not above the ground: their index in path() and the field that gave them (for messages).
+  struct AbsoluteHeightKey {
+    size_t key;
+    std::string field;
+  };
+  const std::vector<AbsoluteHeightKey>& absolute_height_keys() const { return absolute_height_keys_; }
+  void SetAbsoluteHeightKeys(std::vector<AbsoluteHeightKey> keys) { absolute_height_keys_ = std::move(keys); }
 
  private:
   std::string name_;
@@ -80,6 +90,7 @@ class Actor {
   bool ease_into_stop_ = false;              // EaseCameraIntoTheStop
   std::optional<PathSpline> camera_base_;    // CameraBaseAt's positions
   std::optional<PathSpline> camera_travel_;  // CameraTravelHeadingDegAt's unit directions (z = 0)
+  std::vector<AbsoluteHeightKey> absolute_height_keys_;
 };
 
 // Parses one element of shots.json "actors" (docs/plan.md): a position or timed keyframes, and

@@ -1,5 +1,8 @@
 #include "shots/plan_warnings.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/number_format.h"
 
 namespace cinepath::shots {
@@ -24,6 +27,48 @@ std::vector<std::string> StopsDeadWarnings(const ShotList& list, const TeamPlan&
           " s: the camera eases into the stop, but its aim stops dead with the actor; add a key where the "
           "actor comes to rest, or end the shot there");
     }
+  }
+  return warnings;
+}
+
+std::vector<std::string> FloatingActorWarnings(const ShotList& list) {
+  std::vector<std::string> warnings;
+  if (!list.ground) return warnings;
+  for (const Actor& actor : list.actors) {
+    if (actor.kept_on_ground()) continue;
+    // The key farthest off the ground: its field, the base's height over the ground (< 0: buried by that
+    // much, head to surface), and where.
+    const Actor::AbsoluteHeightKey* worst = nullptr;
+    double worst_off_m = 0, worst_over_m = 0;
+    Eigen::Vector3d worst_at = Eigen::Vector3d::Zero();
+    for (const Actor::AbsoluteHeightKey& key : actor.absolute_height_keys()) {
+      const Eigen::Vector3d p = actor.path().Position(actor.path().times()[key.key]);
+      const double head_m = p.z() + actor.height_m();
+      double over_m = 0;  // > 0: floating by this much; < 0: the surface this far above the head
+      if (const auto below = list.ground->SurfaceUpM(p.x(), p.y(), p.z() + std::max(actor.height_m(), 2.0))) {
+        over_m = p.z() - *below;
+        if (over_m <= kFloatsAboveGroundM) continue;
+      } else if (const auto top = list.ground->SurfaceUpM(p.x(), p.y()); top && *top > head_m) {
+        over_m = head_m - *top;
+      } else {
+        continue;  // nothing of the mesh there
+      }
+      if (std::fabs(over_m) > worst_off_m) {
+        worst = &key, worst_off_m = std::fabs(over_m), worst_over_m = over_m, worst_at = p;
+      }
+    }
+    if (!worst) continue;
+    const std::string where =
+        "(" + FormatSignificant(worst_at.x(), 4) + ", " + FormatSignificant(worst_at.y(), 4) + ")";
+    warnings.push_back(
+        "actor \"" + actor.name() + "\" (" + list.source + ": " + worst->field + ") " +
+        (worst_over_m > 0 ? "stands " + FormatSignificant(worst_over_m, 3) + " m above the scene's ground (" +
+                                list.ground->source() + ") at " + where
+                          : "has its head " + FormatSignificant(-worst_over_m, 3) + " m under the scene's surface (" +
+                                list.ground->source() + ") at " + where) +
+        ", at the absolute height given (up " + FormatSignificant(worst_at.z(), 4) +
+        " m); give the position as [east_m, north_m] (\"above_ground_m\" beside it to raise it) to stand "
+        "it on the ground");
   }
   return warnings;
 }
