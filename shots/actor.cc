@@ -231,7 +231,7 @@ Actor ParseActor(const JsonField& f, const PositionContext& context) {
   const auto note_absolute = [&](const JsonField& parent, size_t key) {
     if (GroundOffsetM(parent, "position_enu_m", "position")) return;
     const JsonField given = parent.Has("position_enu_m") ? parent["position_enu_m"] : parent["position"];
-    absolute.push_back({key, given.path()});
+    absolute.push_back({key, given.Where()});
   };
   if (auto keys = f.Find("keyframes")) {
     if (f.Has("position_enu_m") || f.Has("position")) f.Fail("give either a position or keyframes, not both");

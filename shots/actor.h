@@ -71,7 +71,7 @@ class Actor {
   bool kept_on_ground() const { return ground_ != nullptr; }
 
   // The keys whose height the shot list gave as an absolute up value ([e, n, u], or lat/lon with a
-  // height), not above the ground: their index in path() and the field that gave them (for messages).
+  // height), not above the ground: their index in path() and where the field that gave them is (file: path).
   struct AbsoluteHeightKey {
     size_t key;
     std::string field;

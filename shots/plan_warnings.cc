@@ -61,14 +61,14 @@ std::vector<std::string> FloatingActorWarnings(const ShotList& list) {
     const std::string where =
         "(" + FormatSignificant(worst_at.x(), 4) + ", " + FormatSignificant(worst_at.y(), 4) + ")";
     warnings.push_back(
-        "actor \"" + actor.name() + "\" (" + list.source + ": " + worst->field + ") " +
+        "actor \"" + actor.name() + "\" (" + worst->field + ") " +
         (worst_over_m > 0 ? "stands " + FormatSignificant(worst_over_m, 3) + " m above the scene's ground (" +
                                 list.ground->source() + ") at " + where
                           : "has its head " + FormatSignificant(-worst_over_m, 3) + " m under the scene's surface (" +
                                 list.ground->source() + ") at " + where) +
         ", at the absolute height given (up " + FormatSignificant(worst_at.z(), 4) +
-        " m); give the position as [east_m, north_m] (\"above_ground_m\" beside it to raise it) to stand "
-        "it on the ground");
+        " m); give the position without its height ([east_m, north_m], or \"above_ground_m\" in place of a "
+        "lat/lon height) to stand it on the ground");
   }
   return warnings;
 }

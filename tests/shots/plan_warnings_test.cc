@@ -79,7 +79,7 @@ TEST(PlanWarnings, AnActorAtAnAbsoluteHeightFarOffTheGroundIsNamed) {
                       "ground (level.glb) at (6, -6)"),
             std::string::npos)
       << w[0];
-  EXPECT_NE(w[0].find("give the position as [east_m, north_m]"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("give the position without its height ([east_m, north_m]"), std::string::npos) << w[0];
   // Buried: its head 10.2 m under the surface.
   w = FloatingFor(R"({"name": "a", "position_enu_m": [6, -6, -40]})");
   ASSERT_EQ(w.size(), 1u);
