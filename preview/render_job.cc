@@ -39,10 +39,12 @@ constexpr int kThumbWidthPx = 320;
 constexpr int kSheetColumns = 4;
 constexpr int kLabelPx = 12;
 
-std::vector<std::string> LabelLines(const Trajectory& plan, size_t k) {
+// `drone`: the flight's name in a team's frames (empty for one drone).
+std::vector<std::string> LabelLines(const Trajectory& plan, size_t k, const std::string& drone = "") {
   const TrajectorySample& s = plan.samples[k];
   const std::string focus = std::isinf(s.focus_distance_m) ? "inf" : FormatSignificant(s.focus_distance_m, 3) + " m";
-  return {"#" + std::to_string(k) + "  t " + FormatFixed(s.time_s, 3) + " s  " + s.shot,
+  return {"#" + std::to_string(k) + "  t " + FormatFixed(s.time_s, 3) + " s  " + (drone.empty() ? "" : drone + "  ") +
+              s.shot,
           FormatSignificant(s.focal_length_mm, 4) + " mm  focus " + focus + "  f/" + FormatSignificant(s.f_number, 3)};
 }
 
@@ -71,7 +73,7 @@ std::string FindOnPath(const std::string& program) {
 }
 
 // The rule of thirds and the frame's label, burnt in.
-void BurnOverlay(Srgb8Image* image, const Trajectory& plan, size_t k) {
+void BurnOverlay(Srgb8Image* image, const Trajectory& plan, size_t k, const std::string& drone) {
   auto blend = [&](int x, int y) {
     uint8_t* p = &image->rgb[3 * (size_t(y) * image->width + x)];
     for (int c = 0; c < 3; ++c) p[c] = uint8_t((p[c] + 255 * 2) / 3);
@@ -82,7 +84,7 @@ void BurnOverlay(Srgb8Image* image, const Trajectory& plan, size_t k) {
     for (int i = 0; i < image->width; ++i) blend(i, y);
   }
   const int size = std::max(10, image->height / 36);
-  const auto lines = LabelLines(plan, k);
+  const auto lines = LabelLines(plan, k, drone);
   for (size_t l = 0; l < lines.size(); ++l)
     DrawText(image, size / 2, size / 2 + int(l) * (size + size / 3), size, lines[l]);
 }
@@ -317,6 +319,7 @@ struct FrameWriting {
   VideoWriter* video = nullptr;
   std::map<size_t, Srgb8Image>* thumbs = nullptr;
   std::function<void(const RenderedFrame&)> frame_done;
+  std::string drone;  // the flight's name on the overlay in a team's frames (empty for one drone)
 };
 
 void RenderFlightFrames(const PreviewScene& scene, const Trajectory& plan,
@@ -347,7 +350,7 @@ void RenderFlightFrames(const PreviewScene& scene, const Trajectory& plan,
         Srgb8Image encoded;
         if (options.format != ImageFormat::kExr || video) {
           encoded = EncodeSrgb8(frame->rgb_linear, width, height);
-          if (options.overlay) BurnOverlay(&encoded, plan, k);
+          if (options.overlay) BurnOverlay(&encoded, plan, k, writing_options.drone);
         }
         if (options.format == ImageFormat::kExr) {
           std::vector<float> values(frame->rgb_linear.size() * 3);
@@ -604,10 +607,14 @@ RenderSummary RenderPlan(const fs::path& plan_json, const fs::path& scene_json, 
       targets.push_back({j, path});
       rendered.held[{ef, j}] = path;
     }
-    FrameWriting writing{options, settings, video.get(), sheets ? &rendered.thumbs[f] : nullptr,
+    FrameWriting writing{options,
+                         settings,
+                         video.get(),
+                         sheets ? &rendered.thumbs[f] : nullptr,
                          [&](const RenderedFrame& rendered) {
                            if (log.frame_done) log.frame_done(rendered, ++done, total);
-                         }};
+                         },
+                         team.single ? std::string() : team.flights[f].name};
     RenderFlightFrames(scene, plan, targets, writing, &summary);
   }
 

@@ -9,6 +9,7 @@
 #     the same bytes as in the full run; no temporary file is left;
 #   - two shards (--shard 0/2, 1/2) give the same frames as one run;
 #   - --contact-sheet PATH writes every drone's tiles to PATH and the edit's beside it (PATH.edit.png);
+#   - --overlay names the drone in each frame;
 #   - --video is refused for several drones (exit 2).
 #   render_team.sh CINEPATH SOURCE_DIR
 set -euo pipefail
@@ -57,6 +58,20 @@ done
 [[ -s $work/sheet.png && -s $work/sheet.edit.png ]] || fail "no sheet.png / sheet.edit.png"
 [[ ! -e $work/every/edit/contact_sheet.png ]] || fail "the edit's sheet went into the folder despite --contact-sheet"
 [[ $(count "$work/every/edit") == 3 ]] || fail "--every 4: edit frames 0, 4, 8"
+
+# --overlay names the drone in a team's frames: the same plan with north renamed draws another label
+# (and nothing else: the frame without the overlay is the same bytes).
+sed 's/"north"/"nord"/g' "$work/plan.json" > "$work/renamed.json"
+for p in plan renamed; do
+  "$CINEPATH" render "$work/$p.json" --scene "$scene" --width-px 400 --spp 1 --quality draft --frames 0 --overlay \
+    -o "$work/overlay_$p"
+  "$CINEPATH" render "$work/$p.json" --scene "$scene" --width-px 400 --spp 1 --quality draft --frames 0 \
+    -o "$work/bare_$p"
+done
+cmp -s "$work/bare_plan/north/frame_000000.png" "$work/bare_renamed/nord/frame_000000.png" ||
+  fail "renaming a drone changed its frame"
+cmp -s "$work/overlay_plan/north/frame_000000.png" "$work/overlay_renamed/nord/frame_000000.png" &&
+  fail "--overlay does not name the drone"
 
 set +e
 "${render[@]}" --video "$work/v.mp4" -o "$work/video" 2> "$work/stderr"
