@@ -83,12 +83,18 @@ class PlanCommand : public Command {
     if (broken == 0) return;
     std::string msg = "the plan breaks " + std::to_string(broken) + " limit range(s) (--strict; nothing written):";
     auto range = [](double a, double b) { return FormatFixed(a, 3) + "-" + FormatFixed(b, 3) + " s  "; };
+    // Four significant digits, more when they would print the value as the limit (45.0002 > 45, not 45 > 45).
+    auto against = [](double value, double limit) {
+      int digits = 4;
+      while (digits < 9 && FormatSignificant(value, digits) == FormatSignificant(limit, digits)) ++digits;
+      return FormatSignificant(value, digits);
+    };
     for (const auto& f : plan.flights) {
       for (const auto& v : f.plan.feasibility.violations) {
         const bool minimum = v.limit.ends_with("_min") || v.limit == "subject_distance";
         const std::string unit = v.unit.empty() ? "" : " " + v.unit;
         msg += "\n  " + range(v.start_time_s, v.end_time_s) + (plan.single ? "" : "drone \"" + f.name + "\"  ") +
-               "shot \"" + v.shot + "\"  " + v.limit + ": " + FormatSignificant(v.worst_value, 4) + unit +
+               "shot \"" + v.shot + "\"  " + v.limit + ": " + against(v.worst_value, v.limit_value) + unit +
                (minimum ? " < " : " > ") + FormatSignificant(v.limit_value, 4) + unit;
       }
     }

@@ -41,6 +41,10 @@ class EnuFrame {
   Eigen::Vector3d EcefFromEnu(const Eigen::Vector3d& enu_m) const;
   // Rotation taking ECEF direction vectors into ENU (rows are east, north, up in ECEF).
   Eigen::Matrix3d enu_from_ecef_rotation() const;
+  // Rotation taking this frame's ENU direction vectors into the local ENU axes (east, north, up of
+  // the ellipsoid) at the point `enu_m` of the frame: the identity at the origin; at a point away
+  // from it, true north there is turned by the meridian convergence and up tilted (core/local_level.h).
+  Eigen::Matrix3d LocalLevelFromEnu(const Eigen::Vector3d& enu_m) const;
 
  private:
   Geodetic origin_;

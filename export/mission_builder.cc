@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "core/angles.h"
@@ -10,6 +11,7 @@
 #include "core/file_io.h"
 #include "core/geoid.h"
 #include "core/json.h"
+#include "core/local_level.h"
 #include "export/dji_turns.h"
 #include "export/roi.h"
 
@@ -158,7 +160,8 @@ std::vector<std::pair<int, int>> CutRuns(const Trajectory& trajectory) {
 }
 
 // The selection options of one run: its points of interest detected where the target tracks them.
-SelectionOptions RunSelectionOptions(const std::vector<TrajectorySample>& run, const MissionBuildOptions& options) {
+SelectionOptions RunSelectionOptions(const std::vector<TrajectorySample>& run, const MissionBuildOptions& options,
+                                     const EnuFrame& frame) {
   SelectionOptions selection_options = options.selection;
   selection_options.rois.clear();
   if (selection_options.roi_tracking != RoiTracking::kNone) {
@@ -170,7 +173,9 @@ SelectionOptions RunSelectionOptions(const std::vector<TrajectorySample>& run, c
     // gimbal panned off the nose would be turned away).
     std::erase_if(selection_options.rois, [&](const RoiStretch& r) {
       for (int k = r.first_sample; k <= r.last_sample; ++k) {
-        const Eigen::Vector3d to = r.point_enu_m - run[k].position_enu_m;
+        // The point's bearing against true north where the drone is, as its heading (core/local_level.h).
+        const Eigen::Vector3d to =
+            frame.LocalLevelFromEnu(run[k].position_enu_m) * (r.point_enu_m - run[k].position_enu_m);
         if (to.head<2>().norm() < 1e-6) return true;
         const double bearing = HeadingDegFromEnuYaw(std::atan2(to.y(), to.x()));
         if (std::abs(AngleDiffDeg(bearing, run[k].drone_heading_deg)) > selection_options.max_angle_deg) return true;
@@ -192,11 +197,11 @@ struct SelectedWaypoints {
 
 SelectedWaypoints SelectRunWaypoints(const std::vector<TrajectorySample>& samples,
                                      const std::vector<std::pair<int, int>>& runs, const MissionBuildOptions& options,
-                                     Mission& mission) {
+                                     const EnuFrame& frame, Mission& mission) {
   SelectedWaypoints out;
   for (const auto& [first, last] : runs) {
     const std::vector<TrajectorySample> run(samples.begin() + first, samples.begin() + last + 1);
-    const SelectionOptions selection_options = RunSelectionOptions(run, options);
+    const SelectionOptions selection_options = RunSelectionOptions(run, options, frame);
     const Selection selection = SelectWaypoints(run, selection_options);
     double deviation_m = selection.max_deviation_m;
     mission.straight_deviation_reached_m = std::max(mission.straight_deviation_reached_m, deviation_m);
@@ -234,6 +239,20 @@ SelectedWaypoints SelectRunWaypoints(const std::vector<TrajectorySample>& sample
     }
   }
   return out;
+}
+
+// A plan without an origin measures its angles against its frame's axes; placed by the mission's origin,
+// each sample's are taken against true north and the local vertical where it flies (core/local_level.h),
+// a nose off the camera keeping its gimbal yaw.
+std::vector<TrajectorySample> AnglesWhereFlown(std::vector<TrajectorySample> samples, const EnuFrame& frame) {
+  for (TrajectorySample& s : samples) {
+    const double camera_heading_deg =
+        LocalGimbalAngles(&frame, s.position_enu_m, s.world_from_camera).drone_heading_deg;
+    SetLocalAngles(&frame, s,
+                   s.gimbal_yaw_deg == 0 ? std::numeric_limits<double>::quiet_NaN()
+                                         : NormalizeDeg360(camera_heading_deg - s.gimbal_yaw_deg));
+  }
+  return samples;
 }
 
 // One MissionWaypoint per selected sample, georeferenced.
@@ -296,19 +315,21 @@ void SetLegSpeeds(const MissionBuildOptions& options, Mission& mission) {
 }  // namespace
 
 Mission BuildMission(const Trajectory& trajectory, const MissionBuildOptions& options) {
-  const auto& samples = trajectory.samples;
-  CheckSamples(samples, options.plan_name);
+  CheckSamples(trajectory.samples, options.plan_name);
   const Egm96Geoid& geoid = Egm96Geoid::Default();
   Mission mission;
   const Geodetic origin = PlaceMission(trajectory, options, geoid, mission);
   SetPlatformLimits(trajectory, options, origin, mission);
+  const EnuFrame frame(origin);
+  const std::vector<TrajectorySample> located =
+      trajectory.origin ? std::vector<TrajectorySample>() : AnglesWhereFlown(trajectory.samples, frame);
+  const std::vector<TrajectorySample>& samples = trajectory.origin ? trajectory.samples : located;
   const std::vector<std::pair<int, int>> runs = CutRuns(trajectory);
-  const SelectedWaypoints selected = SelectRunWaypoints(samples, runs, options, mission);
+  const SelectedWaypoints selected = SelectRunWaypoints(samples, runs, options, frame, mission);
   mission.turn_model = options.turn_model;
   mission.roi_tracking = options.selection.roi_tracking;
   mission.cut_count = static_cast<int>(runs.size()) - 1;
   mission.transit_speed_mps = options.transit_speed_mps;
-  const EnuFrame frame(origin);
   AddWaypoints(samples, selected, frame, geoid, mission);
   AddRois(samples, selected, frame, geoid, mission);
   SetLegSpeeds(options, mission);

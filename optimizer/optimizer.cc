@@ -21,6 +21,7 @@
 #include "core/feasibility.h"
 #include "core/geodesy.h"
 #include "core/ground.h"
+#include "core/local_level.h"
 #include "core/number_format.h"
 #include "core/optics.h"
 #include "core/rotation.h"
@@ -1211,15 +1212,15 @@ Trajectory PlanOptimizer::Apply(const std::vector<double>& group_alpha) const {
     const bool moved = s.yaw != 0 || s.tilt != 0 || s.log_focal != 0 || s.position != plan_.samples[k].position_enu_m;
     apply(base, s, &sample.position_enu_m, &sample.world_from_camera, &sample.focal_length_mm, &sample.focus_distance_m,
           &sample.f_number);
-    if (s.yaw != 0 || s.tilt != 0) {
-      const GimbalAngles g = GimbalFromWorldFromCamera(sample.world_from_camera);
-      sample.drone_heading_deg = g.drone_heading_deg;
-      sample.gimbal_pitch_deg = g.gimbal_pitch_deg;
-      sample.gimbal_roll_deg = g.gimbal_roll_deg;
-      sample.gimbal_yaw_deg = g.gimbal_yaw_deg;
+    const bool turned = s.yaw != 0 || s.tilt != 0, displaced = s.position != plan_.samples[k].position_enu_m;
+    if (turned || (frame && displaced)) {
+      // Against true north and the local vertical where the camera now is (core/local_level.h); a nose
+      // off the camera keeps its heading when only the position moved.
+      const bool nose_on_camera = turned || sample.gimbal_yaw_deg == 0;
+      SetLocalAngles(frame ? &*frame : nullptr, sample,
+                     nose_on_camera ? std::numeric_limits<double>::quiet_NaN() : sample.drone_heading_deg);
     }
-    if (frame && s.position != plan_.samples[k].position_enu_m)
-      sample.geodetic = frame->GeodeticFromEnu(sample.position_enu_m);
+    if (frame && displaced) sample.geodetic = frame->GeodeticFromEnu(sample.position_enu_m);
     if (moved) {
       sample.subjects_in_frame.clear();
       const Eigen::Quaterniond camera_from_world = sample.world_from_camera.conjugate();

@@ -10,6 +10,7 @@
 #include "core/angles.h"
 #include "core/feasibility.h"
 #include "core/geodesy.h"
+#include "core/local_level.h"
 #include "core/rotation.h"
 #include "optimizer/plan_samples.h"
 
@@ -182,12 +183,7 @@ std::vector<TrajectorySample> ResampleShot(const Trajectory& plan, Range range, 
     const bool nose_on_camera = a.gimbal_yaw_deg == 0 && b.gimbal_yaw_deg == 0;
     const double heading =
         NormalizeDeg360(a.drone_heading_deg + x * AngleDiffDeg(a.drone_heading_deg, b.drone_heading_deg));
-    const GimbalAngles g = GimbalFromWorldFromCamera(
-        s.world_from_camera, nose_on_camera ? std::numeric_limits<double>::quiet_NaN() : heading);
-    s.drone_heading_deg = g.drone_heading_deg;
-    s.gimbal_pitch_deg = g.gimbal_pitch_deg;
-    s.gimbal_roll_deg = g.gimbal_roll_deg;
-    s.gimbal_yaw_deg = g.gimbal_yaw_deg;
+    SetLocalAngles(frame ? &*frame : nullptr, s, nose_on_camera ? std::numeric_limits<double>::quiet_NaN() : heading);
     s.focal_length_mm = std::exp(Lerp(std::log(a.focal_length_mm), std::log(b.focal_length_mm), x));
     const double dioptre = Lerp(1 / a.focus_distance_m, 1 / b.focus_distance_m, x);  // 1 / inf = 0
     s.focus_distance_m = dioptre > 0 ? 1 / dioptre : std::numeric_limits<double>::infinity();

@@ -9,6 +9,7 @@
 #include "core/easing.h"
 #include "core/error.h"
 #include "core/feasibility.h"
+#include "core/local_level.h"
 #include "core/rotation.h"
 #include "shots/lens_track.h"
 #include "shots/shot_pose.h"
@@ -43,7 +44,9 @@ struct Evaluated {
 
 class Planner {
  public:
-  explicit Planner(const ShotList& list) : list_(list) {}
+  explicit Planner(const ShotList& list) : list_(list) {
+    if (list.origin) frame_.emplace(*list.origin);
+  }
 
   Trajectory Run(const PlanOptions& options);
 
@@ -72,6 +75,7 @@ class Planner {
   ShotIntent IntentOf(const ShotSpec& shot) const;
 
   const ShotList& list_;
+  std::optional<EnuFrame> frame_;  // the scene frame about list_.origin, when it has one
   std::vector<FocusOverride> focus_overrides_;
   std::vector<ShotState> states_;
 };
@@ -242,7 +246,8 @@ double Planner::RequestedFocalLengthMm(const ShotSpec& shot, const ShotState& st
 }
 
 // The camera orientation: given by the shot, aimed at the subject (at the lens's screen position, with a
-// crane's tilt blend), or level along the previous heading; then the transition's rotation offset.
+// crane's tilt blend), straight down, or level along the previous heading; then the transition's
+// rotation offset.
 Eigen::Quaterniond Planner::OrientationAt(const ShotSpec& shot, const ShotState& st, const ShotPose& pose,
                                           const Eigen::Vector3d& position, double focal_length_mm, double t,
                                           double fallback_heading_deg, double blend_w,
@@ -250,31 +255,42 @@ Eigen::Quaterniond Planner::OrientationAt(const ShotSpec& shot, const ShotState&
   Eigen::Quaterniond q;
   if (pose.world_from_camera) {
     q = *pose.world_from_camera;
-  } else if (pose.aim_point_enu_m) {
-    const Eigen::Vector3d to_subject = *pose.aim_point_enu_m - position;
-    if (to_subject.norm() < 1e-9) {
-      throw InputError(list_.source + ": shot \"" + shot.name +
-                       "\": the camera reaches the subject's aim point at t = " + std::to_string(t) +
-                       " s; nothing to look at");
-    }
-    const Eigen::Vector2d sp = shot.lens.screen_position;
-    if (sp.x() == 0.5 && sp.y() == 0.5) {
-      q = LookAt(to_subject, fallback_heading_deg);
-    } else {
-      const ImageExtentMm image = list_.camera.image_extent_mm();
-      const Eigen::Vector3d ray((sp.x() - 0.5) * image.width_mm, (sp.y() - 0.5) * image.height_mm, focal_length_mm);
-      q = AimWithScreenOffset(to_subject, ray, fallback_heading_deg);
-    }
-    if (pose.tilt_start_deg) {
-      GimbalAngles g;
-      g.drone_heading_deg = CameraHeadingDeg(q);
-      g.gimbal_pitch_deg = *pose.tilt_start_deg;
-      q = Slerp(WorldFromCameraFromGimbal(g), q, pose.tilt_weight);
-    }
   } else {
-    GimbalAngles g;
-    g.drone_heading_deg = fallback_heading_deg;
-    q = WorldFromCameraFromGimbal(g);
+    // Aimed and levelled where the camera is: the gimbal holds the horizon of the local vertical there,
+    // and the fallback heading is a true one (core/local_level.h; the scene frame's axes without an origin).
+    const Eigen::Matrix3d local_from_enu =
+        frame_ ? frame_->LocalLevelFromEnu(position) : Eigen::Matrix3d::Identity().eval();
+    Eigen::Quaterniond local_from_camera;
+    if (pose.down_up_bearing_deg) {  // straight down the local vertical
+      local_from_camera = LookAt(-Eigen::Vector3d::UnitZ(), *pose.down_up_bearing_deg);
+    } else if (pose.aim_point_enu_m) {
+      const Eigen::Vector3d to_subject = *pose.aim_point_enu_m - position;
+      if (to_subject.norm() < 1e-9) {
+        throw InputError(list_.source + ": shot \"" + shot.name +
+                         "\": the camera reaches the subject's aim point at t = " + std::to_string(t) +
+                         " s; nothing to look at");
+      }
+      const Eigen::Vector3d to_subject_local = local_from_enu * to_subject;
+      const Eigen::Vector2d sp = shot.lens.screen_position;
+      if (sp.x() == 0.5 && sp.y() == 0.5) {
+        local_from_camera = LookAt(to_subject_local, fallback_heading_deg);
+      } else {
+        const ImageExtentMm image = list_.camera.image_extent_mm();
+        const Eigen::Vector3d ray((sp.x() - 0.5) * image.width_mm, (sp.y() - 0.5) * image.height_mm, focal_length_mm);
+        local_from_camera = AimWithScreenOffset(to_subject_local, ray, fallback_heading_deg);
+      }
+      if (pose.tilt_start_deg) {
+        GimbalAngles g;
+        g.drone_heading_deg = CameraHeadingDeg(local_from_camera);
+        g.gimbal_pitch_deg = *pose.tilt_start_deg;
+        local_from_camera = Slerp(WorldFromCameraFromGimbal(g), local_from_camera, pose.tilt_weight);
+      }
+    } else {
+      GimbalAngles g;
+      g.drone_heading_deg = fallback_heading_deg;
+      local_from_camera = WorldFromCameraFromGimbal(g);
+    }
+    q = Eigen::Quaterniond(local_from_enu.transpose()) * local_from_camera;
   }
   if (apply_rotation_offset && blend_w > 0) {
     q = Slerp(st.rotation_offset, Eigen::Quaterniond::Identity(), 1.0 - blend_w) * q;
@@ -364,11 +380,7 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
 
   s.world_from_camera = OrientationAt(shot, st, pose, s.position_enu_m, s.focal_length_mm, t, fallback_heading_deg,
                                       blend.blend_w, apply_rotation_offset);
-  const GimbalAngles g = GimbalFromWorldFromCamera(s.world_from_camera);
-  s.drone_heading_deg = g.drone_heading_deg;
-  s.gimbal_pitch_deg = g.gimbal_pitch_deg;
-  s.gimbal_roll_deg = g.gimbal_roll_deg;
-  s.gimbal_yaw_deg = g.gimbal_yaw_deg;
+  SetLocalAngles(frame_ ? &*frame_ : nullptr, s);  // against true north and the vertical where it is
 
   out.request.focus_distance_m = RequestedFocusM(shot, st, s.position_enu_m, s.world_from_camera, t, tau, lens_time);
   s.focus_distance_m = std::isinf(out.request.focus_distance_m)
@@ -476,8 +488,7 @@ void Planner::SampleShots(Trajectory& plan, std::vector<bool>& cut_before, std::
   // Which shot owns sample k: the last shot with start <= t and (t < end or it is the last shot
   // with a positive duration).
   const size_t n = plan.samples.size();
-  std::optional<EnuFrame> frame;
-  if (plan.origin) frame.emplace(*plan.origin);
+  const std::optional<EnuFrame>& frame = frame_;
   double heading = 0;
   size_t shot = 0;
   size_t last_positive = 0;

@@ -107,8 +107,10 @@ struct ShotSpec {
   double rotate_deg = 0;                 // TOP-DOWN: rotation over the shot (clockwise)
   Eigen::Vector3d offset_enu_m = Eigen::Vector3d::Zero();
   std::optional<Eigen::Vector3d> position_enu_m;  // LOCKED-OFF
-  double heading_deg = 0, pitch_deg = 0;          // LOCKED-OFF without a subject
-  bool pan = false;                               // LOCKED-OFF: pan to hold the subject
+  // LOCKED-OFF without a subject: its heading_deg and pitch_deg, taken against true north and the local
+  // vertical at its position (core/local_level.h).
+  Eigen::Quaterniond locked_world_from_camera = Eigen::Quaterniond::Identity();
+  bool pan = false;  // LOCKED-OFF: pan to hold the subject
 
   // KEYFRAMES
   std::vector<CameraKey> keys;

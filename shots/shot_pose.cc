@@ -79,7 +79,7 @@ void PlaceCamera(const ShotSpec& shot, double shot_start_s, double t, double e, 
     }
     case ShotType::kTopDown: {
       pose.position_enu_m = f.Base(t) + shot.offset_enu_m + Lerp(shot.height_m, shot.height_end_m, e) * up;
-      pose.world_from_camera = LookAt(-up, shot.up_bearing_deg + shot.rotate_deg * e);
+      pose.down_up_bearing_deg = shot.up_bearing_deg + shot.rotate_deg * e;  // the planner levels it
       break;
     }
     case ShotType::kDollyZoom: {
@@ -96,10 +96,7 @@ void PlaceCamera(const ShotSpec& shot, double shot_start_s, double t, double e, 
             f.Base(shot_start_s) + shot.distance_m * HorizontalFromBearing(shot.bearing_deg) + shot.height_m * up;
       }
       if (!f.actor) {
-        GimbalAngles g;
-        g.drone_heading_deg = shot.heading_deg;
-        g.gimbal_pitch_deg = shot.pitch_deg;
-        pose.world_from_camera = WorldFromCameraFromGimbal(g);
+        pose.world_from_camera = shot.locked_world_from_camera;
       } else if (!shot.pan) {
         pose.aim_point_enu_m = f.actor->AimPointAt(shot_start_s);  // locked: aimed once
       }

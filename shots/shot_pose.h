@@ -19,6 +19,7 @@ struct ShotPose {
   Eigen::Vector3d position_enu_m = Eigen::Vector3d::Zero();
   std::optional<Eigen::Vector3d> aim_point_enu_m;       // aim here (screen position, framing)
   std::optional<Eigen::Quaterniond> world_from_camera;  // or a fixed orientation
+  std::optional<double> down_up_bearing_deg;            // or straight down, the image top this way
   std::optional<double> tilt_start_deg;                 // CRANE/REVEAL: blend from this pitch ...
   double tilt_weight = 1;                               // ... to the aim by this weight (eased)
   double eased = 0;                                     // e(u), for lens ramps

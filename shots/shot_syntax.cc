@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/local_level.h"
 #include "core/number_format.h"
 #include "core/plan_file.h"
 #include "core/rotation.h"
@@ -148,8 +149,9 @@ LensSpec ParseLens(const JsonField& f, const ShotList& list, const ShotSpec& sho
 }
 
 // Orientation given on a free keyframe: angles, or a look-at (subject or ENU point).
-std::optional<Eigen::Quaterniond> ParseKeyOrientation(const JsonField& k, const ShotList& list,
+std::optional<Eigen::Quaterniond> ParseKeyOrientation(const JsonField& k, const ShotContext& c,
                                                       const Eigen::Vector3d& pos, double key_plan_time_s) {
+  const ShotList& list = c.list;
   const bool has_angles = k.Has("heading_deg") || k.Has("pitch_deg") || k.Has("roll_deg");
   const bool has_look = k.Has("look_at");
   if (has_angles && has_look) k.Fail("give either \"look_at\" or heading/pitch/roll angles, not both");
@@ -159,7 +161,7 @@ std::optional<Eigen::Quaterniond> ParseKeyOrientation(const JsonField& k, const 
     g.gimbal_pitch_deg = k.DoubleOr("pitch_deg", 0.0);
     g.gimbal_roll_deg = k.DoubleOr("roll_deg", 0.0);
     if (g.gimbal_pitch_deg < -90 || g.gimbal_pitch_deg > 90) k["pitch_deg"].Fail("must be in [-90, 90]");
-    return WorldFromCameraFromGimbal(g);
+    return LocalWorldFromCamera(c.positions.frame, pos, g);  // true north and the vertical at the key
   }
   if (has_look) {
     const JsonField look = k["look_at"];
@@ -171,7 +173,7 @@ std::optional<Eigen::Quaterniond> ParseKeyOrientation(const JsonField& k, const 
       target = {look.At(0).AsDouble(), look.At(1).AsDouble(), look.At(2).AsDouble()};
     }
     if ((target - pos).norm() < 1e-9) look.Fail("the camera is on the look-at point");
-    return LookAt(target - pos);
+    return LocalLookAt(c.positions.frame, pos, target - pos);  // level where the key is
   }
   return std::nullopt;
 }
@@ -289,9 +291,11 @@ void ParseLockedOff(const JsonField& f, const ShotContext& c, ShotSpec& s) {
   }
   s.pan = f.BoolOr("pan", false);
   if (s.subject < 0) {
-    s.heading_deg = f.DoubleOr("heading_deg", 0.0);
-    s.pitch_deg = f.DoubleOr("pitch_deg", 0.0);
-    if (s.pitch_deg < -90 || s.pitch_deg > 90) f["pitch_deg"].Fail("must be in [-90, 90]");
+    GimbalAngles g;
+    g.drone_heading_deg = f.DoubleOr("heading_deg", 0.0);
+    g.gimbal_pitch_deg = f.DoubleOr("pitch_deg", 0.0);
+    if (g.gimbal_pitch_deg < -90 || g.gimbal_pitch_deg > 90) f["pitch_deg"].Fail("must be in [-90, 90]");
+    s.locked_world_from_camera = LocalWorldFromCamera(c.positions.frame, *s.position_enu_m, g);
     if (s.pan) f["pan"].Fail("panning needs a subject");
   }
 }
@@ -303,7 +307,7 @@ CameraKey ParseCameraKey(const JsonField& k, const ShotContext& c) {
   CameraKey key;
   key.time_s = k["time_s"].AsNonNegative();
   key.position_enu_m = ParsePosition(k, "position_enu_m", "position", c.positions);
-  key.world_from_camera = ParseKeyOrientation(k, c.list, key.position_enu_m, c.shot_start_s + key.time_s);
+  key.world_from_camera = ParseKeyOrientation(k, c, key.position_enu_m, c.shot_start_s + key.time_s);
   if (k.Has("focal_length_mm")) key.focal_length_mm = k["focal_length_mm"].AsPositive();
   if (auto fd = k.Find("focus_distance_m")) key.focus_distance_m = fd->AsPositive();
   if (k.node().contains("focus_distance_m") && k.node()["focus_distance_m"].is_null()) {

@@ -1,5 +1,8 @@
 #include "export/mission_builder.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -59,6 +62,30 @@ TEST(MissionBuilder, BadInput) {
   const Mission m = BuildMission(no_origin, relative_home);
   EXPECT_NEAR(m.origin.lat_deg, 47.39, 1e-12);
   EXPECT_NEAR(m.waypoints.front().relative_alt_m, 25, 5e-3);
+}
+
+// A plan without an origin measures its angles against its own axes; once a scene's origin places it
+// (here 1 km off the pole), each waypoint's heading and pitch are taken against true north and the
+// vertical where it flies: the orbit's subject stays dead ahead of every waypoint.
+TEST(MissionBuilder, APlanPlacedByTheScenesOriginFliesTrueHeadings) {
+  Trajectory t = testing::OrbitPlan();
+  t.origin.reset();
+  MissionBuildOptions options;
+  options.scene_origin = Geodetic{89.99, 20, 100};
+  const Mission m = BuildMission(t, options);
+  const EnuFrame frame(*options.scene_origin);
+  ASSERT_GE(m.waypoints.size(), 3u);
+  double largest_change_deg = 0;
+  for (const MissionWaypoint& wp : m.waypoints) {
+    const Eigen::Vector3d to_subject(-wp.position_enu_m.x(), -wp.position_enu_m.y(), 1.5 - wp.position_enu_m.z());
+    const Eigen::Vector3d local = frame.LocalLevelFromEnu(wp.position_enu_m) * to_subject;
+    EXPECT_NEAR(AngleDiffDeg(wp.heading_deg, HeadingDegFromEnuYaw(std::atan2(local.y(), local.x()))), 0.0, 1e-6);
+    EXPECT_NEAR(wp.gimbal_pitch_deg, DegFromRad(std::atan2(local.z(), local.head<2>().norm())), 1e-6);
+    const TrajectorySample& planned = t.samples[static_cast<size_t>(wp.sample_index)];
+    largest_change_deg =
+        std::max(largest_change_deg, std::abs(AngleDiffDeg(planned.drone_heading_deg, wp.heading_deg)));
+  }
+  EXPECT_GT(largest_change_deg, 0.5);  // near the pole the two norths differ
 }
 
 TEST(MissionBuilder, CutsSplitTheSelectionAndInsertATransit) {

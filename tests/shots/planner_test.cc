@@ -413,5 +413,46 @@ TEST(PlanGeodesy, OriginFillsLatLonHeight) {
   EXPECT_NEAR(plan.samples[0].geodetic.lat_deg, 46.84265, 1e-3);
 }
 
+// The angles a plan writes (and a mission flies) are taken where the drone is: 1.5 km off an origin at
+// 89.95 deg the scene frame's north is 1.3 deg off true north there, and a 1,200 mm lens sees 1.7 deg
+// across. Every sample's heading and pitch are the aim point's bearing and elevation in the local
+// level frame at the drone (core/local_level_test.cc checks that frame against CartConvert), the horizon
+// is level there, and angles given on a key come back as given.
+TEST(PlanGeodesy, AnglesAreTakenWhereTheDroneIsNearThePole) {
+  Json doc = ShotsDoc(
+      R"([{"name": "tele", "type": "FLYBY", "subject": "sled", "duration_s": 30, "closest_distance_m": 1500,
+           "side": "right", "height_m": 60, "speed_m_s": 1, "lens": {"focal_length_mm": 1200, "focus": "infinity"}},
+          {"name": "keys", "type": "KEYFRAMES", "duration_s": 2, "transition": "cut", "keys": [
+            {"time_s": 0, "position_enu_m": [1400, 900, 50], "heading_deg": 30, "pitch_deg": -10},
+            {"time_s": 2, "position_enu_m": [1400, 910, 50], "heading_deg": 30, "pitch_deg": -10}]}])",
+      R"([{"name": "sled", "height_m": 2, "keyframes": [{"time_s": 0, "position_enu_m": [-150, 0, 0]},
+                                                         {"time_s": 30, "position_enu_m": [150, 0, 0]}]}])",
+      10);
+  doc["origin"] = Json::parse(R"({"lat_deg": 89.95, "lon_deg": 135.0, "height_m": 2800.0})");
+  const Trajectory plan = PlanShots(ParseShotList(doc, "shots.json"));
+  const EnuFrame frame(*plan.origin);
+  double largest_convergence_deg = 0;
+  for (size_t k = 0; k < plan.samples.size(); ++k) {
+    const TrajectorySample& s = plan.samples[k];
+    if (s.shot != "tele") {  // on the keys (between them the orientation is SLERPed in the scene frame)
+      if (std::abs(s.time_s - 30) > 1e-9 && std::abs(s.time_s - 32) > 1e-9) continue;
+      EXPECT_NEAR(AngleDiffDeg(s.drone_heading_deg, 30.0), 0.0, 1e-6) << s.time_s;
+      EXPECT_NEAR(s.gimbal_pitch_deg, -10.0, 1e-6) << s.time_s;
+      continue;
+    }
+    const Vector3d aim = plan.subjects[0].positions_enu_m[k] + Vector3d(0, 0, 1.0);
+    const Vector3d local = frame.LocalLevelFromEnu(s.position_enu_m) * (aim - s.position_enu_m);
+    const double bearing_deg = NormalizeDeg360(DegFromRad(std::atan2(local.x(), local.y())));
+    EXPECT_NEAR(AngleDiffDeg(s.drone_heading_deg, bearing_deg), 0.0, 1e-6) << s.time_s;
+    EXPECT_NEAR(s.gimbal_pitch_deg, DegFromRad(std::atan2(local.z(), local.head<2>().norm())), 1e-6) << s.time_s;
+    EXPECT_NEAR(s.gimbal_roll_deg, 0.0, 1e-6) << s.time_s;
+    EXPECT_LT(LookAtErrorRad(s, aim), 1e-9) << s.time_s;  // and still aimed at the subject in the scene
+    const Vector3d to = aim - s.position_enu_m;
+    const double frame_bearing_deg = NormalizeDeg360(DegFromRad(std::atan2(to.x(), to.y())));
+    largest_convergence_deg = std::max(largest_convergence_deg, std::abs(AngleDiffDeg(frame_bearing_deg, bearing_deg)));
+  }
+  EXPECT_GT(largest_convergence_deg, 1.0);  // the case tells the two norths apart
+}
+
 }  // namespace
 }  // namespace cinepath::shots
