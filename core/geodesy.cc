@@ -89,15 +89,16 @@ Eigen::Vector3d EnuFrame::EcefFromEnu(const Eigen::Vector3d& enu_m) const {
 
 Eigen::Matrix3d EnuFrame::enu_from_ecef_rotation() const { return impl_->ecef_from_enu.transpose(); }
 
-Eigen::Matrix3d EnuFrame::LocalLevelFromEnu(const Eigen::Vector3d& enu_m) const {
+Eigen::Matrix3d EnuFrame::LocalLevelFromEnu(const Eigen::Vector3d& enu_m, Geodetic* geodetic) const {
   if (!enu_m.allFinite()) throw InputError("ENU position must be finite");
-  // At the origin itself, exactly the frame's axes (at a pole GeographicLib would name another meridian).
-  if (enu_m.isZero(0)) return Eigen::Matrix3d::Identity();
   // LocalCartesian::Reverse's M (row-major) expresses the point's local ENU axes in this frame's:
   // frame_direction = M * local_direction, so its transpose takes this frame's into the point's.
   std::vector<double> m(9);
-  double lat_deg, lon_deg, height_m;
-  impl_->local.Reverse(enu_m.x(), enu_m.y(), enu_m.z(), lat_deg, lon_deg, height_m, m);
+  Geodetic g;
+  impl_->local.Reverse(enu_m.x(), enu_m.y(), enu_m.z(), g.lat_deg, g.lon_deg, g.height_m, m);
+  if (geodetic) *geodetic = Geodetic{g.lat_deg, NormalizeDeg180(g.lon_deg), g.height_m};
+  // At the origin itself, exactly the frame's axes (at a pole GeographicLib would name another meridian).
+  if (enu_m.isZero(0)) return Eigen::Matrix3d::Identity();
   return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(m.data()).transpose();
 }
 

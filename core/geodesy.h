@@ -44,7 +44,8 @@ class EnuFrame {
   // Rotation taking this frame's ENU direction vectors into the local ENU axes (east, north, up of
   // the ellipsoid) at the point `enu_m` of the frame: the identity at the origin; at a point away
   // from it, true north there is turned by the meridian convergence and up tilted (core/local_level.h).
-  Eigen::Matrix3d LocalLevelFromEnu(const Eigen::Vector3d& enu_m) const;
+  // `geodetic`: when given, also the point's geodetic position (GeodeticFromEnu, from the same step).
+  Eigen::Matrix3d LocalLevelFromEnu(const Eigen::Vector3d& enu_m, Geodetic* geodetic = nullptr) const;
 
  private:
   Geodetic origin_;

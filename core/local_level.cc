@@ -31,7 +31,12 @@ Eigen::Quaterniond LocalLookAt(const EnuFrame* frame, const Eigen::Vector3d& pos
 }
 
 void SetLocalAngles(const EnuFrame* frame, TrajectorySample& sample, double drone_heading_deg) {
-  const GimbalAngles g = LocalGimbalAngles(frame, sample.position_enu_m, sample.world_from_camera, drone_heading_deg);
+  const Eigen::Quaterniond q = sample.world_from_camera.normalized();
+  const GimbalAngles g =
+      frame ? GimbalFromWorldFromCamera(
+                  Eigen::Quaterniond(frame->LocalLevelFromEnu(sample.position_enu_m, &sample.geodetic)) * q,
+                  drone_heading_deg)
+            : GimbalFromWorldFromCamera(sample.world_from_camera, drone_heading_deg);
   sample.drone_heading_deg = g.drone_heading_deg;
   sample.gimbal_pitch_deg = g.gimbal_pitch_deg;
   sample.gimbal_roll_deg = g.gimbal_roll_deg;

@@ -40,7 +40,8 @@ Eigen::Quaterniond LocalWorldFromCamera(const EnuFrame* frame, const Eigen::Vect
 Eigen::Quaterniond LocalLookAt(const EnuFrame* frame, const Eigen::Vector3d& position_enu_m,
                                const Eigen::Vector3d& forward_enu, double fallback_heading_deg = 0.0);
 
-// Sets the sample's drone_heading_deg and gimbal angles from its world_from_camera at its position.
+// Sets the sample's drone_heading_deg and gimbal angles from its world_from_camera at its position and,
+// with a frame, its geodetic position (from the same step).
 void SetLocalAngles(const EnuFrame* frame, TrajectorySample& sample,
                     double drone_heading_deg = std::numeric_limits<double>::quiet_NaN());
 

@@ -1214,13 +1214,12 @@ Trajectory PlanOptimizer::Apply(const std::vector<double>& group_alpha) const {
           &sample.f_number);
     const bool turned = s.yaw != 0 || s.tilt != 0, displaced = s.position != plan_.samples[k].position_enu_m;
     if (turned || (frame && displaced)) {
-      // Against true north and the local vertical where the camera now is (core/local_level.h); a nose
-      // off the camera keeps its heading when only the position moved.
+      // Against true north and the local vertical where the camera now is, and its lat/lon/h there
+      // (core/local_level.h); a nose off the camera keeps its heading when only the position moved.
       const bool nose_on_camera = turned || sample.gimbal_yaw_deg == 0;
       SetLocalAngles(frame ? &*frame : nullptr, sample,
                      nose_on_camera ? std::numeric_limits<double>::quiet_NaN() : sample.drone_heading_deg);
     }
-    if (frame && displaced) sample.geodetic = frame->GeodeticFromEnu(sample.position_enu_m);
     if (moved) {
       sample.subjects_in_frame.clear();
       const Eigen::Quaterniond camera_from_world = sample.world_from_camera.conjugate();

@@ -178,7 +178,6 @@ std::vector<TrajectorySample> ResampleShot(const Trajectory& plan, Range range, 
     TrajectorySample s = x < 0.5 ? a : b;  // the shot's name, the subjects in frame
     s.time_s = t0 + j * warp.dt;
     for (int axis = 0; axis < 3; ++axis) s.position_enu_m[axis] = axes[axis].At(k, x);
-    if (frame) s.geodetic = frame->GeodeticFromEnu(s.position_enu_m);
     s.world_from_camera = a.world_from_camera.slerp(x, b.world_from_camera).normalized();
     const bool nose_on_camera = a.gimbal_yaw_deg == 0 && b.gimbal_yaw_deg == 0;
     const double heading =

@@ -64,9 +64,11 @@ class Planner {
   // The steps of Evaluate.
   double RequestedFocalLengthMm(const ShotSpec& shot, const ShotState& st, const ShotPose& pose,
                                 const Eigen::Vector3d& position, double lens_time) const;
+  // local_from_enu: EnuFrame::LocalLevelFromEnu at the camera (the identity without an origin).
   Eigen::Quaterniond OrientationAt(const ShotSpec& shot, const ShotState& st, const ShotPose& pose,
-                                   const Eigen::Vector3d& position, double focal_length_mm, double t,
-                                   double fallback_heading_deg, double blend_w, bool apply_rotation_offset) const;
+                                   const Eigen::Vector3d& position, const Eigen::Matrix3d& local_from_enu,
+                                   double focal_length_mm, double t, double fallback_heading_deg, double blend_w,
+                                   bool apply_rotation_offset) const;
   double RequestedFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
                          const Eigen::Quaterniond& q, double t, double tau, double lens_time) const;
   double ShotFocusM(const ShotSpec& shot, const ShotState& st, const Eigen::Vector3d& position,
@@ -249,8 +251,8 @@ double Planner::RequestedFocalLengthMm(const ShotSpec& shot, const ShotState& st
 // crane's tilt blend), straight down, or level along the previous heading; then the transition's
 // rotation offset.
 Eigen::Quaterniond Planner::OrientationAt(const ShotSpec& shot, const ShotState& st, const ShotPose& pose,
-                                          const Eigen::Vector3d& position, double focal_length_mm, double t,
-                                          double fallback_heading_deg, double blend_w,
+                                          const Eigen::Vector3d& position, const Eigen::Matrix3d& local_from_enu,
+                                          double focal_length_mm, double t, double fallback_heading_deg, double blend_w,
                                           bool apply_rotation_offset) const {
   Eigen::Quaterniond q;
   if (pose.world_from_camera) {
@@ -258,8 +260,6 @@ Eigen::Quaterniond Planner::OrientationAt(const ShotSpec& shot, const ShotState&
   } else {
     // Aimed and levelled where the camera is: the gimbal holds the horizon of the local vertical there,
     // and the fallback heading is a true one (core/local_level.h; the scene frame's axes without an origin).
-    const Eigen::Matrix3d local_from_enu =
-        frame_ ? frame_->LocalLevelFromEnu(position) : Eigen::Matrix3d::Identity().eval();
     Eigen::Quaterniond local_from_camera;
     if (pose.down_up_bearing_deg) {  // straight down the local vertical
       local_from_camera = LookAt(-Eigen::Vector3d::UnitZ(), *pose.down_up_bearing_deg);
@@ -373,14 +373,22 @@ Evaluated Planner::Evaluate(size_t index, double tau, double fallback_heading_de
   s.time_s = t;
   s.shot = shot.name;
   s.position_enu_m = pose.position_enu_m + blend.blend_w * st.position_offset + blend.velocity_w * st.velocity_offset;
+  // The local level frame where the camera is (core/local_level.h) and, from the same step, its lat/lon/h.
+  const Eigen::Matrix3d local_from_enu =
+      frame_ ? frame_->LocalLevelFromEnu(s.position_enu_m, &s.geodetic) : Eigen::Matrix3d::Identity().eval();
 
   out.request.focal_length_mm = RequestedFocalLengthMm(shot, st, pose, s.position_enu_m, lens_time) *
                                 std::exp(blend.blend_w * st.log_focal_offset);
   s.focal_length_mm = std::clamp(out.request.focal_length_mm, cam.min_focal_length_mm, cam.max_focal_length_mm);
 
-  s.world_from_camera = OrientationAt(shot, st, pose, s.position_enu_m, s.focal_length_mm, t, fallback_heading_deg,
-                                      blend.blend_w, apply_rotation_offset);
-  SetLocalAngles(frame_ ? &*frame_ : nullptr, s);  // against true north and the vertical where it is
+  s.world_from_camera = OrientationAt(shot, st, pose, s.position_enu_m, local_from_enu, s.focal_length_mm, t,
+                                      fallback_heading_deg, blend.blend_w, apply_rotation_offset);
+  // Against true north and the vertical where the camera is.
+  const GimbalAngles g = GimbalFromWorldFromCamera(Eigen::Quaterniond(local_from_enu) * s.world_from_camera);
+  s.drone_heading_deg = g.drone_heading_deg;
+  s.gimbal_pitch_deg = g.gimbal_pitch_deg;
+  s.gimbal_roll_deg = g.gimbal_roll_deg;
+  s.gimbal_yaw_deg = g.gimbal_yaw_deg;
 
   out.request.focus_distance_m = RequestedFocusM(shot, st, s.position_enu_m, s.world_from_camera, t, tau, lens_time);
   s.focus_distance_m = std::isinf(out.request.focus_distance_m)
@@ -488,7 +496,6 @@ void Planner::SampleShots(Trajectory& plan, std::vector<bool>& cut_before, std::
   // Which shot owns sample k: the last shot with start <= t and (t < end or it is the last shot
   // with a positive duration).
   const size_t n = plan.samples.size();
-  const std::optional<EnuFrame>& frame = frame_;
   double heading = 0;
   size_t shot = 0;
   size_t last_positive = 0;
@@ -508,7 +515,6 @@ void Planner::SampleShots(Trajectory& plan, std::vector<bool>& cut_before, std::
       for (size_t j = prev_shot + 1; j <= shot; ++j) cut_before[k] = cut_before[k] || list_.shots[j].cut;
     }
     prev_shot = shot;
-    if (frame) e.sample.geodetic = frame->GeodeticFromEnu(e.sample.position_enu_m);
     plan.samples[k] = std::move(e.sample);
     requests[k] = e.request;
   }
