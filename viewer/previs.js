@@ -47,12 +47,15 @@ const sun = new THREE.DirectionalLight(0xffffff, 1.2);
 sun.position.set(0.5, 1, 0.3);
 scene.add(sun);
 
-// The extent everything is sized by: the mesh's bounds, else the flights'.
+// The extent everything is sized by: the mesh's bounds, the flights' and the subjects' paths (what the
+// cameras look at: a telephoto shot's subject may stand a kilometre from its drone, off the mesh).
 const bounds = new THREE.Box3();
 for (let k = 0; k < N; ++k) bounds.expandByPoint(pos(k));
-for (const f of team.flights) {
-  const p = f.position_m || [];  // the primary's are the page's samples
-  for (let j = 0; j + 2 < p.length; j += 3) bounds.expandByPoint(new THREE.Vector3(p[j], p[j + 1], p[j + 2]));
+for (const path of [...team.flights.map((f) => f.position_m || []), ...data.subjects.map((s) => s.position_m)]) {
+  // (The primary flight's positions are the page's samples, above.)
+  for (let j = 0; j + 2 < path.length; j += 3) {
+    bounds.expandByPoint(new THREE.Vector3(path[j], path[j + 1], path[j + 2]));
+  }
 }
 if (meshInfo) {
   bounds.expandByPoint(new THREE.Vector3(...meshInfo.min_m));
@@ -937,6 +940,12 @@ render();
 document.body.dataset.timing = [moduleStartMs, meshReadyMs, performance.now()].map((t) => Math.round(t)).join(',');
 document.body.dataset.triangles = String(triangles);
 document.body.dataset.samples = String(N);
+// The subjects the first picture shows (their base at its sample inside the 3D view), of all of them.
+const subjectsInView = subjectMarkers.filter(({ body }) => {
+  const p = body.position.clone().project(view);
+  return Math.abs(p.x) <= 1 && Math.abs(p.y) <= 1 && Math.abs(p.z) <= 1;
+}).length;
+document.body.dataset.subjectsInView = `${subjectsInView}/${subjectMarkers.length}`;
 document.body.dataset.flights = String(flights.length);
 document.body.dataset.graphRanges = series.map((s) => `${fmt(s.lo, 3)}..${fmt(s.hi, 3)}`).join(' ');
 document.body.dataset.flightPaths = String(flightPaths);

@@ -10,7 +10,9 @@
 #   - the camera view of a level shot has the sky above the beach (upright), and the camera view frames
 #     what `cinepath render` drew for that sample (not its mirror image, not upside down);
 #   - the top view matches tests/viewer/golden/top_view.png within a tolerance (idiff), and its
-#     upside-down and mirrored copies do not: north up, east right.
+#     upside-down and mirrored copies do not: north up, east right;
+#   - the first picture shows every subject: each example's, and a telephoto shot's 1.5 km from its drone
+#     (3D and top views).
 # Screenshots of the 3D view and of the camera view are kept in ARTIFACT_DIR. CINEPATH_UPDATE_GOLDEN=1
 # rewrites the golden image (look at it before committing). Exit 77 (skipped) without Chromium.
 #   browser_test.sh CINEPATH SOURCE_DIR ARTIFACT_DIR
@@ -184,10 +186,34 @@ for shots in "$SRC"/examples/*_shots.json; do
   "$CINEPATH" plan "$shots" -o "$work/$name.json" 2> /dev/null || { fail "$name: plan"; continue; }
   "$CINEPATH" view "$work/$name.json" -o "$work/$name.html" || { fail "$name: view"; continue; }
   browse "file://$work/$name.html#t=1" --dump-dom > "$work/$name.dom"
-  if [[ $(attr data-state "$work/$name.dom") == ready && $(attr data-errors "$work/$name.dom") == 0 ]]; then
-    echo "ok   example $name"
+  in_view=$(attr data-subjects-in-view "$work/$name.dom")
+  if [[ $(attr data-state "$work/$name.dom") == ready && $(attr data-errors "$work/$name.dom") == 0 &&
+    -n $in_view && ${in_view%/*} == "${in_view#*/}" ]]; then
+    echo "ok   example $name (subjects in the first picture: $in_view)"
   else
-    fail "example $name: $(grep -o '<title>[^<]*' "$work/$name.dom")"
+    fail "example $name: $(grep -o '<title>[^<]*' "$work/$name.dom"), subjects in view $in_view"
+  fi
+done
+
+# ---- a telephoto shot from 1.5 km: the first picture, 3D and top, shows the subject as well as the drone ----
+cat > "$work/far_shots.json" << 'EOF'
+{"schema": "cinepath.shots/1", "frame_rate_hz": 10,
+ "camera": {"filmback": "full-frame", "min_focal_length_mm": 1200},
+ "drone": "px4-multirotor",
+ "actors": [{"name": "sled", "height_m": 2, "keyframes": [{"time_s": 0, "position_enu_m": [-150, 0, 0]},
+                                                         {"time_s": 30, "position_enu_m": [150, 0, 0]}]}],
+ "shots": [{"name": "tele", "type": "FLYBY", "subject": "sled", "duration_s": 30, "closest_distance_m": 1500,
+            "side": "right", "height_m": 60, "speed_m_s": 1, "lens": {"focus": "infinity"}}]}
+EOF
+"$CINEPATH" plan "$work/far_shots.json" -o "$work/far.json" 2> /dev/null || fail "far: plan"
+"$CINEPATH" view "$work/far.json" -o "$work/far.html" || fail "far: view"
+for v in 3d top; do
+  browse "file://$work/far.html#t=15&view=$v" --dump-dom > "$work/far_$v.dom"
+  in_view=$(attr data-subjects-in-view "$work/far_$v.dom")
+  if [[ $(attr data-state "$work/far_$v.dom") == ready && $in_view == 1/1 ]]; then
+    echo "ok   far subject in the $v view"
+  else
+    fail "far subject: $v view: state $(attr data-state "$work/far_$v.dom"), subjects in view '$in_view' (want 1/1)"
   fi
 done
 if grep -E "Uncaught|Refused to|Failed to load resource" "$work/chromium.log"; then
