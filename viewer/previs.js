@@ -817,14 +817,18 @@ function perspectiveView() {
 function topView() {
   follow = false;
   setButtons('view-top');
-  controls.target.set(centre.x, groundY, centre.z);
   // Straight down, north (-z) up on the screen (the camera sits a hair south of the target), at the height
-  // where the scene's east-west and north-south extents both fit.
+  // where the scene's east-west and north-south extents both fit below the header (#hud), which covers
+  // the picture's top: the grid's northern labels and the north arrow would sit under its text.
   const tanHalf = Math.tan(THREE.MathUtils.degToRad(view.fov / 2));
   const aspect = Math.max(0.1, view.aspect);
-  const height = 1.3 * Math.max((bounds.max.z - bounds.min.z) / 2 / tanHalf,
+  const hud = $('hud');
+  const covered = Math.min(0.35, (hud.offsetTop + hud.offsetHeight) / Math.max(1, canvas.clientHeight - 64));
+  const height = 1.3 * Math.max((bounds.max.z - bounds.min.z) / 2 / tanHalf / (1 - covered),
                                 (bounds.max.x - bounds.min.x) / 2 / (tanHalf * aspect));
-  view.position.set(centre.x, groundY + height, centre.z + height * 1e-4);
+  const north = covered * height * tanHalf;  // the view's centre moved north by half the covered strip
+  controls.target.set(centre.x, groundY, centre.z - north);
+  view.position.set(centre.x, groundY + height, centre.z - north + height * 1e-4);
   controls.update();
   requestRender();
 }
