@@ -1,5 +1,6 @@
 // cinepath plan: shot list -> keyframes, one sample per frame, lens tracks and a feasibility
 // report (docs/plan.md, plan.json format: docs/plan-format.md).
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -12,8 +13,10 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/ground.h"
+#include "core/json.h"
 #include "core/number_format.h"
 #include "core/plan_file.h"
+#include "core/reframe.h"
 #include "core/scene_file.h"
 #include "shots/plan_plot.h"
 #include "shots/plan_warnings.h"
@@ -43,19 +46,31 @@ class PlanCommand : public Command {
   }
 
   int Run() override {
-    std::optional<Geodetic> scene_origin;
+    // Messages name the shot list by its base name, so they read the same wherever it lives.
+    const std::string shots_name = std::filesystem::path(shots_path_).filename().string();
+    const Json shots_json = ParseJsonText(ReadFileToString(shots_path_), shots_name);
+    std::optional<Geodetic> plan_origin;
     std::shared_ptr<const Ground> ground;
     std::vector<std::string> inputs = {shots_path_};
     if (!scene_path_.empty()) {
       const SceneFile scene = ReadSceneFile(scene_path_);
-      scene_origin = scene.origin;
+      plan_origin = scene.origin;
+      // A shot list made about another origin (a surveyed point, or the scene of an earlier
+      // reconstruction) is planned about its own: the mesh is moved into its frame exactly, and the
+      // later stages move the plan onto the scene's origin (core/reframe.h).
+      std::optional<Eigen::Isometry3d> frame_from_scene;
+      const std::optional<Geodetic> own = shots::ShotListOrigin(shots_json, shots_name);
+      if (own && scene.origin && !shots::SameOrigin(*own, *scene.origin)) {
+        plan_origin = own;
+        frame_from_scene = EnuFromEnu(*own, *scene.origin);
+      }
       inputs.push_back(scene_path_);
       if (scene.mesh) {
-        ground = LoadGround(scene.RequireMesh());
+        ground = LoadGround(scene.RequireMesh(), frame_from_scene);
         inputs.push_back(scene.mesh->string());
       }
     }
-    const shots::ShotList list = shots::ReadShotListFile(shots_path_, scene_origin, ground);
+    const shots::ShotList list = shots::ParseShotList(shots_json, shots_name, plan_origin, ground);
     const TeamPlan plan = shots::PlanTeam(list);
     for (const std::string& w : shots::FloatingActorWarnings(list))
       std::cerr << "cinepath plan: warning: " << w << "\n";

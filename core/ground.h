@@ -10,6 +10,8 @@
 #include <optional>
 #include <string>
 
+#include <Eigen/Geometry>
+
 namespace cinepath {
 
 class Ground {
@@ -25,6 +27,9 @@ class Ground {
 
 // Reads the GLB (scene.glb; Draco too) and builds its ray caster, through the plugin
 // libcinepath_ground.so. InputError for a malformed or empty mesh, RuntimeError when the plugin is missing.
-std::unique_ptr<Ground> LoadGround(const std::filesystem::path& glb);
+// With `frame_from_mesh` the mesh's vertices are moved by it first, so the ground answers in that frame
+// (a scene's mesh in the frame of a shot list made about another origin: core/reframe.h's EnuFromEnu).
+std::unique_ptr<Ground> LoadGround(const std::filesystem::path& glb,
+                                   const std::optional<Eigen::Isometry3d>& frame_from_mesh = std::nullopt);
 
 }  // namespace cinepath

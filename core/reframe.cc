@@ -38,4 +38,12 @@ TeamPlan ReframeToOrigin(TeamPlan plan, const Geodetic& origin) {
   return plan;
 }
 
+Eigen::Isometry3d EnuFromEnu(const Geodetic& to, const Geodetic& from) {
+  const EnuFrame source(from), target(to);
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  motion.linear() = target.enu_from_ecef_rotation() * source.enu_from_ecef_rotation().transpose();
+  motion.translation() = target.EnuFromEcef(source.EcefFromEnu(Eigen::Vector3d::Zero()));
+  return motion;
+}
+
 }  // namespace cinepath

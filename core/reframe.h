@@ -4,6 +4,8 @@
 // or kilometres away, without the error of shifting by the difference of two flat frames.
 #pragma once
 
+#include <Eigen/Geometry>
+
 #include "core/geodesy.h"
 #include "core/team_plan.h"
 #include "core/trajectory.h"
@@ -15,5 +17,11 @@ namespace cinepath {
 Trajectory ReframeToOrigin(Trajectory plan, const Geodetic& origin);
 // Every flight and take-off point of a team.
 TeamPlan ReframeToOrigin(TeamPlan plan, const Geodetic& origin);
+
+// The rigid motion that takes ENU coordinates about `from` to ENU coordinates about `to`: the rotation
+// between the two tangent frames and the translation of `from` seen from `to` (through ECEF). Both
+// frames are Cartesian, so the motion is exact for any point; `plan` moves a scene's mesh with it into
+// the frame of a shot list made about another origin.
+Eigen::Isometry3d EnuFromEnu(const Geodetic& to, const Geodetic& from);
 
 }  // namespace cinepath

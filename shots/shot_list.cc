@@ -182,6 +182,18 @@ int ShotList::FindActor(const std::string& name) const {
   return -1;
 }
 
+std::optional<Geodetic> ShotListOrigin(const Json& document, const std::string& source) {
+  const JsonField root(document, source);
+  if (!root.IsObject()) return std::nullopt;  // ParseShotList says what is wrong
+  if (auto o = root.Find("origin")) return ParseOrigin(*o);
+  return std::nullopt;
+}
+
+bool SameOrigin(const Geodetic& a, const Geodetic& b) {
+  return std::fabs(a.lat_deg - b.lat_deg) <= 1e-9 && std::fabs(a.lon_deg - b.lon_deg) <= 1e-9 &&
+         std::fabs(a.height_m - b.height_m) <= 1e-6;
+}
+
 ShotList ParseShotList(const Json& document, const std::string& source, const std::optional<Geodetic>& scene_origin,
                        std::shared_ptr<const Ground> ground) {
   const JsonField root(document, source);
@@ -198,9 +210,7 @@ ShotList ParseShotList(const Json& document, const std::string& source, const st
   list.ground = std::move(ground);
   if (auto o = root.Find("origin")) {
     list.origin = ParseOrigin(*o);
-    if (scene_origin && (std::fabs(scene_origin->lat_deg - list.origin->lat_deg) > 1e-9 ||
-                         std::fabs(scene_origin->lon_deg - list.origin->lon_deg) > 1e-9 ||
-                         std::fabs(scene_origin->height_m - list.origin->height_m) > 1e-6)) {
+    if (scene_origin && !SameOrigin(*scene_origin, *list.origin)) {
       o->Fail("differs from the scene's origin (`scene_origin`); remove it or make them agree");
     }
   } else {

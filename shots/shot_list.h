@@ -144,10 +144,17 @@ struct ShotList {
   int FindDrone(const std::string& name) const;  // -1 when absent
 };
 
+// The shot list's own "origin" (nullopt without one), read before the list itself so that a scene's mesh
+// can be moved into its frame (`plan --scene`). InputError naming the field when it is malformed.
+std::optional<Geodetic> ShotListOrigin(const Json& document, const std::string& source);
+// Two origins are one when they agree within 1e-9 deg and 1e-6 m (a JSON round trip of the same origin).
+bool SameOrigin(const Geodetic& a, const Geodetic& b);
+
 // Parses a shot list. `scene_origin` (from the scene's scene.json) is used when shots.json has no
-// "origin"; when both are present they must agree within 1e-9 deg / 1e-6 m. `ground` (the scene's
-// mesh) resolves heights above the ground, actors kept on it, and shots whose heights are measured
-// from it; without it those are an InputError naming the key.
+// "origin"; when both are present they must be the SameOrigin, since `ground` answers in that one frame
+// (cinepath plan passes the list's own origin, its ground moved into that frame, when they differ).
+// `ground` (the scene's mesh) resolves heights above the ground, actors kept on it, and shots whose heights
+// are measured from it; without it those are an InputError naming the key.
 ShotList ParseShotList(const Json& document, const std::string& source,
                        const std::optional<Geodetic>& scene_origin = std::nullopt,
                        std::shared_ptr<const Ground> ground = nullptr);

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/fatal_signal.h"
+#include "core/reframe.h"
 #include "photogrammetry/georef/scene_cameras.h"
 #include "photogrammetry/gltf/gltf_writer.h"
 #include "photogrammetry/io/colmap_reader.h"
@@ -119,31 +120,20 @@ SurfacePipelineResult BuildSurface(const SceneBuildOptions& options, const Colma
   return BuildSurfaceFromPoints(cloud, surface);
 }
 
-// --for-plan: the plan must be made about the scene's origin (cinepath plan --scene copies it from
-// scene.json, which rounds it to 1e-9 deg and 0.1 mm): within 1 cm, else InputError naming the field.
-void CheckPlanOrigin(const Trajectory& plan, const std::string& path, const Geodetic& scene_origin) {
-  auto text = [](const Geodetic& g) {
+// --for-plan: the plan placed on WGS84 by its origin, moved into this scene's frame (exactly, through ECEF:
+// core/reframe.h), so a plan made about another origin (a shot list's own, or an earlier scene's) sees the
+// mesh where it stands. A plan without an origin cannot be placed: InputError naming the field.
+Trajectory PlanInSceneFrame(const Trajectory& plan, const std::string& path, const Geodetic& scene_origin) {
+  if (!plan.origin) {
     std::ostringstream os;
     os.precision(10);
-    os << "(" << g.lat_deg << ", " << g.lon_deg << ", " << g.height_m << " m)";
-    return os.str();
-  };
-  if (!plan.origin) {
+    os << "(" << scene_origin.lat_deg << ", " << scene_origin.lon_deg << ", " << scene_origin.height_m << " m)";
     throw InputError(Located(path + ": origin",
-                             "null: --for-plan needs a plan made on this scene (cinepath plan "
-                             "--scene scene.json), whose origin is the scene's " +
-                                 text(scene_origin)));
+                             "null: --for-plan needs a plan placed on WGS84 (cinepath plan --scene scene.json "
+                             "gives it the scene's origin " +
+                                 os.str() + ", or the shot list's own)"));
   }
-  const double apart_m = (EcefFromGeodetic(*plan.origin) - EcefFromGeodetic(scene_origin)).norm();
-  if (!(apart_m <= 0.01)) {
-    std::ostringstream os;
-    os.precision(4);
-    os << apart_m;
-    throw InputError(Located(path + ": origin", text(*plan.origin) + " is " + os.str() + " m from the scene's origin " +
-                                                    text(scene_origin) +
-                                                    ": plan the shots on this scene (cinepath plan --scene), or give "
-                                                    "its origin with --origin"));
-  }
+  return ReframeToOrigin(plan, scene_origin);
 }
 
 // What `mesh` loads before georeferencing: the model, its photos' EXIF, the references and GCPs.
@@ -235,9 +225,9 @@ SurfacePipelineOptions SurfaceOptionsFor(const SceneBuildOptions& options, const
   surface.gltf_extras = GltfExtras(geo);
   surface.write_glb = false;
   if (options.for_plan) {
-    CheckPlanOrigin(*options.for_plan, options.for_plan_path, geo.origin);
     ForPlanOptions for_plan;
-    for_plan.cameras = CamerasFromPlan(*options.for_plan, options.for_plan_path);
+    for_plan.cameras =
+        CamerasFromPlan(PlanInSceneFrame(*options.for_plan, options.for_plan_path, geo.origin), options.for_plan_path);
     for_plan.plan_source = options.for_plan_path;
     for_plan.max_error_px = options.max_error_px;
     surface.for_plan = std::move(for_plan);

@@ -46,8 +46,8 @@ struct SceneBuildOptions {
   std::optional<int> texture_px;
   bool timestamps = true;  // wall-clock times in scene.json
   // --for-plan: the plan (read by the caller from for_plan_path) whose cameras set the detail of each
-  // region (mesh_decimate_for_plan.h). Its origin must be the scene's (InputError naming the file and
-  // its "origin" otherwise). max_error_px: --max-error-px.
+  // region (mesh_decimate_for_plan.h), moved onto the scene's origin (core/reframe.h); a plan without an
+  // origin is an InputError naming the file and its "origin". max_error_px: --max-error-px.
   std::optional<Trajectory> for_plan;
   std::string for_plan_path;
   double max_error_px = 0.5;

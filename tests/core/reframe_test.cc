@@ -1,5 +1,8 @@
 #include "core/reframe.h"
 
+#include <utility>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 namespace cinepath {
@@ -38,6 +41,31 @@ TEST(Reframe, APlanWithoutAnOriginIsLeftAsItIs) {
   plan.samples.emplace_back();
   plan.samples[0].position_enu_m = Eigen::Vector3d(1, 2, 3);
   EXPECT_EQ(ReframeToOrigin(plan, Geodetic{10, 20, 30}).samples[0].position_enu_m, Eigen::Vector3d(1, 2, 3));
+}
+
+// The motion that moves a scene's mesh into a shot list's frame puts every point where the two frames'
+// geodetic conversions put it, near and kilometres from either origin, and across the antimeridian.
+TEST(Reframe, EnuFromEnuMovesPointsToTheSamePlaceOnEarth) {
+  const std::vector<std::pair<Geodetic, Geodetic>> cases = {
+      {{46.842656667, -91.994008025, 198.5534}, {46.84265, -91.99445, 153.0}},  // 34 m and 45.6 m apart
+      {{47.3769, 8.5417, 448.0002}, {47.3769, 8.5417, 420.0}},                  // one above the other
+      {{89.95, 10.0, 0.0}, {89.95, -170.0, 30.0}},                              // 11 km across the pole
+      {{-33.9, 179.999, 5.0}, {-33.91, -179.99, 12.0}}};                        // across the antimeridian
+  for (const auto& [from, to] : cases) {
+    const EnuFrame source(from), target(to);
+    const Eigen::Isometry3d motion = EnuFromEnu(to, from);
+    for (const Eigen::Vector3d p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(120, -250, 30),
+                                    Eigen::Vector3d(-3000, 1500, -40), Eigen::Vector3d(0, 0, 500)}) {
+      const Eigen::Vector3d expected = target.EnuFromGeodetic(source.GeodeticFromEnu(p));
+      EXPECT_LT((motion * p - expected).norm(), 1e-6) << p.transpose();
+    }
+    // Rigid: lengths and angles are kept.
+    EXPECT_LT((motion.linear() * motion.linear().transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_NEAR(motion.linear().determinant(), 1.0, 1e-12);
+  }
+  // The same origin: no motion.
+  const Geodetic o{46.84265, -91.99445, 153.0};
+  EXPECT_LT((EnuFromEnu(o, o).matrix() - Eigen::Matrix4d::Identity()).norm(), 1e-9);
 }
 
 }  // namespace

@@ -2,8 +2,9 @@
 # `cinepath mesh --for-plan` through the binary on the bundled sample: mesh, plan on it, mesh again for
 # the plan. The for-plan run exits 0 and its scene.json's decimate step carries the for-plan report with
 # the bound met (worst projected error <= --max-error-px), fewer faces than the plain run's mesh, and the
-# frozen-tile count matching the tiles marked frozen. Then bad input: a plan about another origin and a
-# missing plan file each exit 2 with an error naming the file, and write nothing.
+# frozen-tile count matching the tiles marked frozen. The same shots made about their own origin give the
+# same for-plan mesh. Then bad input: a plan without an origin and a missing plan file each exit 2 with an
+# error naming the file, and write nothing.
 #   mesh_for_plan.sh CINEPATH SOURCE_DIR
 set -euo pipefail
 CINEPATH=$1
@@ -55,10 +56,29 @@ assert all(t["faces_out"] == t["faces_in"] for t in tiles if t["frozen"]), "a fr
 assert all(t["worst_projected_px"] <= report["max_error_px"] for t in tiles)
 PY
 
-# A plan about another origin (1.1 km north) and a missing plan file: exit 2, the file named, no output.
-python3 -c 'import json, sys; p = json.load(open(sys.argv[1])); p["origin"]["lat_deg"] += 0.01; json.dump(p, open(sys.argv[2], "w"))' \
-  "$work/plan.json" "$work/other_origin.json"
-for case in "other_origin.json:origin: " "no_such_plan.json:cannot read"; do
+# The same shots made about their own origin, 37 m below the scene's (a point on its ground): the plan is
+# moved onto the scene's origin, so it asks for the same mesh.
+python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); o = json.load(open(sys.argv[2]))["origin"]
+s["origin"] = {"lat_deg": o["lat_deg"], "lon_deg": o["lon_deg"], "height_m": o["height_m"] - 37}
+json.dump(s, open(sys.argv[3], "w"))' "$sample/shots.json" "$work/scene/scene.json" "$work/own_origin_shots.json"
+"$CINEPATH" plan "$work/own_origin_shots.json" --scene "$work/scene/scene.json" -o "$work/own_origin.json"
+mesh "$work/own_origin" --for-plan "$work/own_origin.json" --max-error-px 0.5 2> "$work/own_origin.err" ||
+  fail "mesh --for-plan with a plan about its own origin exited $?: $(cat "$work/own_origin.err")"
+python3 - "$work/for_plan/scene.json" "$work/own_origin/scene.json" "$work/own_origin.json" "$work/plan.json" << 'PY'
+import json, sys
+reports = [[s for s in json.load(open(p))["surface"]["steps"] if s.get("step") == "decimate"][0]["for_plan"]
+           for p in sys.argv[1:3]]
+origins = [json.load(open(p))["origin"] for p in sys.argv[3:5]]
+assert origins[0] != origins[1], "the plan about its own origin was made about the scene's"
+keys = ("faces_out", "tiles_frozen", "worst_projected_px")
+assert all(reports[0][k] == reports[1][k] for k in keys), [(k, reports[0][k], reports[1][k]) for k in keys]
+print(f"own origin: the same for-plan mesh ({reports[1]['faces_out']} faces)")
+PY
+
+# A plan without an origin and a missing plan file: exit 2, the file named, no output.
+python3 -c 'import json, sys; p = json.load(open(sys.argv[1])); p["origin"] = None; json.dump(p, open(sys.argv[2], "w"))' \
+  "$work/plan.json" "$work/no_origin.json"
+for case in "no_origin.json:origin: " "no_such_plan.json:cannot read"; do
   plan=$work/${case%%:*}
   expected=${case#*:}
   status=0
