@@ -11,6 +11,7 @@
 #include "cli/common_options.h"
 #include "core/drone_profiles.h"
 #include "core/error.h"
+#include "core/feasibility.h"
 #include "core/file_io.h"
 #include "core/ground.h"
 #include "core/json.h"
@@ -106,7 +107,7 @@ class PlanCommand : public Command {
     };
     for (const auto& f : plan.flights) {
       for (const auto& v : f.plan.feasibility.violations) {
-        const bool minimum = v.limit.ends_with("_min") || v.limit == "subject_distance";
+        const bool minimum = IsMinimumLimit(v.limit);
         const std::string unit = v.unit.empty() ? "" : " " + v.unit;
         msg += "\n  " + range(v.start_time_s, v.end_time_s) + (plan.single ? "" : "drone \"" + f.name + "\"  ") +
                "shot \"" + v.shot + "\"  " + v.limit + ": " + against(v.worst_value, v.limit_value) + unit +

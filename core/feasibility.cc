@@ -114,6 +114,17 @@ std::vector<LimitSeries> UnmeasuredTracks(const DroneProfile& d, const CameraSpe
   };
 }
 
+}  // namespace
+
+bool IsMinimumLimit(const std::string& limit) {
+  for (const LimitSeries& series : UnmeasuredTracks(DroneProfile{}, CameraSpec{}, 0)) {
+    if (series.limit == limit) return series.is_minimum;
+  }
+  return false;
+}
+
+namespace {
+
 // The samples as segments between cuts: finite differences never reach across a cut.
 struct Segments {
   const std::vector<TrajectorySample>& samples;

@@ -35,6 +35,10 @@ struct LimitSeries {
   double Excess(size_t k) const;
 };
 
+// Whether a limit of the report (FeasibilityViolation::limit) is a minimum, broken below its value
+// (altitude_min, subject_distance, terrain_clearance, ...), rather than a maximum.
+bool IsMinimumLimit(const std::string& limit);
+
 // The samples where `series` is broken merged into time ranges within a shot, each with its worst value.
 std::vector<FeasibilityViolation> ViolationsOf(const LimitSeries& series, const Trajectory& plan);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/feasibility.h"
 #include "core/three_frame.h"
 
 namespace cinepath::viewer {
@@ -78,6 +79,35 @@ std::vector<double> SampleSpeedsMps(const Trajectory& plan) {
 
 namespace {
 
+// A flight's shots with their times.
+Json ShotsJson(const Trajectory& plan) {
+  Json shots = Json::array();
+  for (const ShotSpan& shot : plan.shots) {
+    shots.push_back({{"name", shot.name},
+                     {"type", shot.type},
+                     {"subject", shot.subject},
+                     {"start_time_s", RoundToDecimals(shot.start_time_s, 6)},
+                     {"end_time_s", RoundToDecimals(shot.end_time_s, 6)}});
+  }
+  return shots;
+}
+
+// A flight's broken limits (its feasibility report's ranges).
+Json ViolationsJson(const Trajectory& plan) {
+  Json violations = Json::array();
+  for (const FeasibilityViolation& v : plan.feasibility.violations) {
+    violations.push_back({{"limit", v.limit},
+                          {"shot", v.shot},
+                          {"start_time_s", RoundToDecimals(v.start_time_s, 6)},
+                          {"end_time_s", RoundToDecimals(v.end_time_s, 6)},
+                          {"worst_value", RoundToDecimals(v.worst_value, 6)},
+                          {"limit_value", RoundToDecimals(v.limit_value, 6)},
+                          {"minimum", IsMinimumLimit(v.limit)},
+                          {"unit", v.unit}});
+  }
+  return violations;
+}
+
 // The primary flight in detail: what the lens graphs, the timeline, the readout and the feasibility box show.
 Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, const std::optional<Geodetic>& origin) {
   Json data = Json::object();
@@ -116,15 +146,7 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
   samples["shot"] = shot_index;
   data["samples"] = samples;
 
-  Json shots = Json::array();
-  for (const ShotSpan& shot : plan.shots) {
-    shots.push_back({{"name", shot.name},
-                     {"type", shot.type},
-                     {"subject", shot.subject},
-                     {"start_time_s", RoundToDecimals(shot.start_time_s, 6)},
-                     {"end_time_s", RoundToDecimals(shot.end_time_s, 6)}});
-  }
-  data["shots"] = shots;
+  data["shots"] = ShotsJson(plan);
   Json keyframes = Json::array();
   for (const Keyframe& key : plan.keyframes) {
     Json p = Json::array();
@@ -139,23 +161,14 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
     subjects.push_back({{"name", subject.name}, {"height_m", subject.height_m}, {"position_m", p}});
   }
   data["subjects"] = subjects;
-  Json violations = Json::array();
-  for (const FeasibilityViolation& v : plan.feasibility.violations) {
-    violations.push_back({{"limit", v.limit},
-                          {"shot", v.shot},
-                          {"start_time_s", RoundToDecimals(v.start_time_s, 6)},
-                          {"end_time_s", RoundToDecimals(v.end_time_s, 6)},
-                          {"worst_value", RoundToDecimals(v.worst_value, 6)},
-                          {"limit_value", RoundToDecimals(v.limit_value, 6)},
-                          {"unit", v.unit}});
-  }
-  data["violations"] = violations;
+  data["violations"] = ViolationsJson(plan);
   data["skipped_checks"] = plan.feasibility.skipped;
   return data;
 }
 
 // One flight's track as every flight is drawn (its path, its camera at each sample, its home): the primary
-// flight's samples are already in the page's "samples" (FlightDetailJson), so only the others carry theirs.
+// flight's samples, shots with their times and broken limits are already in the page's "samples", "shots"
+// and "violations" (FlightDetailJson), so only the others carry theirs ("shot_spans", "violations").
 Json FlightJson(const DroneFlight& flight, const char* colour, bool with_samples) {
   const Trajectory& t = flight.plan;
   Json home = nullptr;
@@ -172,7 +185,11 @@ Json FlightJson(const DroneFlight& flight, const char* colour, bool with_samples
                {"home_m", home},
                {"shots", shots},
                {"cuts_before_sample", CutsJson(t)}};
-  if (with_samples) json.update(CameraTrackJson(t));
+  if (with_samples) {
+    json.update(CameraTrackJson(t));
+    json["shot_spans"] = ShotsJson(t);
+    json["violations"] = ViolationsJson(t);
+  }
   return json;
 }
 

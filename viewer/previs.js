@@ -359,10 +359,13 @@ $('speed-max').textContent = `${fmt(maxSpeed, 1)} m/s`;
 const flights = team.flights.map((f, i) => {
   const s = i === team.primary ? S : f;
   const n = s.time_s.length;
+  // Its shots with their times and its broken limits (the primary's are the page's own).
+  const shots = i === team.primary ? data.shots : f.shot_spans;
+  const violations = i === team.primary ? data.violations : f.violations;
   const color = new THREE.Color(several ? f.colour : 0xff9d2e);
   const pathColor = several ? () => color.toArray() : (j) => speedColor(speeds[j]);
   return {
-    f, s, n, color, pathColor,
+    f, s, n, shots, violations, color, pathColor,
     pos: (j) => new THREE.Vector3(s.position_m[3 * j], s.position_m[3 * j + 1], s.position_m[3 * j + 2]),
     quat: (j) => new THREE.Quaternion(s.quaternion[4 * j], s.quaternion[4 * j + 1], s.quaternion[4 * j + 2],
                                       s.quaternion[4 * j + 3]),
@@ -473,6 +476,24 @@ function liveFlightAt(t) {
   return live;
 }
 
+// The edit as intervals [from, to) with the flight live in each (none without an edit).
+const editIntervals = team.edit.map((cut, c) => ({
+  from: cut.at_s,
+  to: c + 1 < team.edit.length ? team.edit[c + 1].at_s : Infinity,
+  live: Math.max(0, flightIndex(cut.drone)),
+}));
+// The shots the edit shows: each live drone's shots within its intervals, clipped to them.
+function editShots() {
+  const out = [];
+  for (const { from, to, live } of editIntervals) {
+    for (const shot of flights[live].shots) {
+      const a = Math.max(from, shot.start_time_s), b = Math.min(to, shot.end_time_s);
+      if (a < b) out.push({ ...shot, start_time_s: a, end_time_s: b, drone: flights[live].f.name });
+    }
+  }
+  return out;
+}
+
 // ---- subjects: paths and where they are now (seen by the camera view too) ----
 // The colours `cinepath render` gives subject i (its palette, sRGB-encoded), so that the live camera view
 // and the rendered frames agree.
@@ -499,8 +520,9 @@ const subjectMarkers = data.subjects.map((subject, i) => {
 const cameraBox = $('camera-box');
 cameraBox.style.aspectRatio = `${data.camera.width_px} / ${data.camera.height_px}`;
 const origin = data.origin;
-$('hud-plan').textContent = `${data.plan} · ${N} samples at ${FPS} fps · ${data.shots.length} ` +
-  `shot${data.shots.length === 1 ? '' : 's'}` +
+const shotCount = flights.reduce((sum, flight) => sum + flight.shots.length, 0);  // every drone's
+$('hud-plan').textContent = `${data.plan} · ${N} samples at ${FPS} fps · ${shotCount} ` +
+  `shot${shotCount === 1 ? '' : 's'}` +
   (meshInfo ? ` · ${meshInfo.source}: ${meshInfo.triangles} triangles` : ' · no scene mesh') +
   (data.photos && data.photos.length ? ` · ${data.photos.length} photos (blue)` : '');
 $('hud-origin').textContent = origin
@@ -508,22 +530,37 @@ $('hud-origin').textContent = origin
     `${fmt(Math.abs(origin.lon_deg), 7)}°${origin.lon_deg >= 0 ? 'E' : 'W'} ${fmt(origin.height_m, 2)} m ellipsoidal`
   : 'no WGS84 origin: local metres';
 {
-  // One line per broken limit: how many ranges, the worst value; every range in the tooltip.
-  const byLimit = new Map();
-  for (const v of data.violations) {
-    if (!byLimit.has(v.limit)) byLimit.set(v.limit, []);
-    byLimit.get(v.limit).push(v);
+  // One line per broken limit: how many ranges, the worst value; every range in the tooltip. With several
+  // drones every drone's limits, each line naming its drone (a drone with none: one ✔ line for it).
+  const linesOf = (violations) => {
+    const byLimit = new Map();
+    for (const v of violations) {
+      if (!byLimit.has(v.limit)) byLimit.set(v.limit, []);
+      byLimit.get(v.limit).push(v);
+    }
+    return [...byLimit].map(([limit, list]) => {
+      const worst = list.reduce((a, b) => (b.minimum ? b.worst_value < a.worst_value : b.worst_value > a.worst_value)
+        ? b : a);
+      return `${limit}: ${list.length} range${list.length > 1 ? 's' : ''}, worst ${fmt(worst.worst_value, 2)} ` +
+             `${worst.minimum ? '<' : '>'} ` +
+             `${fmt(worst.limit_value, 2)} ${worst.unit} at ${fmt(worst.start_time_s, 2)} s`;
+    });
+  };
+  const broken = flights.some((flight) => flight.violations.length > 0);
+  const lines = [], tips = [];
+  for (const flight of flights) {
+    const who = several ? `${flight.f.name}: ` : '';
+    for (const line of linesOf(flight.violations)) lines.push(`✖ ${who}${line}`);
+    if (broken && several && !flight.violations.length) lines.push(`✔ ${who}no violations`);
+    for (const v of flight.violations) {
+      tips.push(`${who}${v.limit} ${fmt(v.start_time_s, 2)}–${fmt(v.end_time_s, 2)} s (${v.shot})`);
+    }
   }
-  const lines = [...byLimit].map(([limit, list]) => {
-    const worst = list.reduce((a, b) => (b.worst_value > a.worst_value ? b : a));
-    return `✖ ${limit}: ${list.length} range${list.length > 1 ? 's' : ''}, worst ${fmt(worst.worst_value, 2)} > ` +
-           `${fmt(worst.limit_value, 2)} ${worst.unit} at ${fmt(worst.start_time_s, 2)} s`;
-  });
   const box = $('violations');
-  box.textContent = lines.length ? lines.join('\n') : '✔ feasibility: no violations';
-  box.title = data.violations.map((v) => `${v.limit} ${fmt(v.start_time_s, 2)}–${fmt(v.end_time_s, 2)} s (${v.shot})`)
-                  .join('\n');
-  box.style.color = lines.length ? '' : '#9be59b';
+  box.textContent = broken ? lines.join('\n')
+    : `✔ feasibility: no violations${several ? ` (${flights.length} drones)` : ''}`;
+  box.title = tips.join('\n');
+  box.style.color = broken ? '' : '#9be59b';
 }
 const t0 = S.time_s[0] ?? 0, t1 = S.time_s[N - 1] ?? 0;
 const span = Math.max(t1 - t0, 1e-9);
@@ -531,13 +568,14 @@ const slider = $('slider');
 slider.max = String(Math.max(0, N - 1));
 {
   const track = $('track');
-  for (const shot of data.shots) {
+  // The shots on the timeline: with an edit, the ones it shows (each named with its drone in the tooltip).
+  for (const shot of team.edit.length ? editShots() : data.shots) {
     const d = document.createElement('div');
     d.className = 'shot';
     d.style.left = `${((shot.start_time_s - t0) / span) * 100}%`;
     d.style.width = `${((shot.end_time_s - shot.start_time_s) / span) * 100}%`;
     d.textContent = shot.name;
-    d.title = `${shot.name} (${shot.type})`;
+    d.title = `${shot.drone ? shot.drone + ': ' : ''}${shot.name} (${shot.type})`;
     track.appendChild(d);
   }
   // Keyframes as yellow ticks under the slider, rendered frames (--frames) as grey ones above them.
@@ -550,13 +588,15 @@ slider.max = String(Math.max(0, N - 1));
   };
   for (const key of data.keyframes) tick(key.time_s, 'key', `keyframe ${key.shot} ${fmt(key.time_s, 2)} s`);
   for (const k of Object.keys(frames)) tick(S.time_s[Number(k)], 'frame', `rendered frame ${k}`);
-  for (const v of data.violations) {
-    const d = document.createElement('div');
-    d.className = 'bad';
-    d.style.left = `${((v.start_time_s - t0) / span) * 100}%`;
-    d.style.width = `${Math.max(0.2, ((v.end_time_s - v.start_time_s) / span) * 100)}%`;
-    d.title = v.limit;
-    track.insertBefore(d, slider);
+  for (const flight of flights) {
+    for (const v of flight.violations) {
+      const d = document.createElement('div');
+      d.className = 'bad';
+      d.style.left = `${((v.start_time_s - t0) / span) * 100}%`;
+      d.style.width = `${Math.max(0.2, ((v.end_time_s - v.start_time_s) / span) * 100)}%`;
+      d.title = several ? `${flight.f.name}: ${v.limit}` : v.limit;
+      track.insertBefore(d, slider);
+    }
   }
 }
 
@@ -639,19 +679,62 @@ if (several) {
 
 // ---- lens graphs ----
 const graphs = $('graphs');
-const series = [
-  { name: 'focal length', unit: 'mm', value: (k) => S.focal_length_mm[k], digits: 1 },
-  { name: 'focus', unit: 'dpt (1/m)', value: (k) => dioptres(S.focus_distance_m[k]), digits: 3 },
-  { name: 'f-number', unit: '', value: (k) => S.f_number[k], digits: 1 },
-].map((s) => {
-  let lo = Infinity, hi = -Infinity;
-  for (let k = 0; k < N; ++k) { lo = Math.min(lo, s.value(k)); hi = Math.max(hi, s.value(k)); }
-  if (!(hi > lo)) { lo -= 1; hi += 1; }
-  const pad = (hi - lo) * 0.08;
-  // Focal length, dioptres and f-number are never negative: neither is an axis (a constant focus of
-  // 0.05 dpt would otherwise span -1.1 .. 1.2).
-  return { ...s, lo: Math.max(0, lo - pad), hi: hi + pad };
-});
+// They show the lens of the drone the camera view looks through: a drone's own, or with "edit" selected the
+// lens of the drone live at each time (the sequence as it is cut), with the edit's cuts for shot lines.
+const seriesKinds = [
+  { name: 'focal length', unit: 'mm', value: (s, j) => s.focal_length_mm[j], digits: 1 },
+  { name: 'focus', unit: 'dpt (1/m)', value: (s, j) => dioptres(s.focus_distance_m[j]), digits: 3 },
+  { name: 'f-number', unit: '', value: (s, j) => s.f_number[j], digits: 1 },
+];
+// The flight and its sample whose lens the graphs show at page sample i.
+function lensSampleAt(i) {
+  const f = selected === 'edit' ? liveFlightAt(S.time_s[i]) : selected;
+  const flight = flights[f >= 0 ? f : team.primary];
+  return [flight, Math.min(i, flight.n - 1)];
+}
+let graphKey = null, series = [], graphLines = [], graphBad = [], graphBreaks = new Set();
+// The graphs' series (each value per page sample), shot lines and shaded ranges for the current selection.
+function graphData() {
+  const key = String(selected);
+  if (key === graphKey) return;
+  graphKey = key;
+  series = seriesKinds.map((kind) => {
+    const values = new Float64Array(N);
+    let lo = Infinity, hi = -Infinity;
+    for (let i = 0; i < N; ++i) {
+      const [flight, j] = lensSampleAt(i);
+      values[i] = kind.value(flight.s, j);
+      lo = Math.min(lo, values[i]);
+      hi = Math.max(hi, values[i]);
+    }
+    if (!(hi > lo)) { lo -= 1; hi += 1; }
+    const pad = (hi - lo) * 0.08;
+    // Focal length, dioptres and f-number are never negative: neither is an axis (a constant focus of
+    // 0.05 dpt would otherwise span -1.1 .. 1.2).
+    return { ...kind, value: (i) => values[i], lo: Math.max(0, lo - pad), hi: hi + pad };
+  });
+  graphBreaks = new Set();  // the samples where the graphed drone changes (a cut of the edit): no line across
+  for (let i = 1; i < N; ++i) if (lensSampleAt(i)[0] !== lensSampleAt(i - 1)[0]) graphBreaks.add(i);
+  if (selected === 'edit') {
+    // The cuts and the shots the edit shows; each live drone's broken ranges while it is live.
+    graphLines = [...new Set([...team.edit.map((cut) => cut.at_s), ...editShots().map((shot) => shot.start_time_s)])];
+    graphBad = [];
+    for (const { from, to, live } of editIntervals) {
+      for (const v of flights[live].violations) {
+        const a = Math.max(from, v.start_time_s), b = Math.min(to, v.end_time_s);
+        if (a <= b) graphBad.push([a, b]);
+      }
+    }
+  } else {
+    const flight = flights[selected];
+    graphLines = flight.shots.map((shot) => shot.start_time_s);
+    graphBad = flight.violations.map((v) => [v.start_time_s, v.end_time_s]);
+  }
+  if (several) {
+    $('lens-title').textContent = `Lens · ${selected === 'edit' ? 'edit (live drone)' : flights[selected].f.name}`;
+  }
+  graphs.dataset.drone = selected === 'edit' ? 'edit' : flights[selected].f.name;
+}
 function drawGraphs(k) {
   const dpr = window.devicePixelRatio || 1;
   const w = graphs.clientWidth, h = graphs.clientHeight;
@@ -659,6 +742,7 @@ function drawGraphs(k) {
     graphs.width = Math.round(w * dpr);
     graphs.height = Math.round(h * dpr);
   }
+  graphData();
   const ctx = graphs.getContext('2d');
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, w, h);
@@ -670,21 +754,21 @@ function drawGraphs(k) {
     ctx.fillStyle = '#1e2229';
     ctx.fillRect(left, top, right - left, bottom - top);
     ctx.fillStyle = '#ff3b2f44';
-    for (const v of data.violations) {
-      ctx.fillRect(x(v.start_time_s), top, Math.max(1, x(v.end_time_s) - x(v.start_time_s)), bottom - top);
-    }
+    for (const [a, b] of graphBad) ctx.fillRect(x(a), top, Math.max(1, x(b) - x(a)), bottom - top);
     ctx.strokeStyle = '#4a5360';
     ctx.lineWidth = 1;
-    for (const shot of data.shots) {
+    for (const t of graphLines) {
       ctx.beginPath();
-      ctx.moveTo(Math.round(x(shot.start_time_s)) + 0.5, top);
-      ctx.lineTo(Math.round(x(shot.start_time_s)) + 0.5, bottom);
+      ctx.moveTo(Math.round(x(t)) + 0.5, top);
+      ctx.lineTo(Math.round(x(t)) + 0.5, bottom);
       ctx.stroke();
     }
     ctx.strokeStyle = ['#6fb7ff', '#7ee0a1', '#ffd166'][r];
     ctx.lineWidth = 1.5;
     ctx.beginPath();
-    for (let i = 0; i < N; ++i) (i ? ctx.lineTo : ctx.moveTo).call(ctx, x(S.time_s[i]), y(s.value(i)));
+    for (let i = 0; i < N; ++i) {
+      (i && !graphBreaks.has(i) ? ctx.lineTo : ctx.moveTo).call(ctx, x(S.time_s[i]), y(s.value(i)));
+    }
     ctx.stroke();
     ctx.fillStyle = '#c4cad3';
     ctx.font = '11px DejaVu Sans, sans-serif';
@@ -700,6 +784,7 @@ function drawGraphs(k) {
   ctx.moveTo(x(S.time_s[k]), 0);
   ctx.lineTo(x(S.time_s[k]), h);
   ctx.stroke();
+  graphs.dataset.focal = fmt(series[0].value(k), 3);  // what the graphs read now (tests/viewer/browser_team.sh)
 }
 function seekFromGraph(event) {
   const r = graphs.getBoundingClientRect();
@@ -734,11 +819,13 @@ function readoutText(flight, j, live) {
       `lens    ${fmt(S.focal_length_mm[k], 1)} mm  f/${fmt(S.f_number[k], 1)}  focus ${fmt(focus, 2)} m ` +
       `(${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(S.vertical_fov_deg[k], 1)}°`;
   }
-  return `t ${fmt(t, 3)} s   frame ${k} / ${N - 1}${drone}${liveText}\n` +
+  const shot = flight.shots.find((span, i) => span.start_time_s <= t &&
+                                  (t < span.end_time_s || i === flight.shots.length - 1));
+  return `t ${fmt(t, 3)} s   frame ${k} / ${N - 1}   shot ${shot ? shot.name + ' (' + shot.type + ')' : '—'}` +
+    `${drone}${liveText}\n` +
     `${position}${j < k ? '   (flight ended: holding)' : ''}\n` +
     `lens    ${fmt(flight.s.focal_length_mm[j], 1)} mm  f/${fmt(flight.s.f_number[j], 1)}  focus ${fmt(focus, 2)} m ` +
-    `(${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(flight.s.vertical_fov_deg[j], 1)}°` +
-    `   (lens graphs: ${team.flights[team.primary].name})`;
+    `(${fmt(dioptres(focus), 3)} dpt)  vFOV ${fmt(flight.s.vertical_fov_deg[j], 1)}°`;
 }
 // Every flight at sample k (a flight that has ended holds its last sample), the camera view through the
 // selected drone (or the one live in the edit), the subjects, the readout and the lens graphs.
@@ -775,7 +862,7 @@ function setSample(index) {
   readout.dataset.e = fmt(p.x, 3);
   readout.dataset.n = fmt(-p.z, 3);
   readout.dataset.u = fmt(p.y, 3);
-  // The camera view's lens is the viewed drone's (the lens graphs stay the primary's).
+  // The camera view's lens is the viewed drone's (and so are the lens graphs').
   readout.dataset.focal = fmt(flight.s.focal_length_mm[j], 3);
   readout.textContent = readoutText(flight, j, live);
   const focus = flight.s.focus_distance_m[j];
@@ -925,15 +1012,20 @@ function render() {
 }
 window.addEventListener('resize', () => { drawGraphs(k); requestRender(); });
 
-// ---- start: #t=SECONDS, #k=SAMPLE and #view=top|3d|chase pick the first picture ----
+// ---- start: #t=SECONDS, #k=SAMPLE, #view=top|3d|chase and #drone=NAME|edit pick the first picture ----
 const params = new URLSearchParams(location.hash.slice(1));
 view.aspect = Math.max(1, canvas.clientWidth - 420) / Math.max(1, canvas.clientHeight - 64);
 const triangles = await loadMesh();
 const meshReadyMs = performance.now();
 if (params.get('view') === 'top') topView(); else perspectiveView();
 if (params.get('view') === 'chase') $('view-follow').click();
-// #t and #k move the slider as a person would (its input event), so the tests exercise that path.
+// #t, #k and #drone move the slider and press the selector as a person would, so the tests exercise that path.
 setSample(0);
+if (several && params.has('drone')) {
+  const value = params.get('drone') === 'edit' ? 'edit' : String(flightIndex(params.get('drone')));
+  const button = [...document.querySelectorAll('#drones button')].find((b) => b.dataset.drone === value);
+  if (button) button.click();
+}
 if (params.has('k') || params.has('t')) {
   slider.value = String(params.has('k') ? Number(params.get('k')) : sampleAtTime(Number(params.get('t'))));
   slider.dispatchEvent(new Event('input'));

@@ -30,6 +30,17 @@ Trajectory Climb(double rate_m_s, size_t n) {
   return plan;
 }
 
+// Which limits are minima, as the messages and the previs page write them ("worst < limit").
+TEST(Feasibility, MinimaAreKnownByName) {
+  for (const char* limit : {"altitude_min", "subject_distance", "terrain_clearance", "focal_length_min",
+                            "focus_distance_min", "f_number_min", "gimbal_pitch_min"}) {
+    EXPECT_TRUE(IsMinimumLimit(limit)) << limit;
+  }
+  for (const char* limit : {"altitude_max", "jerk", "horizontal_speed", "yaw_rate", "focus_rate", "no_such_limit"}) {
+    EXPECT_FALSE(IsMinimumLimit(limit)) << limit;
+  }
+}
+
 TEST(Feasibility, ClimbRateRangesSplitByShot) {
   const Trajectory plan = Climb(4.0, 21);  // PX4 climb limit 3 m/s
   const auto report = CheckFeasibility(plan, std::vector<bool>(21, false), {});

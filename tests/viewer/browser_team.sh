@@ -2,7 +2,8 @@
 # The previs page of a plan of several drones in headless Chromium (docs/view.md, "Several drones"): the
 # two-drone test plan over the small six-photo Brighton scene loads with no error, draws two flight paths,
 # a selector with both drones and the edit, the edit's cuts on the timeline; at t = 1.25 s the camera view
-# looks through the drone live in the edit (south). A screenshot is kept in ARTIFACT_DIR. A one-drone plan
+# looks through the drone live in the edit (south), and the lens graphs show the edit's lens; #drone=north
+# turns both to north; the feasibility box lists both drones' broken limits. A screenshot is kept in ARTIFACT_DIR. A one-drone plan
 # is a team of one, drawn by the same code: one flight path, its camera, no selector, no edit, no team line
 # (its pictures: browser_test.sh's golden top view). Exit 77 (skipped) without Chromium.
 #   browser_team.sh CINEPATH SOURCE_DIR ARTIFACT_DIR
@@ -63,9 +64,27 @@ grep -q 'id="lens-overlay">50.0 mm  f/5.6' "$work/dom.html" ||
 browse "file://$work/team.html#t=1.25&view=top" --screenshot="$ARTIFACTS/team_top.png" > /dev/null
 browse "file://$work/team.html#t=0.5" --screenshot="$ARTIFACTS/team_3d.png" > /dev/null
 [[ -s $ARTIFACTS/team_top.png ]] || fail "no screenshot"
-# The feasibility box leads with the team line (every pair apart, or the conflicts).
-box() { grep -o 'id="violations"[^>]*>[^<]*' "$1"; }
+# The feasibility box leads with the team line (every pair apart, or the conflicts). (Its tooltip and text span
+# lines: the DOM is read as one line.)
+box() { tr '\n' '\r' < "$1" | grep -o 'id="violations"[^>]*>[^<]*' | tr '\r' '\n'; }
 box "$work/dom.html" | grep -q "team: every pair\|separation" || fail "no team line in the feasibility box"
+# ... then every drone's broken limits, not only the primary's (north's): south's orbit starts below its
+# minimum altitude too, a minimum written "<".
+box "$work/dom.html" | grep -q "✖ south: altitude_min: 1 range, worst -25.50 &lt; 1.00 m" ||
+  fail "the feasibility box does not name south's broken limit: $(box "$work/dom.html")"
+box "$work/dom.html" | grep -q "✖ north: altitude_min" || fail "the feasibility box lost north's: $(box "$work/dom.html")"
+# The timeline's shots are the edit's: south's orbit where it is live.
+grep -q 'class="shot" title="south: s_orbit (ORBIT)"' "$work/dom.html" || fail "the timeline lacks south's shot in the edit"
+# The lens graphs follow the camera view: the edit's lens (south's 50 mm at 1.25 s), then north's when the
+# selector picks it (#drone=north).
+graph() { grep -o '<canvas id="graphs"[^>]*' "$1"; }
+graph "$work/dom.html" | grep -q 'data-drone="edit" data-focal="50.000"' ||
+  fail "the lens graphs do not show the edit's lens: $(graph "$work/dom.html")"
+browse "file://$work/team.html#t=1.25&drone=north" --dump-dom > "$work/dom_north.html"
+grep -q 'id="readout"[^>]*data-drone="north"' "$work/dom_north.html" || fail "#drone=north did not select north"
+graph "$work/dom_north.html" | grep -q 'data-drone="north" data-focal="35.000"' ||
+  fail "the lens graphs do not show north's lens: $(graph "$work/dom_north.html")"
+grep -q 'id="lens-title">Lens · north<' "$work/dom_north.html" || fail "the lens heading does not name north"
 # A team of one: the same code draws its flight, with no selector, no edit and no team line.
 "$CINEPATH" plan "$SRC/examples/orbit_shots.json" -o "$work/one.json" || fail "plan one drone"
 "$CINEPATH" view "$work/one.json" -o "$work/one.html" || fail "view one drone"

@@ -84,6 +84,7 @@ TEST(PageData, EveryFlightOfATeamAboutItsPrimary) {
     s.focal_length_mm = 85;      // its own lens, which its camera view reads
     s.f_number = 5.6;
   }
+  other.feasibility.violations.push_back({"terrain_clearance", "a", 0, 1, 1.2, 3, "m"});
   TeamPlan team = TeamOf({other, TwoShots()});
   team.edit.push_back({.at_s = 1, .drone = "drone1"});
   const Json data = PageDataJson(team, 1, "plan.json", std::nullopt);
@@ -98,6 +99,14 @@ TEST(PageData, EveryFlightOfATeamAboutItsPrimary) {
   EXPECT_NE(flights[0]["colour"], flights[1]["colour"]);
   EXPECT_FALSE(flights[1].contains("position_m"));
   EXPECT_EQ(data["team"]["edit"][0]["drone"], "drone1");
+  // The other flight's shots with their times and its broken limits, for its lens graphs and the
+  // feasibility box (a minimum is marked, to be written "<").
+  ASSERT_EQ(flights[0]["shot_spans"].size(), 2u);
+  EXPECT_EQ(flights[0]["shot_spans"][1]["start_time_s"], 3.0);
+  ASSERT_EQ(flights[0]["violations"].size(), 1u);
+  EXPECT_EQ(flights[0]["violations"][0]["limit"], "terrain_clearance");
+  EXPECT_EQ(flights[0]["violations"][0]["minimum"], true);
+  EXPECT_TRUE(data["violations"].empty());  // the primary's own
 }
 
 TEST(PageData, OriginWhenKnown) {
