@@ -376,16 +376,34 @@ void DrawTeamTimePanels(std::string& svg, const TeamPlan& plan, double t_max, do
     svg += "<text x=\"" + F(team.PX(v.start_time_s) + 2) + "\" y=\"" + F(bar_y + bar_h + 14 + 14 * row) + "\" fill=\"" +
            (v.limit == "separation" ? std::string("#b00") : std::string("#c60")) + "\">" + Escape(label) + "</text>\n";
   }
+  // Every drone's broken limits: shaded red over the lens panels, each range named on the focal panel.
+  size_t row = 0;
+  for (const auto& flight : plan.flights) {
+    for (const auto& v : flight.plan.feasibility.violations) {
+      for (const Frame* fr : {&focal, &focus}) {
+        const double x0 = fr->PX(v.start_time_s), x1 = std::max(fr->PX(v.end_time_s), x0 + 1);
+        svg += "<rect class=\"violation\" data-drone=\"" + Escape(flight.name) + "\" data-limit=\"" + Escape(v.limit) +
+               "\" x=\"" + F(x0) + "\" y=\"" + F(fr->y0) + "\" width=\"" + F(x1 - x0) + "\" height=\"" + F(fr->h) +
+               "\" fill=\"red\" fill-opacity=\"0.12\"/>\n";
+      }
+      svg += "<text x=\"" + F(focal.PX(v.start_time_s) + 2) + "\" y=\"" + F(focal.y0 + 28 + 14 * double(row++ % 4)) +
+             "\" fill=\"#b00\">" + Escape(flight.name + ": " + v.limit) + "</text>\n";
+    }
+  }
   for (size_t k = 0; k < plan.flights.size(); ++k) {
     const std::string style = "stroke=\"" + colour_of(k) + "\" stroke-width=\"2\"";
     DrawLensCurves(svg, plan.flights[k].plan, focal, focus, style, style);
   }
-  // Legend: the drones by name.
+  // Legend: the drones by name, each with its shots and its broken limits.
   double lx = 40;
   for (size_t k = 0; k < plan.flights.size(); ++k) {
     const auto& flight = plan.flights[k];
-    std::string label = flight.name + " (" + flight.plan.drone.name + ", " + std::to_string(flight.plan.shots.size()) +
-                        " shot" + (flight.plan.shots.size() == 1 ? "" : "s") + ")";
+    const size_t broken = flight.plan.feasibility.violations.size();
+    std::string label =
+        flight.name + " (" + flight.plan.drone.name + ", " + std::to_string(flight.plan.shots.size()) + " shot" +
+        (flight.plan.shots.size() == 1 ? "" : "s") +
+        (broken ? ", " + std::to_string(broken) + " broken limit range" + (broken == 1 ? "" : "s") : std::string()) +
+        ")";
     svg += "<rect class=\"legend\" x=\"" + F(lx) + "\" y=\"" + F(height - 22) +
            "\" width=\"12\" height=\"12\" fill=\"" + colour_of(k) + "\"/>\n";
     svg += "<text x=\"" + F(lx + 16) + "\" y=\"" + F(height - 12) + "\">" + Escape(label) + "</text>\n";

@@ -100,6 +100,33 @@ TEST(PlanPlot, TeamDrawsOnePathPerDroneInItsColourAndShadesEveryConflict) {
   EXPECT_EQ(svg, PlanToSvg(plan));  // deterministic
 }
 
+// Every drone's broken limits show on the team's plot (shaded over both lens panels, named on the focal one,
+// counted in the legend), not only the conflicts between drones.
+TEST(PlanPlot, TeamShadesEveryDronesBrokenLimits) {
+  TeamPlan plan = WideOrbitTeam();
+  ASSERT_EQ(plan.flights.size(), 2u);
+  const int south = plan.FindFlight("south");
+  ASSERT_GE(south, 0);
+  FeasibilityViolation v;
+  v.limit = "altitude_min";
+  v.shot = plan.flights[south].plan.shots.at(0).name;
+  v.start_time_s = 0;
+  v.end_time_s = 1.5;
+  v.worst_value = -2;
+  v.limit_value = 1;
+  v.unit = "m";
+  plan.flights[south].plan.feasibility.violations = {v};
+  for (auto& flight : plan.flights) {
+    if (flight.name != "south") flight.plan.feasibility.violations.clear();
+  }
+  const std::string svg = PlanToSvg(plan);
+  EXPECT_EQ(Count(svg, "class=\"violation\" data-drone=\"south\" data-limit=\"altitude_min\""), 2u);
+  EXPECT_EQ(Count(svg, "class=\"violation\""), 2u);
+  EXPECT_NE(svg.find(">south: altitude_min<"), std::string::npos);
+  EXPECT_NE(svg.find(">south (px4-multirotor, 1 shot, 1 broken limit range)<"), std::string::npos);
+  EXPECT_NE(svg.find(">north (px4-multirotor, 1 shot)<"), std::string::npos);
+}
+
 TEST(PlanPlot, AVersionOnePlanDrawsAsBefore) {
   const ShotList list = ParseShotList(Json::parse(R"({"schema": "cinepath.shots/1", "frame_rate_hz": 10,
       "camera": {"filmback": "super35", "min_focal_length_mm": 24},
