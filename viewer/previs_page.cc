@@ -101,6 +101,17 @@ Json WithPhotos(Json data, Json photos) {
   return data;
 }
 
+// The folder of one sequence that `--frames DIR` names: DIR itself when it holds frames, else (the folder
+// `cinepath render -o DIR` writes for several drones: DIR/<drone>/ and DIR/edit/) the edit's sequence when
+// the plan has an edit, or the primary flight's.
+std::filesystem::path FramesFolderOfPlan(const std::filesystem::path& dir, const TeamPlan& team, size_t primary,
+                                         size_t samples) {
+  if (team.flights.size() < 2 || !FindRenderedFrames(dir, samples).empty()) return dir;
+  const std::filesystem::path sequence = dir / (team.edit.empty() ? team.flights[primary].name : std::string("edit"));
+  std::error_code error;
+  return std::filesystem::is_directory(sequence, error) ? sequence : dir;
+}
+
 }  // namespace
 
 std::string FillTemplate(const std::string& page_template,
@@ -175,10 +186,17 @@ PrevisPage BuildPrevisPage(const ViewOptions& options) {
   }
   Json frames = Json::object();
   if (options.frames_dir) {
-    for (const auto& [k, image] : FindRenderedFrames(*options.frames_dir, team.flights[primary].plan.samples.size())) {
+    const size_t samples = team.flights[primary].plan.samples.size();
+    const std::filesystem::path dir = FramesFolderOfPlan(*options.frames_dir, team, primary, samples);
+    for (const auto& [k, image] : FindRenderedFrames(dir, samples)) {
       frames[std::to_string(k)] = "data:" + image.mime_type + ";base64," + Base64Encode(ReadFileToString(image.path));
       page.inputs.push_back(image.path.string());
       ++page.frames_inlined;
+    }
+    if (page.frames_inlined == 0) {
+      page.notes.push_back("--frames " + options.frames_dir->string() +
+                           ": no frame_NNNNNN.png / .jpg of this plan's samples there; the camera view shows the "
+                           "live picture only");
     }
   }
   const std::string plan_name = options.plan.filename().string();

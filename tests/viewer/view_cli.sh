@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `cinepath view` through the real binary: a plan without an origin views (in local metres, with and
 # without a scene), a missing scene mesh / plan / --frames folder exits 2 and writes nothing, --depfile
-# names what was read, and two runs give the same bytes.
+# names what was read, and two runs give the same bytes; --frames takes a team's render folder (its edit),
+# and warns about a folder without frames.
 #   view_cli.sh CINEPATH SOURCE_DIR
 set -uo pipefail
 CINEPATH=$1
@@ -45,5 +46,23 @@ expect_exit 2 missing_plan view "$work/none.json" -o "$work/d.html"
 expect_exit 2 frames_not_a_folder view "$plan" --frames "$work/none" -o "$work/e.html"
 [[ -e $work/e.html ]] && fail "frames_not_a_folder: a page was written"
 expect_exit 2 no_output view "$plan"
+
+# --frames with the folder `render -o DIR` writes for several drones (DIR/<drone>/, DIR/edit/): the edit's
+# frames are shown (before: DIR itself has none, and the page silently had no frames); a folder with no
+# frame of the plan is a warning, not an error.
+"$CINEPATH" plan "$SRC/tests/export/data/two_drones_shots.json" -o "$work/team.json" 2> /dev/null || fail "team plan"
+"$CINEPATH" render "$work/team.json" --scene "$scene" --width-px 48 --every 4 -o "$work/team_frames" > /dev/null 2>&1 ||
+  fail "team render"
+[[ -d $work/team_frames/edit ]] || fail "render wrote no edit sequence: $(ls "$work/team_frames")"
+expect_exit 0 team_frames view "$work/team.json" --scene "$scene" --frames "$work/team_frames" -o "$work/f.html"
+edit_frames=$(ls "$work/team_frames/edit" | grep -c '^frame_')
+inlined=$(grep -o '"[0-9]*":"data:image/png;base64' "$work/f.html" | wc -l)
+[[ $edit_frames -gt 0 && $inlined == "$edit_frames" ]] ||
+  fail "team_frames: $inlined frames in the page, $edit_frames in the edit's folder"
+grep -q "warning" "$work/team_frames.err" && fail "team_frames: a warning: $(cat "$work/team_frames.err")"
+mkdir -p "$work/empty_frames"
+expect_exit 0 no_frames view "$plan" --frames "$work/empty_frames" -o "$work/g.html"
+grep -q "warning: --frames .*empty_frames: no frame_NNNNNN" "$work/no_frames.err" ||
+  fail "no_frames: no warning: $(cat "$work/no_frames.err")"
 ls "$work"/*.tmp* > /dev/null 2>&1 && fail "temporary files left behind"
 exit $status
