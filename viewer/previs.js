@@ -298,6 +298,7 @@ function label(text, height = 0.03, color = '#ffffff') {
   sprite.renderOrder = 10;
   return sprite;
 }
+const northArrow = new THREE.Group();  // placed by the view (topView, perspectiveView)
 const gridStep = niceStep(Math.max(bounds.max.x - bounds.min.x, bounds.max.z - bounds.min.z, 20));
 {
   const x0 = Math.floor(bounds.min.x / gridStep) * gridStep, x1 = Math.ceil(bounds.max.x / gridStep) * gridStep;
@@ -333,13 +334,18 @@ const gridStep = niceStep(Math.max(bounds.max.x - bounds.min.x, bounds.max.z - b
     s.position.set(x0 - 2 * h, groundY, z);
     overlay(s);
   }
-  // North arrow on the ground, east of the grid, pointing along -z.
-  const length = 2 * gridStep, ax = x1 + gridStep;
-  overlay(new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), new THREE.Vector3(ax, groundY, z0 + length), length,
-                                0xff5a4e, length * 0.3, length * 0.18));
+  // North arrow on the ground, pointing along -z: east of the grid's northern corner in the top view (right of
+  // the grid), north of the grid's middle in the 3D views (east of the grid it falls under the panel there).
+  const length = 2 * gridStep;
+  northArrow.add(new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), new THREE.Vector3(0, 0, length), length,
+                                       0xff5a4e, length * 0.3, length * 0.18));
   const n = label('N', 0.045, '#ff8a80');
-  n.position.set(ax, groundY, z0 - gridStep * 0.4);
-  overlay(n);
+  n.position.set(0, 0, -gridStep * 0.4);
+  northArrow.add(n);
+  northArrow.userData.top = new THREE.Vector3(x1 + gridStep, groundY, z0);
+  northArrow.userData.side = new THREE.Vector3(0.5 * (x0 + x1), groundY, z0 - length - gridStep);
+  northArrow.position.copy(northArrow.userData.side);
+  overlay(northArrow);
   $('hud-grid').textContent = `grid ${gridStep} m · labels: metres east / north of the origin`;
 }
 
@@ -896,6 +902,7 @@ function setButtons(id) {
 function perspectiveView() {
   follow = false;
   setButtons('view-persp');
+  northArrow.position.copy(northArrow.userData.side);
   controls.target.copy(centre);
   view.position.set(centre.x + size * 0.35, centre.y + size * 0.45, centre.z + size * 0.7);
   controls.update();
@@ -904,6 +911,7 @@ function perspectiveView() {
 function topView() {
   follow = false;
   setButtons('view-top');
+  northArrow.position.copy(northArrow.userData.top);
   // Straight down, north (-z) up on the screen (the camera sits a hair south of the target), at the height
   // where the scene's east-west and north-south extents both fit below the header (#hud), which covers
   // the picture's top: the grid's northern labels and the north arrow would sit under its text.
@@ -931,6 +939,7 @@ $('view-top').addEventListener('click', topView);
 $('view-follow').addEventListener('click', () => {
   follow = true;
   setButtons('view-follow');
+  northArrow.position.copy(northArrow.userData.side);
   placeFollowCamera();
   requestRender();
 });
