@@ -140,8 +140,8 @@ class MeshCommand : public Command {
     options_.texture_options.format = texture_format_ == "png" ? TextureFormat::kPng : TextureFormat::kJpeg;
     options_.output_dir = output_dir_;
     if (!for_plan_path_.empty()) {
-      options_.for_plan = ReadPlanFile(for_plan_path_);  // InputError naming the file
-      PrintWarnings("mesh", options_.for_plan->notes);
+      options_.for_plan = ReadTeamPlanFile(for_plan_path_);  // one drone or several; InputError naming the file
+      PrintWarnings("mesh", TeamPlanNotes(*options_.for_plan));
       options_.for_plan_path = for_plan_path_;
     }
 

@@ -408,6 +408,7 @@ std::vector<double> MeasureRound(const TriangleMesh& out, const ProjectedErrorPr
     }
   }
   r->worst_camera_sample = worst_point >= 0 ? options.cameras[views[worst_point].camera].sample_index : -1;
+  r->worst_camera_drone = worst_point >= 0 ? options.cameras[views[worst_point].camera].drone : std::string();
   return distance;
 }
 
@@ -587,6 +588,7 @@ Json ForPlanReport::ToJson() const {
   j["faces_out"] = faces_out;
   j["worst_projected_px"] = round(worst_projected_px, 4);
   j["worst_camera_sample"] = worst_camera_sample;
+  if (!worst_camera_drone.empty()) j["worst_camera_drone"] = worst_camera_drone;
   j["worst_unseen_error_m"] = round(worst_unseen_error_m, 6);
   j["bound_met"] = bound_met;
   j["tiles_frozen"] = tiles_frozen;

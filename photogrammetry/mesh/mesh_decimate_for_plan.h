@@ -110,6 +110,7 @@ struct ForPlanReport {
   int64_t points_seen = 0;      // of those, seen by some frame
   double worst_projected_px = 0;
   int worst_camera_sample = -1;
+  std::string worst_camera_drone;   // that sample's drone, in a plan of several (else empty)
   double worst_unseen_error_m = 0;  // over the points no frame sees (their budget: unseen_allowed_error_m)
   int rounds = 0;
   int freeze_rounds = 0;  // of those, the rounds run with some tile or face frozen

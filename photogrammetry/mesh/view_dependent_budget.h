@@ -30,6 +30,7 @@ namespace cinepath::photogrammetry {
 
 struct PlanCamera {
   int sample_index = 0;  // the frame in plan.json's samples
+  std::string drone;     // whose samples, in a plan of several drones (empty for one)
   double time_s = 0;
   Eigen::Vector3d center_enu_m = Eigen::Vector3d::Zero();
   Eigen::Matrix3d camera_from_world = Eigen::Matrix3d::Identity();  // rows: camera x, y, z in ENU

@@ -120,10 +120,12 @@ SurfacePipelineResult BuildSurface(const SceneBuildOptions& options, const Colma
   return BuildSurfaceFromPoints(cloud, surface);
 }
 
-// --for-plan: the plan placed on WGS84 by its origin, moved into this scene's frame (exactly, through ECEF:
-// core/reframe.h), so a plan made about another origin (a shot list's own, or an earlier scene's) sees the
-// mesh where it stands. A plan without an origin cannot be placed: InputError naming the field.
-Trajectory PlanInSceneFrame(const Trajectory& plan, const std::string& path, const Geodetic& scene_origin) {
+// --for-plan: the cameras of every drone of the plan, placed on WGS84 by its origin and moved into this
+// scene's frame (exactly, through ECEF: core/reframe.h), so a plan made about another origin (a shot list's
+// own, or an earlier scene's) sees the mesh where it stands. A plan without an origin cannot be placed:
+// InputError naming the field.
+std::vector<PlanCamera> PlanCamerasInSceneFrame(const TeamPlan& plan, const std::string& path,
+                                                const Geodetic& scene_origin) {
   if (!plan.origin) {
     std::ostringstream os;
     os.precision(10);
@@ -133,7 +135,16 @@ Trajectory PlanInSceneFrame(const Trajectory& plan, const std::string& path, con
                              "gives it the scene's origin " +
                                  os.str() + ", or the shot list's own)"));
   }
-  return ReframeToOrigin(plan, scene_origin);
+  std::vector<PlanCamera> cameras;
+  for (const DroneFlight& flight : ReframeToOrigin(plan, scene_origin).flights) {
+    std::vector<PlanCamera> more =
+        CamerasFromPlan(flight.plan, plan.single ? path : path + " (drone \"" + flight.name + "\")");
+    for (PlanCamera& camera : more) {
+      if (!plan.single) camera.drone = flight.name;
+      cameras.push_back(std::move(camera));
+    }
+  }
+  return cameras;
 }
 
 // What `mesh` loads before georeferencing: the model, its photos' EXIF, the references and GCPs.
@@ -226,8 +237,7 @@ SurfacePipelineOptions SurfaceOptionsFor(const SceneBuildOptions& options, const
   surface.write_glb = false;
   if (options.for_plan) {
     ForPlanOptions for_plan;
-    for_plan.cameras =
-        CamerasFromPlan(PlanInSceneFrame(*options.for_plan, options.for_plan_path, geo.origin), options.for_plan_path);
+    for_plan.cameras = PlanCamerasInSceneFrame(*options.for_plan, options.for_plan_path, geo.origin);
     for_plan.plan_source = options.for_plan_path;
     for_plan.max_error_px = options.max_error_px;
     surface.for_plan = std::move(for_plan);

@@ -19,6 +19,7 @@
 
 #include "core/geodesy.h"
 #include "core/json.h"
+#include "core/team_plan.h"
 #include "core/trajectory.h"
 #include "photogrammetry/georef/georeference_model.h"
 #include "photogrammetry/pipeline/surface_pipeline.h"
@@ -45,10 +46,11 @@ struct SceneBuildOptions {
   MeshTextureOptions texture_options;
   std::optional<int> texture_px;
   bool timestamps = true;  // wall-clock times in scene.json
-  // --for-plan: the plan (read by the caller from for_plan_path) whose cameras set the detail of each
-  // region (mesh_decimate_for_plan.h), moved onto the scene's origin (core/reframe.h); a plan without an
-  // origin is an InputError naming the file and its "origin". max_error_px: --max-error-px.
-  std::optional<Trajectory> for_plan;
+  // --for-plan: the plan (read by the caller from for_plan_path; one drone or several) whose cameras, every
+  // drone's, set the detail of each region (mesh_decimate_for_plan.h), moved onto the scene's origin
+  // (core/reframe.h); a plan without an origin is an InputError naming the file and its "origin".
+  // max_error_px: --max-error-px.
+  std::optional<TeamPlan> for_plan;
   std::string for_plan_path;
   double max_error_px = 0.5;
 

@@ -3,7 +3,7 @@
 # the plan. The for-plan run exits 0 and its scene.json's decimate step carries the for-plan report with
 # the bound met (worst projected error <= --max-error-px), fewer faces than the plain run's mesh, and the
 # frozen-tile count matching the tiles marked frozen. The same shots made about their own origin give the
-# same for-plan mesh. Then bad input: a plan without an origin and a missing plan file each exit 2 with an
+# same for-plan mesh; a plan of several drones meshes for all their cameras. Then bad input: a plan without an origin and a missing plan file each exit 2 with an
 # error naming the file, and write nothing.
 #   mesh_for_plan.sh CINEPATH SOURCE_DIR
 set -euo pipefail
@@ -73,6 +73,22 @@ assert origins[0] != origins[1], "the plan about its own origin was made about t
 keys = ("faces_out", "tiles_frozen", "worst_projected_px")
 assert all(reports[0][k] == reports[1][k] for k in keys), [(k, reports[0][k], reports[1][k]) for k in keys]
 print(f"own origin: the same for-plan mesh ({reports[1]['faces_out']} faces)")
+PY
+
+# A plan of several drones (examples/brighton_beach_team.json): every drone's cameras count; the bound is
+# met, and the report names the drone of the worst frame. (Before, such a plan was refused, exit 2.)
+"$CINEPATH" plan "$SRC/examples/brighton_beach_team.json" --scene "$work/scene/scene.json" -o "$work/team.json"
+mesh "$work/team" --for-plan "$work/team.json" --max-error-px 0.5 2> "$work/team.err" ||
+  fail "mesh --for-plan with a team plan exited $?: $(cat "$work/team.err")"
+python3 - "$work/team/scene.json" "$work/team.json" << 'PY'
+import json, sys
+report = [s for s in json.load(open(sys.argv[1]))["surface"]["steps"] if s.get("step") == "decimate"][0]["for_plan"]
+drones = [f["name"] for f in json.load(open(sys.argv[2]))["flights"]]
+assert len(drones) == 2, drones
+assert report["bound_met"] is True and 0 < report["worst_projected_px"] <= 0.5, report
+assert report["worst_camera_drone"] in drones, (report.get("worst_camera_drone"), drones)
+print(f"team: {report['faces_out']} faces, worst {report['worst_projected_px']} px in {report['worst_camera_drone']}'s "
+      f"frame {report['worst_camera_sample']}")
 PY
 
 # A plan without an origin and a missing plan file: exit 2, the file named, no output.

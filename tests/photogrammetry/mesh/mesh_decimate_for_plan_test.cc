@@ -440,9 +440,12 @@ TEST(DecimateForPlan, APlanWithoutAnOriginIsRefused) {
   options.refs_path = (base / "refs_gps.txt").string();
   options.georeference.bundle_adjust = false;
   options.timestamps = false;
-  options.for_plan = OrbitPlan(4);
+  TeamPlan plan;  // a plan of one drone, as cinepath mesh reads every plan (ReadTeamPlanFile)
+  plan.single = true;
+  plan.flights.push_back({"orbit", std::nullopt, OrbitPlan(4)});
+  plan.flights[0].plan.origin.reset();
+  options.for_plan = plan;
   options.for_plan_path = "other.json";
-  options.for_plan->origin.reset();
   try {
     BuildScene(options);
     FAIL() << "expected an InputError";
