@@ -92,6 +92,17 @@ Json ShotsJson(const Trajectory& plan) {
   return shots;
 }
 
+// A flight's keyframes: shot, time and where (three.js frame).
+Json KeyframesJson(const Trajectory& plan) {
+  Json keyframes = Json::array();
+  for (const Keyframe& key : plan.keyframes) {
+    Json p = Json::array();
+    AppendVector(&p, ThreeFromEnu(key.position_enu_m), 3);
+    keyframes.push_back({{"shot", key.shot}, {"time_s", RoundToDecimals(key.time_s, 6)}, {"position_m", p}});
+  }
+  return keyframes;
+}
+
 // A flight's broken limits (its feasibility report's ranges).
 Json ViolationsJson(const Trajectory& plan) {
   Json violations = Json::array();
@@ -147,13 +158,7 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
   data["samples"] = samples;
 
   data["shots"] = ShotsJson(plan);
-  Json keyframes = Json::array();
-  for (const Keyframe& key : plan.keyframes) {
-    Json p = Json::array();
-    AppendVector(&p, ThreeFromEnu(key.position_enu_m), 3);
-    keyframes.push_back({{"shot", key.shot}, {"time_s", RoundToDecimals(key.time_s, 6)}, {"position_m", p}});
-  }
-  data["keyframes"] = keyframes;
+  data["keyframes"] = KeyframesJson(plan);
   Json subjects = Json::array();
   for (const SubjectTrack& subject : plan.subjects) {
     Json p = Json::array();
@@ -167,8 +172,9 @@ Json FlightDetailJson(const Trajectory& plan, const std::string& plan_name, cons
 }
 
 // One flight's track as every flight is drawn (its path, its camera at each sample, its home): the primary
-// flight's samples, shots with their times and broken limits are already in the page's "samples", "shots"
-// and "violations" (FlightDetailJson), so only the others carry theirs ("shot_spans", "violations").
+// flight's samples, shots with their times, keyframes and broken limits are already in the page's
+// "samples", "shots", "keyframes" and "violations" (FlightDetailJson), so only the others carry theirs
+// ("shot_spans", "keyframes", "violations").
 Json FlightJson(const DroneFlight& flight, const char* colour, bool with_samples) {
   const Trajectory& t = flight.plan;
   Json home = nullptr;
@@ -188,6 +194,7 @@ Json FlightJson(const DroneFlight& flight, const char* colour, bool with_samples
   if (with_samples) {
     json.update(CameraTrackJson(t));
     json["shot_spans"] = ShotsJson(t);
+    json["keyframes"] = KeyframesJson(t);
     json["violations"] = ViolationsJson(t);
   }
   return json;

@@ -368,10 +368,11 @@ const flights = team.flights.map((f, i) => {
   // Its shots with their times and its broken limits (the primary's are the page's own).
   const shots = i === team.primary ? data.shots : f.shot_spans;
   const violations = i === team.primary ? data.violations : f.violations;
+  const keyframes = i === team.primary ? data.keyframes : f.keyframes;
   const color = new THREE.Color(several ? f.colour : 0xff9d2e);
   const pathColor = several ? () => color.toArray() : (j) => speedColor(speeds[j]);
   return {
-    f, s, n, shots, violations, color, pathColor,
+    f, s, n, shots, violations, keyframes, color, pathColor,
     pos: (j) => new THREE.Vector3(s.position_m[3 * j], s.position_m[3 * j + 1], s.position_m[3 * j + 2]),
     quat: (j) => new THREE.Quaternion(s.quaternion[4 * j], s.quaternion[4 * j + 1], s.quaternion[4 * j + 2],
                                       s.quaternion[4 * j + 3]),
@@ -394,14 +395,18 @@ for (const flight of flights) {
     `flight ${flight.f.name}`;
   if (flight.n > 1) ++flightPaths;
 }
-const badSamples = [];
-for (let k = 0; k < N; ++k) {
-  const t = S.time_s[k];
-  if (data.violations.some((v) => t >= v.start_time_s - 1e-9 && t <= v.end_time_s + 1e-9)) badSamples.push(k);
+// Every flight's samples inside its broken ranges, as red points on its path.
+const badPoints = [];
+for (const flight of flights) {
+  for (let j = 0; j < flight.n; ++j) {
+    const t = flight.s.time_s[j];
+    if (flight.violations.some((v) => t >= v.start_time_s - 1e-9 && t <= v.end_time_s + 1e-9)) {
+      badPoints.push(...flight.pos(j).toArray());
+    }
+  }
 }
-if (badSamples.length) {
-  const p = [];
-  for (const k of badSamples) p.push(...pos(k).toArray());
+if (badPoints.length) {
+  const p = badPoints;
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
   overlay(new THREE.Points(g, new THREE.PointsMaterial({ color: 0xff2a1a, size: 5, sizeAttenuation: false })));
@@ -409,10 +414,12 @@ if (badSamples.length) {
 {
   const geometry = new THREE.OctahedronGeometry(unit * 1.2);
   const material = new THREE.MeshBasicMaterial({ color: 0xffd34d });
-  for (const key of data.keyframes) {
-    const m = new THREE.Mesh(geometry, material);
-    m.position.set(...key.position_m);
-    overlay(m);
+  for (const flight of flights) {  // every drone's
+    for (const key of flight.keyframes) {
+      const m = new THREE.Mesh(geometry, material);
+      m.position.set(...key.position_m);
+      overlay(m);
+    }
   }
 }
 // Frustum lines of a camera at `o` turned by `q` (looking along its -z) to the far plane at the focus:
@@ -592,7 +599,11 @@ slider.max = String(Math.max(0, N - 1));
     d.title = title;
     track.appendChild(d);
   };
-  for (const key of data.keyframes) tick(key.time_s, 'key', `keyframe ${key.shot} ${fmt(key.time_s, 2)} s`);
+  for (const flight of flights) {
+    for (const key of flight.keyframes) {
+      tick(key.time_s, 'key', `keyframe ${several ? flight.f.name + ' ' : ''}${key.shot} ${fmt(key.time_s, 2)} s`);
+    }
+  }
   for (const k of Object.keys(frames)) tick(S.time_s[Number(k)], 'frame', `rendered frame ${k}`);
   for (const flight of flights) {
     for (const v of flight.violations) {
@@ -1052,6 +1063,7 @@ const subjectsInView = subjectMarkers.filter(({ body }) => {
 }).length;
 document.body.dataset.subjectsInView = `${subjectsInView}/${subjectMarkers.length}`;
 document.body.dataset.flights = String(flights.length);
+document.body.dataset.keyframes = String(flights.reduce((sum, flight) => sum + flight.keyframes.length, 0));
 document.body.dataset.graphRanges = series.map((s) => `${fmt(s.lo, 3)}..${fmt(s.hi, 3)}`).join(' ');
 document.body.dataset.flightPaths = String(flightPaths);
 document.body.dataset.editCuts = String(team.edit.length);

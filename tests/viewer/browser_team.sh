@@ -73,6 +73,11 @@ box "$work/dom.html" | grep -q "team: every pair\|separation" || fail "no team l
 box "$work/dom.html" | grep -q "✖ south: altitude_min: 1 range, worst -25.50 &lt; 1.00 m" ||
   fail "the feasibility box does not name south's broken limit: $(box "$work/dom.html")"
 box "$work/dom.html" | grep -q "✖ north: altitude_min" || fail "the feasibility box lost north's: $(box "$work/dom.html")"
+# Every drone's keyframes are drawn, not only the primary's.
+keys=$(python3 -c 'import json, sys; print(sum(len(f["keyframes"]) for f in json.load(open(sys.argv[1]))["flights"]))' \
+  "$work/plan.json")
+[[ $(attr data-keyframes "$work/dom.html") == "$keys" ]] ||
+  fail "keyframes drawn: $(attr data-keyframes "$work/dom.html"), the plan's drones have $keys"
 # The timeline's shots are the edit's: south's orbit where it is live.
 grep -q 'class="shot" title="south: s_orbit (ORBIT)"' "$work/dom.html" || fail "the timeline lacks south's shot in the edit"
 # The lens graphs follow the camera view: the edit's lens (south's 50 mm at 1.25 s), then north's when the

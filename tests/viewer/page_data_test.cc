@@ -85,6 +85,11 @@ TEST(PageData, EveryFlightOfATeamAboutItsPrimary) {
     s.f_number = 5.6;
   }
   other.feasibility.violations.push_back({"terrain_clearance", "a", 0, 1, 1.2, 3, "m"});
+  Keyframe key;
+  key.shot = "a";
+  key.time_s = 1;
+  key.position_enu_m = {1, 30, 10};
+  other.keyframes.push_back(key);
   TeamPlan team = TeamOf({other, TwoShots()});
   team.edit.push_back({.at_s = 1, .drone = "drone1"});
   const Json data = PageDataJson(team, 1, "plan.json", std::nullopt);
@@ -103,6 +108,9 @@ TEST(PageData, EveryFlightOfATeamAboutItsPrimary) {
   // feasibility box (a minimum is marked, to be written "<").
   ASSERT_EQ(flights[0]["shot_spans"].size(), 2u);
   EXPECT_EQ(flights[0]["shot_spans"][1]["start_time_s"], 3.0);
+  ASSERT_EQ(flights[0]["keyframes"].size(), 1u);
+  EXPECT_EQ(flights[0]["keyframes"][0]["position_m"][2], -30.0);
+  EXPECT_FALSE(flights[1].contains("keyframes"));  // the primary's are the page's own
   ASSERT_EQ(flights[0]["violations"].size(), 1u);
   EXPECT_EQ(flights[0]["violations"][0]["limit"], "terrain_clearance");
   EXPECT_EQ(flights[0]["violations"][0]["minimum"], true);
