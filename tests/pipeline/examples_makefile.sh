@@ -35,12 +35,14 @@ run > "$work/second.log" 2>&1 || { cat "$work/second.log"; fail "make after touc
 [[ $(stat -c %Y "$work/out/scene/scene.json") == "$before" ]] || fail "the mesh was rebuilt"
 [[ "$work/out/plan.json" -nt "$work/shots.json" ]] || fail "plan.json not rebuilt"
 run -q || fail "not up to date after the rerun"
-# The two-drone target: plan, optimize, a mission per drone, every drone's frames and the edit.
+# The two-drone target: plan, optimize, a mission per drone, every drone's frames and the edit, the page.
 run team > "$work/team.log" 2>&1 || { cat "$work/team.log"; fail "make team"; }
 for f in team/plan.json team/plan.svg team/optimized.json team/missions/rocks/mission.plan \
   team/missions/shore/mission.plan team/frames/rocks/frame_000000.png team/frames/shore/frame_000000.png \
-  team/frames/edit/frame_000000.png team/frames/edit/contact_sheet.png; do
+  team/frames/edit/frame_000000.png team/frames/edit/contact_sheet.png team/previs.html; do
   [[ -s $work/out/$f ]] || fail "make team: no out/$f"
 done
+# The team's page shows the edit's rendered frames (view --frames takes render's folder of several drones).
+grep -q '"0":"data:image/png;base64' "$work/out/team/previs.html" || fail "the team's page has no rendered frames"
 run -q team || fail "a second make team would run something: $(run -n team)"
 echo "examples_makefile: ok"
