@@ -9,8 +9,7 @@ Trajectory ReframeToOrigin(Trajectory plan, const Geodetic& origin) {
     return plan;
   }
   const EnuFrame source(from), target(origin);
-  const Eigen::Matrix3d rotation = target.enu_from_ecef_rotation() * source.enu_from_ecef_rotation().transpose();
-  const Eigen::Quaterniond turn(rotation);
+  const Eigen::Quaterniond turn(EnuFromEnu(origin, from).linear());
   auto point = [&](const Eigen::Vector3d& p) { return target.EnuFromEcef(source.EcefFromEnu(p)); };
   for (TrajectorySample& s : plan.samples) {
     s.position_enu_m = point(s.position_enu_m);
