@@ -105,8 +105,8 @@ class MeshCommand : public Command {
     app.add_option("--texture-exclude", options_.texture_options.excluded_images,
                    "Never texture from this photo (image name as in the model; repeatable)");
     app.add_option("--for-plan", for_plan_path_,
-                   "plan.json made on this scene: simplify each region only as far as the plan's closest camera "
-                   "that sees it can tell (its origin must be the scene's; excludes --target-faces, --max-error-m)");
+                   "plan.json (one drone or several): simplify each region only as far as the plan's closest camera "
+                   "that sees it can tell (placed by its origin; excludes --target-faces, --max-error-m)");
     app.add_option("--max-error-px", options_.max_error_px,
                    "With --for-plan: the largest geometric error, projected into that camera, in pixels")
         ->check(PositiveFinite());

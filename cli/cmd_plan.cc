@@ -37,8 +37,9 @@ class PlanCommand : public Command {
                        "; drones " + JoinNames(DroneProfileNames()))
         ->required();
     app.add_option("--scene", scene_path_,
-                   "scene.json: its origin places the plan on WGS84, and its mesh is the ground (heights above "
-                   "ground, actors on the ground, terrain clearance)");
+                   "scene.json: its origin places a shot list without one on WGS84 (a list with its own is planned "
+                   "about it, the mesh moved into its frame), and its mesh is the ground (heights above ground, "
+                   "actors on the ground, terrain clearance)");
     app.add_option("-o,--output", output_, "Where to write plan.json ('-' = stdout)")->required();
     app.add_option("--csv", csv_path_, "Also write the samples as CSV");
     app.add_option("--plot", plot_path_, "Also write an SVG: top-down and side views, frustums, lens curves");

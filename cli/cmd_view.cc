@@ -21,7 +21,8 @@ class ViewCommand : public Command {
     app.add_option("plan", plan_path_, "plan.json from `cinepath plan` / `cinepath optimize`")->required();
     app.add_option("--scene", scene_path_, "scene.json; its mesh (the GLB beside it) is drawn under the flight");
     app.add_option("--frames", frames_dir_,
-                   "Folder of `cinepath render` frames (frame_%06d.png/.jpg): shown in the camera view");
+                   "Folder of `cinepath render` frames (frame_%06d.png/.jpg): shown in the camera view (several "
+                   "drones: render's folder, whose edit/ is taken)");
     app.add_option("-o,--output", output_path_, "The HTML page to write (- for stdout)")->required();
     common_.Add(app);
   }
