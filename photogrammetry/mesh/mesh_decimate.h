@@ -55,6 +55,15 @@ struct QemOptions {
   // keeps at least `light_budget_keep` of the faces; below it (and with error goals) neither does,
   // since there they were measured to help on one mesh and to hurt on another.
   double light_budget_keep = 0.6;
+  // At those light budgets the tiles hold about this many faces each (fewer than `tiles` on a mesh
+  // under tiles × this), when the mesh holds at least 4 × 4 such tiles: the band around the cuts,
+  // simplified a second time, is then a smaller share of the mesh (on 500 k faces 36 % with 64 tiles,
+  // 65 % with 256), about 9 % faster at 80 %, and as close or closer by the certified bound on every
+  // mesh of 100 k-1 M faces measured (bench/RESULTS.md, run X). A smaller mesh keeps the fine grid,
+  // whose band covers it whole: a second pass over every face, cheap there, and on the unit tests'
+  // 51 k-face ground with buildings more accurate than 3 × 3 or 4 × 4 tiles. Not below
+  // light_budget_keep, where fewer tiles were measured less accurate. 0 = always `tiles`.
+  double light_budget_tile_faces = 8000;
   // Each face's plane weighs its area plus this many times the median face area of its tile, so that a
   // vertex whose faces are small (close, noisy points) is not collapsed away for their small area
   // alone; below 0: the budget's share of the faces. 0 = area only.

@@ -499,8 +499,10 @@ class QemSimplifier {
   // with `midpoints` the midpoints of their edges (an input face whose corners stay on the surface can
   // still leave it in between, where the new faces cut across its edges). A point's search stops once
   // it is nearer than the largest so far (which leaves the maximum exact), and an edge's midpoint is
-  // measured first against the new faces at its far end, usually the nearest.
-  double FanSquaredDistance(uint32_t keep, uint32_t gone, const Eigen::Vector3d& p, bool midpoints) {
+  // measured first against the new faces at its far end, usually the nearest. With `floor2` > 0 only
+  // a largest above it is exact (the result is floor2 when every point is within it): a point's
+  // search stops at the first face within floor2, which is most of a collapse that passes the check.
+  double FanSquaredDistance(uint32_t keep, uint32_t gone, const Eigen::Vector3d& p, bool midpoints, double floor2) {
     fan_.clear();
     const auto gather = [&](uint32_t f) {
       const auto& t = faces_[f];
@@ -510,7 +512,7 @@ class QemSimplifier {
     };
     ForFaces(keep, gather);
     ForFaces(gone, gather);
-    double worst = 0;
+    double worst = floor2;
     // Measures x against the faces with corner `first` (kNone: none), then the others.
     const auto measure = [&](const Eigen::Vector3d& x, uint32_t first) {
       double best = INFINITY;
@@ -581,8 +583,13 @@ class QemSimplifier {
     if (options_.distance_check > 0 && goal2_.empty() && !e.checked) {
       // Hausdorff is a maximum: the quadric's cost is a mean over its planes, and a collapse can leave
       // one of its own vertices farther from the new faces than that mean says.
-      const double d2 = FanSquaredDistance(keep, gone, p, options_.distance_check_midpoints);
-      const double fan_cost = options_.distance_check * (quadric_[a].Weight() + quadric_[b].Weight()) * d2;
+      const double scale = options_.distance_check * (quadric_[a].Weight() + quadric_[b].Weight());
+      // The distances that cannot fail the check need not be exact: those within `floor2`, a little
+      // under the cost's share (and kept to where the comparison below still passes, to rounding).
+      double floor2 = (1 - 1e-6) * static_cast<double>(e.cost) / scale;
+      if (!(floor2 > 0) || !std::isfinite(floor2) || static_cast<float>(scale * floor2) > e.cost) floor2 = 0;
+      const double d2 = FanSquaredDistance(keep, gone, p, options_.distance_check_midpoints, floor2);
+      const double fan_cost = scale * d2;
       if (static_cast<float>(fan_cost) > e.cost) {
         *checked_cost = fan_cost;
         return kNone;
@@ -1882,9 +1889,15 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   const Eigen::Vector3d center = BoundingBoxCenter(mesh.vertices_m);
   const std::vector<Eigen::Vector3d> input = CenteredPositions(mesh.vertices_m, center);
   std::vector<Eigen::Vector3d> positions = input;
-  const TileGrid grid = MakeTileGrid(positions, mesh.faces, partitions);
-  std::vector<std::vector<std::array<uint32_t, 3>>> tiles = FacesByTile(grid, positions, mesh.faces);
+  TileGrid grid = MakeTileGrid(positions, mesh.faces, partitions);
   double keep_ratio = static_cast<double>(target_faces) / std::max<size_t>(1, grid.valid_faces);
+  if (!goal_error_m && keep_ratio >= requested.light_budget_keep && requested.light_budget_tile_faces > 0) {
+    // Tiles of that many faces, when the mesh holds at least 4 × 4 of them (QemOptions).
+    const double tiles_at_most = static_cast<double>(grid.valid_faces) / requested.light_budget_tile_faces;
+    const int light_grid = static_cast<int>(std::lround(std::sqrt(tiles_at_most)));
+    if (light_grid >= 4) grid.grid = std::min(grid.grid, light_grid);
+  }
+  std::vector<std::vector<std::array<uint32_t, 3>>> tiles = FacesByTile(grid, positions, mesh.faces);
   QemOptions options = requested;
   if (goal_error_m || keep_ratio < options.light_budget_keep) {
     options.area_floor = 0;
