@@ -299,6 +299,13 @@ function label(text, height = 0.03, color = '#ffffff') {
   return sprite;
 }
 const northArrow = new THREE.Group();  // placed by the view (topView, perspectiveView)
+// The points the 3D view keeps in its picture (perspectiveView): the corners of `bounds`, then the grid's.
+const framePoints = [];
+for (const x of [bounds.min.x, bounds.max.x]) {
+  for (const y of [bounds.min.y, bounds.max.y]) {
+    for (const z of [bounds.min.z, bounds.max.z]) framePoints.push(new THREE.Vector3(x, y, z));
+  }
+}
 const gridStep = niceStep(Math.max(bounds.max.x - bounds.min.x, bounds.max.z - bounds.min.z, 20));
 {
   const x0 = Math.floor(bounds.min.x / gridStep) * gridStep, x1 = Math.ceil(bounds.max.x / gridStep) * gridStep;
@@ -344,6 +351,10 @@ const gridStep = niceStep(Math.max(bounds.max.x - bounds.min.x, bounds.max.z - b
   northArrow.add(n);
   northArrow.userData.top = new THREE.Vector3(x1 + gridStep, groundY, z0);
   northArrow.userData.side = new THREE.Vector3(0.5 * (x0 + x1), groundY, z0 - length - gridStep);
+  // The grid's corners, its labels' rows (west and south of it) and the arrow's tip, with its letter.
+  for (const x of [x0 - 2 * h, x1]) {
+    for (const z of [z0 - length - 1.4 * gridStep, z1 + h]) framePoints.push(new THREE.Vector3(x, groundY, z));
+  }
   northArrow.position.copy(northArrow.userData.side);
   overlay(northArrow);
   $('hud-grid').textContent = `grid ${gridStep} m · labels: metres east / north of the origin`;
@@ -910,12 +921,55 @@ let follow = false;
 function setButtons(id) {
   for (const b of ['view-persp', 'view-top', 'view-follow']) $(b).classList.toggle('on', b === id);
 }
+// The share of the picture's height the header (#hud) covers at its top (at most 35 %).
+function hudCoveredShare() {
+  const hud = $('hud');
+  return Math.min(0.35, (hud.offsetTop + hud.offsetHeight) / Math.max(1, canvas.clientHeight - 64));
+}
 function perspectiveView() {
   follow = false;
   setButtons('view-persp');
   northArrow.position.copy(northArrow.userData.side);
-  controls.target.copy(centre);
-  view.position.set(centre.x + size * 0.35, centre.y + size * 0.45, centre.z + size * 0.7);
+  // From the south-east and above, at the distance where everything the view draws around the scene (the
+  // grid with its labels, the north arrow, the flights and the mesh: framePoints) fits in the picture
+  // below the header, with a margin for the labels, which stand centred on their points.
+  const dir = new THREE.Vector3(0.35, 0.45, 0.7).normalize();  // from the target to the camera
+  const right = new THREE.Vector3(0, 1, 0).cross(dir).normalize(), up = dir.clone().cross(right);
+  const tanHalf = Math.tan(THREE.MathUtils.degToRad(view.fov / 2));
+  const aspect = Math.max(0.1, view.aspect);
+  const top = 1 - 2 * hudCoveredShare();  // the header's lower edge, in the picture's -1..1 heights
+  const xMax = 0.85, yMin = -0.92, yMax = 0.95 * top;  // the picture's part the points must stay in
+  // The distance from `target` at which every point is inside, and the points' extent there (-1..1).
+  const fit = (target) => {
+    let distance = 0.3 * size;
+    for (const p of framePoints) {
+      const q = p.clone().sub(target);
+      const z = q.dot(dir), x = q.dot(right), y = q.dot(up);
+      distance = Math.max(distance, z + Math.abs(x) / (xMax * tanHalf * aspect),
+                          z + (y > 0 ? y / (yMax * tanHalf) : y / (yMin * tanHalf)));
+    }
+    const lo = new THREE.Vector2(Infinity, Infinity), hi = new THREE.Vector2(-Infinity, -Infinity);
+    for (const p of framePoints) {
+      const q = p.clone().sub(target);
+      const depth = distance - q.dot(dir);
+      const at = new THREE.Vector2(q.dot(right) / (depth * tanHalf * aspect), q.dot(up) / (depth * tanHalf));
+      lo.min(at);
+      hi.max(at);
+    }
+    return { distance, lo, hi };
+  };
+  // Centred in that part: the target moved across the view by the extent's offset, a few times (each
+  // move lets the camera come nearer).
+  const target = centre.clone();
+  let framing = fit(target);
+  for (let round = 0; round < 4; ++round) {
+    const dx = 0.5 * (framing.lo.x + framing.hi.x), dy = 0.5 * (framing.lo.y + framing.hi.y) - 0.5 * (yMin + yMax);
+    target.addScaledVector(right, dx * framing.distance * tanHalf * aspect)
+      .addScaledVector(up, dy * framing.distance * tanHalf);
+    framing = fit(target);
+  }
+  controls.target.copy(target);
+  view.position.copy(target).addScaledVector(dir, framing.distance);
   controls.update();
   requestRender();
 }
@@ -928,8 +982,7 @@ function topView() {
   // the picture's top: the grid's northern labels and the north arrow would sit under its text.
   const tanHalf = Math.tan(THREE.MathUtils.degToRad(view.fov / 2));
   const aspect = Math.max(0.1, view.aspect);
-  const hud = $('hud');
-  const covered = Math.min(0.35, (hud.offsetTop + hud.offsetHeight) / Math.max(1, canvas.clientHeight - 64));
+  const covered = hudCoveredShare();
   const height = 1.3 * Math.max((bounds.max.z - bounds.min.z) / 2 / tanHalf / (1 - covered),
                                 (bounds.max.x - bounds.min.x) / 2 / (tanHalf * aspect));
   const north = covered * height * tanHalf;  // the view's centre moved north by half the covered strip
@@ -1062,6 +1115,14 @@ const subjectsInView = subjectMarkers.filter(({ body }) => {
   return Math.abs(p.x) <= 1 && Math.abs(p.y) <= 1 && Math.abs(p.z) <= 1;
 }).length;
 document.body.dataset.subjectsInView = `${subjectsInView}/${subjectMarkers.length}`;
+// The points the 3D view frames (the grid's corners, its label rows and the north arrow, the scene's box)
+// inside the first picture, below the header, of all of them (tests/viewer/browser_test.sh).
+const headerBottom = 1 - 2 * hudCoveredShare();
+const framedInView = framePoints.filter((point) => {
+  const p = point.clone().project(view);
+  return Math.abs(p.x) <= 1 && p.y >= -1 && p.y <= headerBottom && Math.abs(p.z) <= 1;
+}).length;
+document.body.dataset.framedInView = `${framedInView}/${framePoints.length}`;
 document.body.dataset.flights = String(flights.length);
 document.body.dataset.keyframes = String(flights.reduce((sum, flight) => sum + flight.keyframes.length, 0));
 document.body.dataset.graphRanges = series.map((s) => `${fmt(s.lo, 3)}..${fmt(s.hi, 3)}`).join(' ');

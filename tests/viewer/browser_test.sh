@@ -12,7 +12,8 @@
 #   - the top view matches tests/viewer/golden/top_view.png within a tolerance (idiff), and its
 #     upside-down and mirrored copies do not: north up, east right;
 #   - the first picture shows every subject: each example's, and a telephoto shot's 1.5 km from its drone
-#     (3D and top views).
+#     (3D and top views); the 3D view's first picture holds the whole grid with its labels and the north
+#     arrow below the header (the sample's and the telephoto shot's).
 # Screenshots of the 3D view and of the camera view are kept in ARTIFACT_DIR. CINEPATH_UPDATE_GOLDEN=1
 # rewrites the golden image (look at it before committing). Exit 77 (skipped) without Chromium.
 #   browser_test.sh CINEPATH SOURCE_DIR ARTIFACT_DIR
@@ -83,6 +84,10 @@ check_time() {
   triangles=$(attr data-triangles "$dom")
   [[ $state == ready && $errors == 0 ]] || fail "t=$t: state '$state', $errors errors: $(grep -o '<title>[^<]*' "$dom")"
   [[ ${triangles:-0} -gt 1000 ]] || fail "t=$t: $triangles triangles"
+  # The 3D view's first picture holds the whole grid, its labels and the north arrow, below the header.
+  local framed
+  framed=$(attr data-framed-in-view "$dom")
+  [[ -n $framed && ${framed%/*} == "${framed#*/}" ]] || fail "t=$t: framed points in the 3D view: '$framed'"
   local shown expected
   shown="$(attr data-k "$dom") $(attr data-e "$dom") $(attr data-n "$dom") $(attr data-u "$dom")"
   expected=$(node -e '
@@ -210,6 +215,10 @@ EOF
 for v in 3d top; do
   browse "file://$work/far.html#t=15&view=$v" --dump-dom > "$work/far_$v.dom"
   in_view=$(attr data-subjects-in-view "$work/far_$v.dom")
+  framed=$(attr data-framed-in-view "$work/far_$v.dom")
+  if [[ $v == 3d && ! (-n $framed && ${framed%/*} == "${framed#*/}") ]]; then
+    fail "far subject: the 3D view frames $framed of its grid's and scene's points (want all)"
+  fi
   if [[ $(attr data-state "$work/far_$v.dom") == ready && $in_view == 1/1 ]]; then
     echo "ok   far subject in the $v view"
   else
