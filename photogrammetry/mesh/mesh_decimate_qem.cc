@@ -1350,6 +1350,16 @@ TileGrid MakeTileGrid(const std::vector<Eigen::Vector3d>& positions, const std::
   return tiles;
 }
 
+// The tiles a side for a face budget keeping `keep_ratio` of the faces: at light budgets about
+// light_budget_tile_faces faces a tile when the mesh holds at least 4 × 4 such tiles (QemOptions), at
+// most the grid's own; else the grid's own.
+int LightBudgetGrid(const TileGrid& grid, double keep_ratio, const QemOptions& options) {
+  if (keep_ratio < options.light_budget_keep || !(options.light_budget_tile_faces > 0)) return grid.grid;
+  const double tiles_at_most = static_cast<double>(grid.valid_faces) / options.light_budget_tile_faces;
+  const int light_grid = static_cast<int>(std::lround(std::sqrt(tiles_at_most)));
+  return light_grid >= 4 ? std::min(grid.grid, light_grid) : grid.grid;
+}
+
 // The faces of each tile, in the faces' order; faces with a repeated corner are dropped.
 std::vector<std::vector<std::array<uint32_t, 3>>> FacesByTile(const TileGrid& tiles,
                                                               const std::vector<Eigen::Vector3d>& positions,
@@ -1891,12 +1901,7 @@ TriangleMesh DecimateQemTiled(const TriangleMesh& mesh, int64_t target_faces, in
   std::vector<Eigen::Vector3d> positions = input;
   TileGrid grid = MakeTileGrid(positions, mesh.faces, partitions);
   double keep_ratio = static_cast<double>(target_faces) / std::max<size_t>(1, grid.valid_faces);
-  if (!goal_error_m && keep_ratio >= requested.light_budget_keep && requested.light_budget_tile_faces > 0) {
-    // Tiles of that many faces, when the mesh holds at least 4 × 4 of them (QemOptions).
-    const double tiles_at_most = static_cast<double>(grid.valid_faces) / requested.light_budget_tile_faces;
-    const int light_grid = static_cast<int>(std::lround(std::sqrt(tiles_at_most)));
-    if (light_grid >= 4) grid.grid = std::min(grid.grid, light_grid);
-  }
+  if (!goal_error_m) grid.grid = LightBudgetGrid(grid, keep_ratio, requested);
   std::vector<std::vector<std::array<uint32_t, 3>>> tiles = FacesByTile(grid, positions, mesh.faces);
   QemOptions options = requested;
   if (goal_error_m || keep_ratio < options.light_budget_keep) {
