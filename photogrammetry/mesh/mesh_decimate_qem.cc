@@ -26,206 +26,11 @@
 #include "photogrammetry/mesh/closest_on_triangle.h"
 #include "photogrammetry/mesh/kth_smallest.h"
 #include "photogrammetry/mesh/mesh_decimate.h"
+#include "photogrammetry/mesh/qem_placement.h"
 #include "photogrammetry/mesh/quaternary_heap.h"
 
 namespace cinepath::photogrammetry::internal {
 namespace {
-
-// Symmetric 4×4 quadric: rows (a00 a01 a02 a03 | a11 a12 a13 | a22 a23 | a33).
-struct Quadric {
-  std::array<double, 10> q{};
-  void AddPlane(const Eigen::Vector3d& n, double d, double w) {
-    q[0] += w * n.x() * n.x();
-    q[1] += w * n.x() * n.y();
-    q[2] += w * n.x() * n.z();
-    q[3] += w * n.x() * d;
-    q[4] += w * n.y() * n.y();
-    q[5] += w * n.y() * n.z();
-    q[6] += w * n.y() * d;
-    q[7] += w * n.z() * n.z();
-    q[8] += w * n.z() * d;
-    q[9] += w * d * d;
-  }
-  Quadric& operator+=(const Quadric& o) {
-    for (int k = 0; k < 10; ++k) q[k] += o.q[k];
-    return *this;
-  }
-  Quadric& operator-=(const Quadric& o) {
-    for (int k = 0; k < 10; ++k) q[k] -= o.q[k];
-    return *this;
-  }
-  // The planes' total weight: each plane adds w·|n|² = w to the trace of the 3 × 3 part.
-  double Weight() const { return q[0] + q[4] + q[7]; }
-  double Error(const Eigen::Vector3d& p) const {
-    const double x = p.x(), y = p.y(), z = p.z();
-    return q[0] * x * x + 2 * q[1] * x * y + 2 * q[2] * x * z + 2 * q[3] * x + q[4] * y * y + 2 * q[5] * y * z +
-           2 * q[6] * y + q[7] * z * z + 2 * q[8] * z + q[9];
-  }
-};
-
-Quadric Sum(const Quadric& a, const Quadric& b) {
-  Quadric s = a;
-  s += b;
-  return s;
-}
-
-// A collapse's point and its quadric error there.
-struct Placed {
-  Eigen::Vector3d point;
-  double error;
-};
-
-// The point minimising q on the segment [a, b] (closed form of a quadratic in t).
-Placed BestOnSegment(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double ea = q.Error(a), eb = q.Error(b), em = q.Error(0.5 * (a + b));
-  // e(t) = ea + t·(−3ea + 4em − eb) + t²·(2ea − 4em + 2eb)
-  const double c2 = 2 * ea - 4 * em + 2 * eb, c1 = -3 * ea + 4 * em - eb;
-  double t = ea <= eb ? 0.0 : 1.0;
-  if (c2 > 0) {
-    const double tm = std::clamp(-c1 / (2 * c2), 0.0, 1.0);
-    if (ea + tm * c1 + tm * tm * c2 < std::min(ea, eb)) t = tm;
-  }
-  if (t == 0) return {a, ea};
-  const Eigen::Vector3d point = a + t * (b - a);  // at t = 1 not always b, to rounding
-  return {point, q.Error(point)};
-}
-
-// The adjugate (transposed cofactor matrix) of m: m · adj(m) = det(m) · I.
-Eigen::Matrix3d Adjugate(const Eigen::Matrix3d& m) {
-  return (Eigen::Matrix3d() << m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1), m(0, 2) * m(2, 1) - m(0, 1) * m(2, 2),
-          m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1), m(1, 2) * m(2, 0) - m(1, 0) * m(2, 2),
-          m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0), m(0, 2) * m(1, 0) - m(0, 0) * m(1, 2),
-          m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0), m(0, 1) * m(2, 0) - m(0, 0) * m(2, 1),
-          m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0))
-      .finished();
-}
-
-// The eigenvalues of a symmetric 3 × 3 matrix, ascending.
-struct Eigenvalues3 {
-  double l1, l2, l3;
-};
-
-// The eigenvalues, ascending: the largest by Newton's method on the characteristic polynomial
-// x³ − trace x² + minors x − det from x = trace, above it, where the cubic is convex and rising, so
-// the steps fall monotonically onto it (two or three steps when it stands apart, as on a surface);
-// the other two from the quadratic left. Eigen's closed form (acos, cos, sin) where Newton does not
-// settle in 16 steps (a repeated largest eigenvalue, met slowly). On the bench terrain's truncated
-// quadrics: 48 ns per solve against 61 ns with the closed form alone.
-// `first_step`: Newton's first step when Placement took it already, else 0.
-Eigenvalues3 EigenvaluesAscending(const Eigen::Matrix3d& m, double trace, double minors, double det,
-                                  double first_step) {
-  double l3 = trace;
-  bool settled = false;
-  int step = 0;
-  if (first_step > 0) {  // the loop's first step, already taken above (the same numbers)
-    l3 -= first_step;
-    settled = !(first_step > 1e-13 * l3);
-    step = 1;
-  }
-  for (; step < 16 && !settled; ++step) {
-    const double value = ((l3 - trace) * l3 + minors) * l3 - det;
-    const double slope = (3 * l3 - 2 * trace) * l3 + minors;
-    if (!(value > 0 && slope > 0)) {
-      settled = true;  // on the root, to rounding
-    } else {
-      const double dx = value / slope;
-      l3 -= dx;
-      settled = !(dx > 1e-13 * l3);
-    }
-  }
-  const double sum12 = trace - l3, product12 = minors - l3 * sum12;  // λ1 + λ2, λ1 λ2
-  double l2 = 0.5 * (sum12 + std::sqrt(std::max(0.0, sum12 * sum12 - 4 * product12)));
-  double l1 = l2 > 0 ? product12 / l2 : 0.0;
-  if (!settled || !(l2 <= l3)) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-    eigen.computeDirect(m, Eigen::EigenvaluesOnly);
-    l1 = eigen.eigenvalues()(0), l2 = eigen.eigenvalues()(1), l3 = eigen.eigenvalues()(2);
-  }
-  return {l1, l2, l3};
-}
-
-// The truncated solve Σ v_k (v_k · r) / λ_k over the kept eigenpairs, written as a polynomial in m
-// that is 1/λ on the kept eigenvalues and 0 on the dropped ones (Lagrange interpolation), so that
-// no eigenvector is needed: two products with m instead. The coefficients are symmetric in the
-// eigenvalues kept together, so a repeated eigenvalue (λ2 = λ3 on a right-angled crease, λ1 = λ2
-// on a plane) costs nothing in accuracy; they divide only by the gap between a kept and a dropped
-// eigenvalue. One dropped (λ1): f(m) = (m − λ1)(β − α m) / (λ2 λ3 (λ2 − λ1)(λ3 − λ1)) with
-// α = λ2 + λ3 − λ1 and β = (λ2 + λ3)² − λ2 λ3 − λ1 (λ2 + λ3). Two dropped: f(m) = (m − λ1)(m − λ2)
-// / (λ3 (λ3 − λ1)(λ3 − λ2)).
-// Returns mid plus that solve for the residual r = rhs − m · mid; `cut` = rcond × λ3, above λ1.
-Eigen::Vector3d TruncatedSolve(const Eigen::Matrix3d& m, const Eigen::Vector3d& residual, const Eigen::Vector3d& mid,
-                               const Eigenvalues3& eigen, double cut) {
-  const double l1 = eigen.l1, l2 = eigen.l2, l3 = eigen.l3;
-  const Eigen::Vector3d u = m * residual - l1 * residual;
-  Eigen::Vector3d p = mid;
-  if (l2 > cut) {
-    const double sum = l2 + l3, alpha = sum - l1, beta = sum * sum - l2 * l3 - l1 * sum;
-    p += (beta * u - alpha * (m * u)) / (l2 * l3 * (l2 - l1) * (l3 - l1));
-  } else {
-    p += (m * u - l2 * u) / (l3 * (l3 - l1) * (l3 - l2));
-  }
-  return p;
-}
-
-// Where an edge (a, b) collapses to. The quadric's minimum is solved in the eigenbasis of its 3×3
-// part, and the directions the quadric does not pin down (eigenvalue at most rcond × the largest) are
-// held at the edge's midpoint, as in Lindstrom's out-of-core simplification (P. Lindstrom, "Out-of-Core
-// Simplification of Large Polygonal Models", SIGGRAPH 2000). On a near-flat patch the quadric fixes
-// only the height; a plain inverse slides the point far along the plane on rounding noise. The point
-// is used when it lies within `reach` edge lengths of the midpoint and beats the best point on the
-// edge; otherwise the best point on the edge.
-Placed Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double reach, double rcond) {
-  Eigen::Matrix3d m;
-  m << q.q[0], q.q[1], q.q[2], q.q[1], q.q[4], q.q[5], q.q[2], q.q[5], q.q[7];
-  const Eigen::Vector3d rhs(-q.q[3], -q.q[6], -q.q[8]);
-  const Eigen::Vector3d mid = 0.5 * (a + b);
-  const Eigen::Vector3d residual = rhs - m * mid;
-  // Every eigenvalue is above rcond × the largest when det / m2 > rcond × trace, since the smallest
-  // is at least det / m2 (m2: the sum of the principal 2 × 2 minors, λ1λ2 + λ1λ3 + λ2λ3) and the
-  // largest at most the trace. Then nothing is truncated and the plain inverse (the adjugate) gives
-  // the same point without the eigenvalues: most of a curved surface's edges.
-  const Eigen::Matrix3d adjugate = Adjugate(m);
-  const double trace = m.trace();
-  const double minors = adjugate(0, 0) + adjugate(1, 1) + adjugate(2, 2);
-  const double det = m(0, 0) * adjugate(0, 0) + m(0, 1) * adjugate(1, 0) + m(0, 2) * adjugate(2, 0);
-  const double reach2 = reach * reach * (b - a).squaredNorm();
-  const auto full_rank = [&] {
-    // The quadric's minimum over all space, so no point of the edge does better when it is in reach.
-    const Eigen::Vector3d p = mid + adjugate * residual / det;
-    return p.allFinite() && (p - mid).squaredNorm() <= reach2 ? Placed{p, q.Error(p)} : BestOnSegment(q, a, b);
-  };
-  // Newton's first step down from the trace towards the largest eigenvalue (below), when it is taken.
-  double first_step = 0;
-  // (The first test keeps rounding noise out: minors that small leave at most one direction pinned.)
-  if (minors > 1e-9 * trace * trace) {
-    if (det > rcond * trace * minors) return full_rank();
-    // Tighter bounds, from Newton's method on the characteristic polynomial p(x) = x³ − trace x² +
-    // minors x − det: from 0, where p is concave and rising up to the smallest root, two steps stay
-    // below it (the first is det / minors); from the trace, where p is convex and rising, one step
-    // stays above the largest. On the bench terrain at 80 % this settles 0.95 M of the 1.08 M
-    // quadrics that the first test leaves and that truncate nothing.
-    const auto p = [&](double x) { return ((x - trace) * x + minors) * x - det; };
-    const auto slope = [&](double x) { return (3 * x - 2 * trace) * x + minors; };
-    const double below = det / minors, smallest_at_least = below - p(below) / slope(below);
-    const double value = p(trace), rise = slope(trace);
-    const double largest_at_most = trace - value / rise;
-    if (smallest_at_least > rcond * largest_at_most) return full_rank();
-    if (value > 0 && rise > 0) first_step = value / rise;
-  }
-  const Eigenvalues3 eigen = EigenvaluesAscending(m, trace, minors, det, first_step);
-  const double l1 = eigen.l1, l3 = eigen.l3;
-  if (!(l3 > 0)) return BestOnSegment(q, a, b);
-  const double cut = rcond * l3;
-  if (l1 > cut) return full_rank();
-  const Eigen::Vector3d p = TruncatedSolve(m, residual, mid, eigen, cut);
-  // Truncated: p holds some directions at the midpoint, so a point of the edge may do better.
-  const Placed on_edge = BestOnSegment(q, a, b);
-  if (p.allFinite() && (p - mid).squaredNorm() <= reach2) {
-    const double error = q.Error(p);
-    if (error < on_edge.error) return {p, error};
-  }
-  return on_edge;
-}
 
 // The squared distance from p to the triangle (a, b, c) (C. Ericson, "Real-Time Collision Detection",
 // 5.1.5: the closest point by the Voronoi regions of the vertices, edges and face).
@@ -333,13 +138,20 @@ class QemSimplifier {
     heap_.clear();
     heap_.reserve(faces_.size() * 3 / 2 + 16);
     // Each interior edge is seen twice, once as a < b. An edge seen once (on the border) has both
-    // ends locked, and Push skips it either way.
+    // ends locked, and PushAll skips it either way. Priced in batches, pushed in the faces' order.
+    const auto push = [&](const HeapEntry& e) { heap_.PushUnordered(Pack(e)); };
+    edges_.clear();
     for (const auto& f : faces_) {
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = f[k], b = f[(k + 1) % 3];
-        if (a < b) Push(a, b, [&](const HeapEntry& e) { heap_.PushUnordered(Pack(e)); });
+        if (a < b) edges_.push_back({a, b});
+      }
+      if (edges_.size() >= kPriceBatch) {
+        PushAll(edges_, push);
+        edges_.clear();
       }
     }
+    PushAll(edges_, push);
     heap_.Heapify();
     heap_built_ = true;
   }
@@ -363,9 +175,9 @@ class QemSimplifier {
         continue;
       }
       if (kept == kNone) continue;
-      ForNeighbours(kept, [&](uint32_t w) {
-        Push(std::min(kept, w), std::max(kept, w), [&](const HeapEntry& f) { heap_.Push(Pack(f)); });
-      });
+      edges_.clear();
+      ForNeighbours(kept, [&](uint32_t w) { edges_.push_back({std::min(kept, w), std::max(kept, w)}); });
+      PushAll(edges_, [&](const HeapEntry& f) { heap_.Push(Pack(f)); });
     }
   }
 
@@ -416,12 +228,52 @@ class QemSimplifier {
     }
   }
 
-  // Costs the collapse of (a, b) and hands it to `add` (nothing when it may not collapse).
+  // Costs the collapses of `edges` (a < b) and hands them to `add` in their order (nothing for those that
+  // may not collapse). The optimal placements go four at a time through PlaceFullRank4 (the same costs as
+  // PlaceAndCost's, bit for bit, about a third of its time), what it leaves through PlaceAndCost.
   template <typename Add>
-  void Push(uint32_t a, uint32_t b, Add&& add) {
-    if (locked_[a] && locked_[b]) return;
-    Eigen::Vector3d p;
-    double cost = PlaceAndCost(a, b, &p);
+  void PushAll(const std::vector<std::array<uint32_t, 2>>& edges, Add&& add) {
+    costs_.resize(edges.size());
+    Lanes4 lanes;
+    std::array<size_t, 4> at{};
+    int filled = 0;
+    const auto place_lanes = [&] {
+      for (int k = filled; k < 4; ++k) {  // a short batch repeats its first lane
+        lanes.qa[k] = lanes.qa[0], lanes.qb[k] = lanes.qb[0], lanes.a[k] = lanes.a[0], lanes.b[k] = lanes.b[0];
+      }
+      std::array<double, 4> error;
+      const int done = PlaceFullRank4(lanes, options_.placement_reach, options_.placement_rcond, error, wide_);
+      for (int k = 0; k < filled; ++k) {
+        const auto [a, b] = edges[at[k]];
+        Eigen::Vector3d p;
+        costs_[at[k]] = (done >> k & 1) ? std::max(0.0, error[k]) : PlaceAndCost(a, b, &p);
+      }
+      filled = 0;
+    };
+    for (size_t i = 0; i < edges.size(); ++i) {
+      const auto [a, b] = edges[i];
+      if (locked_[a] && locked_[b]) continue;
+      if (!options_.optimal_placement || locked_[a] || locked_[b]) {
+        Eigen::Vector3d p;
+        costs_[i] = PlaceAndCost(a, b, &p);
+        continue;
+      }
+      lanes.qa[filled] = &quadric_[a], lanes.qb[filled] = &quadric_[b];
+      lanes.a[filled] = &pos_[a], lanes.b[filled] = &pos_[b];
+      at[filled++] = i;
+      if (filled == 4) place_lanes();
+    }
+    if (filled > 0) place_lanes();
+    for (size_t i = 0; i < edges.size(); ++i) {
+      const auto [a, b] = edges[i];
+      if (!(locked_[a] && locked_[b])) PushCosted(a, b, costs_[i], add);
+    }
+  }
+
+  // Hands the collapse of (a, b) at `cost` (PlaceAndCost's) to `add`: as it is with a face budget, as a
+  // share of the goal with error goals (nothing beyond the goal).
+  template <typename Add>
+  void PushCosted(uint32_t a, uint32_t b, double cost, Add&& add) {
     if (!goal2_.empty()) {
       // Error goals: the heap orders by the share of the goal, and holds only collapses within it
       // (an edge's cost changes only when one of its ends does, and it is pushed again then).
@@ -644,6 +496,10 @@ class QemSimplifier {
     std::array<uint32_t, 3> v;
   };
   std::vector<FanFace> fan_;  // FanSquaredDistance's scratch
+  static constexpr size_t kPriceBatch = 256;
+  std::vector<std::array<uint32_t, 2>> edges_;  // PushAll's edges, and their costs
+  std::vector<double> costs_;
+  bool wide_ = CpuHasAvx2();
 };
 
 // Plane quadric of each of the first face_count faces added to its three corners, weighted by the face's
