@@ -229,41 +229,55 @@ class QemSimplifier {
   }
 
   // Costs the collapses of `edges` (a < b) and hands them to `add` in their order (nothing for those that
-  // may not collapse). The optimal placements go four at a time through PlaceFullRank4 (the same costs as
-  // PlaceAndCost's, bit for bit, about a third of its time), what it leaves through PlaceAndCost.
+  // may not collapse). The optimal placements go four at a time through PlaceFullRank4, what it leaves
+  // four at a time through PlaceAny4, what that leaves (and the collapses onto a locked end) through
+  // PlaceAndCost: the same costs, bit for bit (qem_placement.h).
   template <typename Add>
   void PushAll(const std::vector<std::array<uint32_t, 2>>& edges, Add&& add) {
     costs_.resize(edges.size());
-    Lanes4 lanes;
-    std::array<size_t, 4> at{};
-    int filled = 0;
-    const auto place_lanes = [&] {
-      for (int k = filled; k < 4; ++k) {  // a short batch repeats its first lane
-        lanes.qa[k] = lanes.qa[0], lanes.qb[k] = lanes.qb[0], lanes.a[k] = lanes.a[0], lanes.b[k] = lanes.b[0];
+    left_.clear();
+    // Prices the edges at[0 .. filled) with `place`; the lanes it leaves go to `leave`.
+    const auto place_lanes = [&](auto place, const std::array<size_t, 4>& at, int filled, auto leave) {
+      Lanes4 lanes;
+      for (int k = 0; k < 4; ++k) {  // a short batch repeats its first lane
+        const auto [a, b] = edges[at[k < filled ? k : 0]];
+        lanes.qa[k] = &quadric_[a], lanes.qb[k] = &quadric_[b], lanes.a[k] = &pos_[a], lanes.b[k] = &pos_[b];
       }
       std::array<double, 4> error;
-      const int done = PlaceFullRank4(lanes, options_.placement_reach, options_.placement_rcond, error, wide_);
+      const int done = place(lanes, options_.placement_reach, options_.placement_rcond, error, wide_);
       for (int k = 0; k < filled; ++k) {
-        const auto [a, b] = edges[at[k]];
-        Eigen::Vector3d p;
-        costs_[at[k]] = (done >> k & 1) ? std::max(0.0, error[k]) : PlaceAndCost(a, b, &p);
+        if (done >> k & 1) {
+          costs_[at[k]] = std::max(0.0, error[k]);
+        } else {
+          leave(at[k]);
+        }
       }
-      filled = 0;
     };
+    const auto scalar = [&](size_t i) {
+      Eigen::Vector3d p;
+      costs_[i] = PlaceAndCost(edges[i][0], edges[i][1], &p);
+    };
+    std::array<size_t, 4> at{};
+    int filled = 0;
     for (size_t i = 0; i < edges.size(); ++i) {
       const auto [a, b] = edges[i];
       if (locked_[a] && locked_[b]) continue;
       if (!options_.optimal_placement || locked_[a] || locked_[b]) {
-        Eigen::Vector3d p;
-        costs_[i] = PlaceAndCost(a, b, &p);
+        scalar(i);
         continue;
       }
-      lanes.qa[filled] = &quadric_[a], lanes.qb[filled] = &quadric_[b];
-      lanes.a[filled] = &pos_[a], lanes.b[filled] = &pos_[b];
       at[filled++] = i;
-      if (filled == 4) place_lanes();
+      if (filled == 4) {
+        place_lanes(PlaceFullRank4, at, filled, [&](size_t j) { left_.push_back(j); });
+        filled = 0;
+      }
     }
-    if (filled > 0) place_lanes();
+    if (filled > 0) place_lanes(PlaceFullRank4, at, filled, [&](size_t j) { left_.push_back(j); });
+    for (size_t k = 0; k < left_.size(); k += 4) {
+      filled = static_cast<int>(std::min<size_t>(4, left_.size() - k));
+      for (int j = 0; j < filled; ++j) at[j] = left_[k + j];
+      place_lanes(PlaceAny4, at, filled, scalar);
+    }
     for (size_t i = 0; i < edges.size(); ++i) {
       const auto [a, b] = edges[i];
       if (!(locked_[a] && locked_[b])) PushCosted(a, b, costs_[i], add);
@@ -499,6 +513,7 @@ class QemSimplifier {
   static constexpr size_t kPriceBatch = 256;
   std::vector<std::array<uint32_t, 2>> edges_;  // PushAll's edges, and their costs
   std::vector<double> costs_;
+  std::vector<size_t> left_;  // the edges PlaceFullRank4 left
   bool wide_ = CpuHasAvx2();
 };
 

@@ -215,12 +215,13 @@ inline Placed Placement(const Quadric& q, const Eigen::Vector3d& a, const Eigen:
   return on_edge;
 }
 
-// Four collapses priced at once, each lane bit for bit what Placement returns where it takes its plain
-// inverse's point: a full-rank quadric (by either of Placement's two tests) whose minimum lies in reach.
-// Those are most of a surface's edges, and Placement's straight-line arithmetic runs four wide here
-// (AVX2 where the CPU has it, else two SSE2 halves; no FMA either way, so the same roundings: every sum
-// in the order Placement's Eigen expressions take, which tests/photogrammetry/mesh/qem_placement_test.cc
-// checks against Placement). The edges' quadrics are summed in the lanes.
+// Four collapses priced at once, each lane bit for bit what Placement returns: its straight-line
+// arithmetic runs four wide (AVX2 where the CPU has it, else two SSE2 halves; no FMA either way, so the
+// same roundings: every sum in the order Placement's Eigen expressions take, which
+// tests/photogrammetry/mesh/qem_placement_test.cc checks against Placement). PlaceFullRank4 takes the
+// plain inverse's point (a full-rank quadric by either of Placement's two tests, its minimum in reach:
+// most of a surface's edges); PlaceAny4 every path, for what the first leaves (the truncated solves
+// of flat ground, and points out of reach). The edges' quadrics are summed in the lanes.
 struct Lanes4 {
   std::array<const Quadric*, 4> qa, qb;
   std::array<const Eigen::Vector3d*, 4> a, b;
@@ -230,61 +231,206 @@ namespace placement_detail {
 typedef double V4 __attribute__((vector_size(32)));
 typedef long long M4 __attribute__((vector_size(32)));
 
-__attribute__((always_inline)) inline int PlaceFullRank4Body(const Lanes4& in, double reach, double rcond,
-                                                             std::array<double, 4>& error) {
+__attribute__((always_inline)) inline V4 Select(M4 mask, V4 yes, V4 no) {
+  return reinterpret_cast<V4>((reinterpret_cast<M4>(yes) & mask) | (reinterpret_cast<M4>(no) & ~mask));
+}
+
+__attribute__((always_inline)) inline bool Any(M4 mask) { return (mask[0] | mask[1] | mask[2] | mask[3]) != 0; }
+
+// Quadric::Error, four wide.
+__attribute__((always_inline)) inline V4 Error4(const V4* q, V4 x, V4 y, V4 z) {
+  return q[0] * x * x + 2.0 * q[1] * x * y + 2.0 * q[2] * x * z + 2.0 * q[3] * x + q[4] * y * y + 2.0 * q[5] * y * z +
+         2.0 * q[6] * y + q[7] * z * z + 2.0 * q[8] * z + q[9];
+}
+
+// A 3 × 3 symmetric matrix times a vector, summed as Eigen sums it: rows 0 and 1 from the left, row 2
+// from the right.
+struct Sym4 {
+  V4 m00, m01, m02, m11, m12, m22;
+  void Times(const V4* x, V4* out) const {
+    out[0] = (m00 * x[0] + m01 * x[1]) + m02 * x[2];
+    out[1] = (m01 * x[0] + m11 * x[1]) + m12 * x[2];
+    out[2] = m02 * x[0] + (m12 * x[1] + m22 * x[2]);
+  }
+};
+
+// What every path of Placement computes first.
+struct Front4 {
   V4 q[10];
+  V4 a[3], b[3], mid[3], residual[3];
+  Sym4 m;
+  V4 j00, j01, j02, j10, j11, j12, j20, j21, j22;  // the adjugate
+  V4 trace, minors, det, reach2;
+  M4 some_pinned, first_test;
+  V4 p[3];      // the plain inverse's point
+  M4 in_reach;  // and whether it is finite and in reach
+};
+
+__attribute__((always_inline)) inline void Prepare4(const Lanes4& in, double reach, double rcond, Front4& f) {
   for (int j = 0; j < 10; ++j) {
-    q[j] = V4{in.qa[0]->q[j], in.qa[1]->q[j], in.qa[2]->q[j], in.qa[3]->q[j]} +
-           V4{in.qb[0]->q[j], in.qb[1]->q[j], in.qb[2]->q[j], in.qb[3]->q[j]};
+    f.q[j] = V4{in.qa[0]->q[j], in.qa[1]->q[j], in.qa[2]->q[j], in.qa[3]->q[j]} +
+             V4{in.qb[0]->q[j], in.qb[1]->q[j], in.qb[2]->q[j], in.qb[3]->q[j]};
   }
-  V4 a[3], b[3];
   for (int i = 0; i < 3; ++i) {
-    a[i] = V4{(*in.a[0])[i], (*in.a[1])[i], (*in.a[2])[i], (*in.a[3])[i]};
-    b[i] = V4{(*in.b[0])[i], (*in.b[1])[i], (*in.b[2])[i], (*in.b[3])[i]};
+    f.a[i] = V4{(*in.a[0])[i], (*in.a[1])[i], (*in.a[2])[i], (*in.a[3])[i]};
+    f.b[i] = V4{(*in.b[0])[i], (*in.b[1])[i], (*in.b[2])[i], (*in.b[3])[i]};
+    f.mid[i] = 0.5 * (f.a[i] + f.b[i]);
   }
+  const V4* q = f.q;
+  f.m = Sym4{q[0], q[1], q[2], q[4], q[5], q[7]};
   const V4 m00 = q[0], m01 = q[1], m02 = q[2], m11 = q[4], m12 = q[5], m22 = q[7];
   const V4 m10 = m01, m20 = m02, m21 = m12;
-  const V4 mid0 = 0.5 * (a[0] + b[0]), mid1 = 0.5 * (a[1] + b[1]), mid2 = 0.5 * (a[2] + b[2]);
-  // A 3 × 3 product with a vector as Eigen sums it: rows 0 and 1 from the left, row 2 from the right.
-  const V4 r0 = -q[3] - ((m00 * mid0 + m01 * mid1) + m02 * mid2);
-  const V4 r1 = -q[6] - ((m10 * mid0 + m11 * mid1) + m12 * mid2);
-  const V4 r2 = -q[8] - (m20 * mid0 + (m21 * mid1 + m22 * mid2));
-  const V4 j00 = m11 * m22 - m12 * m21, j01 = m02 * m21 - m01 * m22, j02 = m01 * m12 - m02 * m11;
-  const V4 j10 = m12 * m20 - m10 * m22, j11 = m00 * m22 - m02 * m20, j12 = m02 * m10 - m00 * m12;
-  const V4 j20 = m10 * m21 - m11 * m20, j21 = m01 * m20 - m00 * m21, j22 = m00 * m11 - m01 * m10;
-  const V4 trace = m00 + (m11 + m22);  // Eigen's trace() and the minors' sum: the last two first
-  const V4 minors = j00 + (j11 + j22);
-  const V4 det = (m00 * j00 + m01 * j10) + m02 * j20;
-  const V4 e0 = b[0] - a[0], e1 = b[1] - a[1], e2 = b[2] - a[2];
-  const V4 reach2 = reach * reach * ((e0 * e0 + e1 * e1) + e2 * e2);
-  const M4 some_pinned = minors > 1e-9 * trace * trace;
-  M4 full = some_pinned & (det > rcond * trace * minors);
-  const M4 second = some_pinned & ~full;
-  if (second[0] | second[1] | second[2] | second[3]) {  // Newton's bounds, as Placement takes them
-    const V4 below = det / minors;
-    const V4 p_below = ((below - trace) * below + minors) * below - det;
-    const V4 slope_below = (3.0 * below - 2.0 * trace) * below + minors;
-    const V4 smallest_at_least = below - p_below / slope_below;
-    const V4 value = ((trace - trace) * trace + minors) * trace - det;
-    const V4 rise = (3.0 * trace - 2.0 * trace) * trace + minors;
-    const V4 largest_at_most = trace - value / rise;
-    full = full | (second & (smallest_at_least > rcond * largest_at_most));
-  }
-  const V4 p0 = mid0 + ((j00 * r0 + j01 * r1) + j02 * r2) / det;
-  const V4 p1 = mid1 + ((j10 * r0 + j11 * r1) + j12 * r2) / det;
-  const V4 p2 = mid2 + (j20 * r0 + (j21 * r1 + j22 * r2)) / det;
-  const V4 d0 = p0 - mid0, d1 = p1 - mid1, d2 = p2 - mid2;
+  V4 m_mid[3];
+  f.m.Times(f.mid, m_mid);
+  f.residual[0] = -q[3] - m_mid[0], f.residual[1] = -q[6] - m_mid[1], f.residual[2] = -q[8] - m_mid[2];
+  f.j00 = m11 * m22 - m12 * m21, f.j01 = m02 * m21 - m01 * m22, f.j02 = m01 * m12 - m02 * m11;
+  f.j10 = m12 * m20 - m10 * m22, f.j11 = m00 * m22 - m02 * m20, f.j12 = m02 * m10 - m00 * m12;
+  f.j20 = m10 * m21 - m11 * m20, f.j21 = m01 * m20 - m00 * m21, f.j22 = m00 * m11 - m01 * m10;
+  f.trace = m00 + (m11 + m22);  // Eigen's trace(): the last two first
+  f.minors = (f.j00 + f.j11) + f.j22;
+  f.det = (m00 * f.j00 + m01 * f.j10) + m02 * f.j20;
+  const V4 e0 = f.b[0] - f.a[0], e1 = f.b[1] - f.a[1], e2 = f.b[2] - f.a[2];
+  f.reach2 = reach * reach * ((e0 * e0 + e1 * e1) + e2 * e2);
+  f.some_pinned = f.minors > 1e-9 * f.trace * f.trace;
+  f.first_test = f.some_pinned & (f.det > rcond * f.trace * f.minors);
+  const V4* r = f.residual;
+  f.p[0] = f.mid[0] + ((f.j00 * r[0] + f.j01 * r[1]) + f.j02 * r[2]) / f.det;
+  f.p[1] = f.mid[1] + ((f.j10 * r[0] + f.j11 * r[1]) + f.j12 * r[2]) / f.det;
+  f.p[2] = f.mid[2] + (f.j20 * r[0] + (f.j21 * r[1] + f.j22 * r[2])) / f.det;
+  const V4 d0 = f.p[0] - f.mid[0], d1 = f.p[1] - f.mid[1], d2 = f.p[2] - f.mid[2];
   const V4 moved2 = (d0 * d0 + d1 * d1) + d2 * d2;
-  const V4 err = q[0] * p0 * p0 + 2.0 * q[1] * p0 * p1 + 2.0 * q[2] * p0 * p2 + 2.0 * q[3] * p0 + q[4] * p1 * p1 +
-                 2.0 * q[5] * p1 * p2 + 2.0 * q[6] * p1 + q[7] * p2 * p2 + 2.0 * q[8] * p2 + q[9];
-  int done = 0;
+  f.in_reach = moved2 <= f.reach2;
   for (int k = 0; k < 4; ++k) {
-    if (full[k] && std::isfinite(p0[k]) && std::isfinite(p1[k]) && std::isfinite(p2[k]) && moved2[k] <= reach2[k]) {
-      done |= 1 << k;
+    if (!(std::isfinite(f.p[0][k]) && std::isfinite(f.p[1][k]) && std::isfinite(f.p[2][k]))) f.in_reach[k] = 0;
+  }
+}
+
+// Placement's second test (Newton's bounds on the extreme eigenvalues) for the lanes the first leaves;
+// `first_step`: the step it takes from the trace towards the largest, where Placement keeps it.
+__attribute__((always_inline)) inline M4 SecondTest4(const Front4& f, double rcond, V4* first_step) {
+  const V4 trace = f.trace, minors = f.minors, det = f.det;
+  const V4 below = det / minors;
+  const V4 p_below = ((below - trace) * below + minors) * below - det;
+  const V4 slope_below = (3.0 * below - 2.0 * trace) * below + minors;
+  const V4 smallest_at_least = below - p_below / slope_below;
+  const V4 value = ((trace - trace) * trace + minors) * trace - det;
+  const V4 rise = (3.0 * trace - 2.0 * trace) * trace + minors;
+  const V4 largest_at_most = trace - value / rise;
+  const M4 second = f.some_pinned & ~f.first_test & (smallest_at_least > rcond * largest_at_most);
+  if (first_step) {
+    const M4 taken = f.some_pinned & ~f.first_test & ~second & (value > 0.0) & (rise > 0.0);
+    *first_step = Select(taken, value / rise, V4{0, 0, 0, 0});
+  }
+  return second;
+}
+
+__attribute__((always_inline)) inline int PlaceFullRank4Body(const Lanes4& in, double reach, double rcond,
+                                                             std::array<double, 4>& error) {
+  Front4 f;
+  Prepare4(in, reach, rcond, f);
+  M4 full = f.first_test;
+  if (Any(f.some_pinned & ~full)) full = full | SecondTest4(f, rcond, nullptr);
+  const M4 done = full & f.in_reach;
+  if (!Any(done)) return 0;
+  const V4 err = Error4(f.q, f.p[0], f.p[1], f.p[2]);
+  int bits = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (done[k]) {
+      bits |= 1 << k;
       error[k] = err[k];
     }
   }
-  return done;
+  return bits;
+}
+
+// BestOnSegment's error, four wide.
+__attribute__((always_inline)) inline V4 BestOnSegment4(const Front4& f) {
+  const V4* q = f.q;
+  const V4 ea = Error4(q, f.a[0], f.a[1], f.a[2]), eb = Error4(q, f.b[0], f.b[1], f.b[2]);
+  const V4 em = Error4(q, f.mid[0], f.mid[1], f.mid[2]);
+  const V4 c2 = 2.0 * ea - 4.0 * em + 2.0 * eb, c1 = -3.0 * ea + 4.0 * em - eb;
+  V4 t = Select(ea <= eb, V4{0, 0, 0, 0}, V4{1, 1, 1, 1});
+  const V4 v = -c1 / (2.0 * c2);  // std::clamp(v, 0, 1): v when NaN
+  const V4 tm = Select(v < 0.0, V4{0, 0, 0, 0}, Select(1.0 < v, V4{1, 1, 1, 1}, v));
+  const V4 lower = Select(eb < ea, eb, ea);  // std::min(ea, eb)
+  t = Select((c2 > 0.0) & (ea + tm * c1 + tm * tm * c2 < lower), tm, t);
+  const V4 x = f.a[0] + t * (f.b[0] - f.a[0]), y = f.a[1] + t * (f.b[1] - f.a[1]);
+  const V4 z = f.a[2] + t * (f.b[2] - f.a[2]);
+  return Select(t == 0.0, ea, Error4(q, x, y, z));
+}
+
+// Every path of Placement; a lane whose largest eigenvalue Newton's method does not settle (Placement
+// then asks Eigen's closed form) is left out of the result's bits.
+__attribute__((always_inline)) inline int PlaceAny4Body(const Lanes4& in, double reach, double rcond,
+                                                        std::array<double, 4>& error) {
+  Front4 f;
+  Prepare4(in, reach, rcond, f);
+  V4 first_step{0, 0, 0, 0};
+  const M4 full = f.first_test | SecondTest4(f, rcond, &first_step);
+  const V4 on_edge = BestOnSegment4(f);
+  const V4 full_rank = Select(f.in_reach, Error4(f.q, f.p[0], f.p[1], f.p[2]), on_edge);
+  // EigenvaluesAscending, for the other lanes: the largest by Newton's method from the trace.
+  const V4 trace = f.trace, minors = f.minors, det = f.det;
+  V4 l3 = trace - first_step;
+  const M4 stepped = first_step > 0.0;
+  M4 settled = full | (stepped & ~(first_step > 1e-13 * l3));
+  for (int step = 0; step < 16; ++step) {
+    // A lane that took the first step above has 15 left.
+    const M4 active = ~settled & ~(stepped & (step == 15 ? M4{-1, -1, -1, -1} : M4{0, 0, 0, 0}));
+    if (!Any(active)) break;
+    const V4 value = ((l3 - trace) * l3 + minors) * l3 - det;
+    const V4 slope = (3.0 * l3 - 2.0 * trace) * l3 + minors;
+    const M4 rising = (value > 0.0) & (slope > 0.0);
+    const V4 dx = value / slope;
+    const V4 next = l3 - dx;
+    l3 = Select(active & rising, next, l3);
+    settled = settled | (active & ~rising) | (active & rising & ~(dx > 1e-13 * next));
+  }
+  const V4 sum12 = trace - l3, product12 = minors - l3 * sum12;
+  V4 disc = sum12 * sum12 - 4.0 * product12;
+  disc = Select(0.0 < disc, disc, V4{0, 0, 0, 0});  // std::max(0.0, disc)
+  V4 root;
+  for (int k = 0; k < 4; ++k) root[k] = std::sqrt(disc[k]);
+  const V4 l2 = 0.5 * (sum12 + root);
+  const V4 l1 = Select(l2 > 0.0, product12 / l2, V4{0, 0, 0, 0});
+  const M4 closed_form = ~full & (~settled | ~(l2 <= l3));
+  const V4 cut = rcond * l3;
+  // TruncatedSolve: mid + f(m) r, f the polynomial that is 1/λ on the kept eigenvalues, 0 on the others.
+  V4 m_r[3], u[3], m_u[3];
+  f.m.Times(f.residual, m_r);
+  for (int i = 0; i < 3; ++i) u[i] = m_r[i] - l1 * f.residual[i];
+  f.m.Times(u, m_u);
+  const M4 two_kept = l2 > cut;
+  const V4 sum = l2 + l3, alpha = sum - l1, beta = sum * sum - l2 * l3 - l1 * sum;
+  const V4 denominator2 = l2 * l3 * (l2 - l1) * (l3 - l1), denominator1 = l3 * (l3 - l1) * (l3 - l2);
+  // Eigen folds the scalar of alpha (m u) into the matrix: (alpha m) u.
+  const Sym4 alpha_m{alpha * f.m.m00, alpha * f.m.m01, alpha * f.m.m02,
+                     alpha * f.m.m11, alpha * f.m.m12, alpha * f.m.m22};
+  V4 alpha_m_u[3];
+  alpha_m.Times(u, alpha_m_u);
+  V4 pt[3];
+  for (int i = 0; i < 3; ++i) {
+    pt[i] =
+        f.mid[i] + Select(two_kept, (beta * u[i] - alpha_m_u[i]) / denominator2, (m_u[i] - l2 * u[i]) / denominator1);
+  }
+  const V4 d0 = pt[0] - f.mid[0], d1 = pt[1] - f.mid[1], d2 = pt[2] - f.mid[2];
+  M4 truncated_in_reach = (d0 * d0 + d1 * d1) + d2 * d2 <= f.reach2;
+  for (int k = 0; k < 4; ++k) {
+    if (!(std::isfinite(pt[0][k]) && std::isfinite(pt[1][k]) && std::isfinite(pt[2][k]))) truncated_in_reach[k] = 0;
+  }
+  const V4 truncated_error = Error4(f.q, pt[0], pt[1], pt[2]);
+  const V4 truncated = Select(truncated_in_reach & (truncated_error < on_edge), truncated_error, on_edge);
+  // Placement's choice: the plain inverse by either test, else the edge when no eigenvalue is positive,
+  // else the plain inverse when nothing is truncated, else the truncated solve.
+  const V4 result = Select(full, full_rank, Select(~(l3 > 0.0), on_edge, Select(l1 > cut, full_rank, truncated)));
+  int bits = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (!closed_form[k]) {
+      bits |= 1 << k;
+      error[k] = result[k];
+    }
+  }
+  return bits;
 }
 
 __attribute__((target("avx2"))) inline int PlaceFullRank4Avx2(const Lanes4& in, double reach, double rcond,
@@ -295,6 +441,15 @@ __attribute__((target("avx2"))) inline int PlaceFullRank4Avx2(const Lanes4& in, 
 inline int PlaceFullRank4Generic(const Lanes4& in, double reach, double rcond, std::array<double, 4>& error) {
   return PlaceFullRank4Body(in, reach, rcond, error);
 }
+
+__attribute__((target("avx2"))) inline int PlaceAny4Avx2(const Lanes4& in, double reach, double rcond,
+                                                         std::array<double, 4>& error) {
+  return PlaceAny4Body(in, reach, rcond, error);
+}
+
+inline int PlaceAny4Generic(const Lanes4& in, double reach, double rcond, std::array<double, 4>& error) {
+  return PlaceAny4Body(in, reach, rcond, error);
+}
 }  // namespace placement_detail
 
 // Bit k set: lane k is done, error[k] its quadric error at Placement's point (the others untouched).
@@ -303,6 +458,13 @@ inline int PlaceFullRank4(const Lanes4& in, double reach, double rcond, std::arr
                           bool wide = CpuHasAvx2()) {
   return wide ? placement_detail::PlaceFullRank4Avx2(in, reach, rcond, error)
               : placement_detail::PlaceFullRank4Generic(in, reach, rcond, error);
+}
+
+// As PlaceFullRank4, on every path of Placement but Eigen's closed-form eigenvalues (rare).
+inline int PlaceAny4(const Lanes4& in, double reach, double rcond, std::array<double, 4>& error,
+                     bool wide = CpuHasAvx2()) {
+  return wide ? placement_detail::PlaceAny4Avx2(in, reach, rcond, error)
+              : placement_detail::PlaceAny4Generic(in, reach, rcond, error);
 }
 
 }  // namespace cinepath::photogrammetry::internal

@@ -46,12 +46,14 @@ Edge RandomEdge(Shape shape, std::mt19937_64& rng) {
   return e;
 }
 
-// Every lane PlaceFullRank4 prices is Placement's error bit for bit, on both paths (which agree on
-// which lanes they price), and it prices nearly every full-rank edge: what it leaves, Placement does.
-TEST(PlaceFullRank4, IsPlacementBitForBitWhereItPrices) {
+using Place4 = int (*)(const Lanes4&, double, double, std::array<double, 4>&, bool);
+
+// The share of the lanes `place` prices on edges of `shape`, after checking that every lane it prices is
+// Placement's error bit for bit, on both paths (which agree on which lanes they price).
+double PricedShare(Place4 place, Shape shape) {
   const double reach = 2.0, rcond = 1e-3;  // QemOptions' defaults
-  std::mt19937_64 rng(11);
-  for (const Shape shape : {Shape::kCurved, Shape::kFlat, Shape::kCrease, Shape::kNoisyFlat}) {
+  std::mt19937_64 rng(11 + static_cast<int>(shape));
+  {
     int lanes = 0, priced = 0, mismatched = 0;
     for (int batch = 0; batch < 20000; ++batch) {
       std::array<Edge, 4> edges;
@@ -61,9 +63,9 @@ TEST(PlaceFullRank4, IsPlacementBitForBitWhereItPrices) {
         in.qa[k] = &edges[k].qa, in.qb[k] = &edges[k].qb, in.a[k] = &edges[k].a, in.b[k] = &edges[k].b;
       }
       std::array<double, 4> portable{}, wide{};
-      const int done = PlaceFullRank4(in, reach, rcond, portable, false);
+      const int done = place(in, reach, rcond, portable, false);
       if (CpuHasAvx2()) {
-        ASSERT_EQ(PlaceFullRank4(in, reach, rcond, wide, true), done);
+        EXPECT_EQ(place(in, reach, rcond, wide, true), done);
       } else {
         wide = portable;
       }
@@ -77,8 +79,24 @@ TEST(PlaceFullRank4, IsPlacementBitForBitWhereItPrices) {
       }
     }
     EXPECT_EQ(mismatched, 0) << static_cast<int>(shape);
-    if (shape == Shape::kCurved) EXPECT_GT(priced, 0.95 * lanes);
-    if (shape == Shape::kFlat) EXPECT_EQ(priced, 0);  // one direction pinned: Placement truncates
+    return static_cast<double>(priced) / lanes;
+  }
+}
+
+// PlaceFullRank4 prices nearly every full-rank edge, and no edge of a plane (one direction pinned:
+// Placement truncates): what it leaves, PlaceAny4 or Placement does.
+TEST(PlaceFullRank4, IsPlacementBitForBitWhereItPrices) {
+  EXPECT_GT(PricedShare(PlaceFullRank4, Shape::kCurved), 0.95);
+  EXPECT_EQ(PricedShare(PlaceFullRank4, Shape::kFlat), 0.0);
+  PricedShare(PlaceFullRank4, Shape::kCrease);
+  PricedShare(PlaceFullRank4, Shape::kNoisyFlat);
+}
+
+// PlaceAny4 prices nearly every edge of every shape, the truncated solves and the points out of reach
+// included; Placement asks Eigen's closed form for the rest.
+TEST(PlaceAny4, IsPlacementBitForBitWhereItPrices) {
+  for (const Shape shape : {Shape::kCurved, Shape::kFlat, Shape::kCrease, Shape::kNoisyFlat}) {
+    EXPECT_GT(PricedShare(PlaceAny4, shape), 0.95) << static_cast<int>(shape);
   }
 }
 
