@@ -523,28 +523,34 @@ std::vector<Quadric> FaceQuadrics(const std::vector<Eigen::Vector3d>& pos,
                                   const std::vector<std::array<uint32_t, 3>>& faces, size_t face_count,
                                   bool area_weighted, double area_floor) {
   std::vector<Quadric> q(pos.size());
-  std::vector<double> areas(face_count);
-  for (size_t f = 0; f < face_count; ++f) {
-    const auto& t = faces[f];
-    areas[f] = 0.5 * (pos[t[1]] - pos[t[0]]).cross(pos[t[2]] - pos[t[0]]).norm();
-  }
-  double floor_m2 = 0;
-  if (area_weighted && area_floor > 0 && face_count > 0) {
-    std::vector<double> sorted = areas;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(face_count / 2), sorted.end());
-    floor_m2 = area_floor * sorted[face_count / 2];
-  }
+  // Each face's unit normal and offset, and the length of its cross product (twice its area).
+  struct Plane {
+    Eigen::Vector3d n;
+    double d, len;
+  };
+  std::vector<Plane> planes(face_count);
   for (size_t f = 0; f < face_count; ++f) {
     const auto& t = faces[f];
     const Eigen::Vector3d n2 = (pos[t[1]] - pos[t[0]]).cross(pos[t[2]] - pos[t[0]]);
     const double len = n2.norm();
-    if (!(len > 0)) continue;
-    const Eigen::Vector3d n = n2 / len;
-    const double d = -n.dot(pos[t[0]]);
-    const double w = area_weighted ? areas[f] + floor_m2 : 1.0;
+    planes[f].len = len;
+    if (!(len > 0)) continue;  // no plane (area 0 or not a number)
+    planes[f].n = n2 / len;
+    planes[f].d = -planes[f].n.dot(pos[t[0]]);
+  }
+  double floor_m2 = 0;
+  if (area_weighted && area_floor > 0 && face_count > 0) {
+    std::vector<double> sorted(face_count);
+    for (size_t f = 0; f < face_count; ++f) sorted[f] = 0.5 * planes[f].len;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(face_count / 2), sorted.end());
+    floor_m2 = area_floor * sorted[face_count / 2];
+  }
+  for (size_t f = 0; f < face_count; ++f) {
+    if (!(planes[f].len > 0)) continue;
+    const double w = area_weighted ? 0.5 * planes[f].len + floor_m2 : 1.0;
     Quadric plane;
-    plane.AddPlane(n, d, w);
-    for (uint32_t v : t) q[v] += plane;
+    plane.AddPlane(planes[f].n, planes[f].d, w);
+    for (uint32_t v : faces[f]) q[v] += plane;
   }
   return q;
 }
