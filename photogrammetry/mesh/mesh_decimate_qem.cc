@@ -574,14 +574,17 @@ std::vector<char> BorderVertices(size_t n, const std::vector<std::array<uint32_t
     }
   }
   // v is interior when each neighbour appears exactly twice in its list: counted in `count` (indexed
-  // by neighbour), checked, then reset for the next vertex.
+  // by neighbour), then checked and reset at its first appearance (at its second the count is 0).
   std::vector<char> locked(n, 0);
   std::vector<uint32_t> count(n, 0);
   for (size_t v = 0; v < n; ++v) {
     for (uint32_t k = start[v]; k < start[v + 1]; ++k) ++count[nb[k]];
     bool two_each = true;
-    for (uint32_t k = start[v]; k < start[v + 1]; ++k) two_each = two_each && count[nb[k]] == 2;
-    for (uint32_t k = start[v]; k < start[v + 1]; ++k) count[nb[k]] = 0;
+    for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
+      const uint32_t w = nb[k];
+      two_each = two_each && (count[w] == 2 || count[w] == 0);
+      count[w] = 0;
+    }
     locked[v] = two_each ? 0 : 1;
   }
   return locked;
