@@ -36,7 +36,7 @@ Trajectory FigureEight() {
   t.camera.min_focal_length_mm = 24;
   t.camera.max_focal_length_mm = 70;
   t.drone.max_horizontal_speed_m_s = 15;
-  t.shots.push_back(ShotSpan{"eight", "CUSTOM", 0, 60, "", "continuous"});
+  t.shots.push_back(ShotSpan{"eight", "CUSTOM", 0, 60, "", "continuous", {}});
   const EnuFrame frame(*t.origin);
   const double a = 60, duration = 60;
   const int n = static_cast<int>(duration * t.frame_rate_hz) + 1;
@@ -90,7 +90,7 @@ Trajectory PoiPlan(bool orbit) {
   Trajectory t;
   t.origin = Geodetic{47.3977419, 8.545594, 535.3};
   t.frame_rate_hz = 30;
-  t.shots.push_back(ShotSpan{"shot", orbit ? "ORBIT" : "FLYBY", 0, 60, "subject", "continuous"});
+  t.shots.push_back(ShotSpan{"shot", orbit ? "ORBIT" : "FLYBY", 0, 60, "subject", "continuous", {}});
   const Eigen::Vector3d subject(0, 0, 1.5);
   for (int i = 0; i <= 1800; ++i) {
     const double time = i / 30.0;
@@ -120,7 +120,9 @@ Json TradeCurve(const Trajectory& plan, int repeats) {
   for (double angle : {3.0, 180.0}) {
     for (double e : {0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0}) {
       exporter::Selection sel;
-      const double seconds = MedianSeconds(repeats, [&] { sel = exporter::SelectWaypoints(plan.samples, {e, angle}); });
+      const double seconds = MedianSeconds(repeats, [&] {
+        sel = exporter::SelectWaypoints(plan.samples, {e, angle, exporter::RoiTracking::kNone, {}});
+      });
       curve.push_back(Json{{"max_deviation_m", e},
                            {"max_angle_deg", angle},
                            {"waypoints", sel.sample_indices.size()},
@@ -139,7 +141,7 @@ Json DjiTurns(const Trajectory& plan, int repeats) {
   Json turns = Json::array();
   for (double e : {0.1, 0.5, 2.0}) {
     exporter::MissionBuildOptions b;
-    b.selection = {e, 3.0};
+    b.selection = {e, 3.0, exporter::RoiTracking::kNone, {}};
     b.turn_model = exporter::TurnModel::kDjiCoordinatedTurn;
     exporter::Mission m;
     const double seconds = MedianSeconds(repeats, [&] { m = exporter::BuildMission(plan, b); });
@@ -179,8 +181,7 @@ Json PointsOfInterest(int repeats) {
     for (auto tracking :
          {exporter::RoiTracking::kNone, exporter::RoiTracking::kCamera, exporter::RoiTracking::kHeading}) {
       exporter::MissionBuildOptions b;
-      b.selection = {0.5, 3.0};
-      b.selection.roi_tracking = tracking;
+      b.selection = {0.5, 3.0, tracking, {}};
       exporter::Mission m;
       const double seconds = MedianSeconds(repeats, [&] { m = exporter::BuildMission(t, b); });
       poi.push_back(Json{{"plan", orbit ? "ORBIT 60 s" : "FLYBY 60 s"},
@@ -207,7 +208,7 @@ Json ExportTimes(const Trajectory& plan, int repeats) {
     exporter::ExportOptions options;
     options.formats = fs;
     options.force = true;  // MSDK v4's 99-waypoint cap is exceeded at tight tolerances
-    options.build.selection = {0.5, 3.0};
+    options.build.selection = {0.5, 3.0, exporter::RoiTracking::kNone, {}};
     size_t bytes = 0, waypoints = 0;
     const double seconds = MedianSeconds(repeats, [&] {
       const exporter::ExportResult r = exporter::ExportMission(plan, options);

@@ -48,6 +48,7 @@ DroneProfile Px4Multirotor() {
       .max_mission_items = 2000,          // [PX4] NUM_MISSIONS_SUPPORTED
       .body_radius_m = 0.4,               // assumed: a 500 mm-wheelbase quad with 10-inch propellers
       .min_separation_m = 5,              // assumed
+      .lens = std::nullopt,
   };
 }
 
@@ -73,6 +74,7 @@ DroneProfile ArdupilotCopter() {
       .max_mission_items = 724,           // [AP]
       .body_radius_m = 0.4,               // assumed, as px4-multirotor
       .min_separation_m = 5,              // assumed
+      .lens = std::nullopt,
   };
 }
 
@@ -101,6 +103,7 @@ DroneProfile DjiM30() {
       .dji_payload_enum = 52,  // [WPML]
       .body_radius_m = 0.55,   // [M30] 668 mm diagonal wheelbase, half of it plus a propeller's radius
       .min_separation_m = 5,   // assumed
+      .lens = std::nullopt,
   };
 }
 

@@ -54,8 +54,7 @@ class GlbDecoder {
   Attribute ReadAccessor(int index, const std::string& where) const;
   std::vector<uint32_t> ReadIndices(int index, size_t vertex_count, const std::string& where) const;
   Primitive ReadPlainPrimitive(const tinygltf::Primitive& p, const std::string& where) const;
-  Primitive ReadDracoPrimitive(const tinygltf::Primitive& p, const tinygltf::Value& ext,
-                               const std::string& where) const;
+  Primitive ReadDracoPrimitive(const tinygltf::Value& ext, const std::string& where) const;
   void AddMesh(int mesh_index, const Eigen::Matrix4d& gltf_from_mesh, SceneMesh* out);
   void Visit(int node_index, const Eigen::Matrix4d& parent, int depth, SceneMesh* out);
   int MaterialIndex(int gltf_material, SceneMesh* out);
@@ -253,8 +252,7 @@ GlbDecoder::Primitive GlbDecoder::ReadPlainPrimitive(const tinygltf::Primitive& 
   return out;
 }
 
-GlbDecoder::Primitive GlbDecoder::ReadDracoPrimitive(const tinygltf::Primitive& p, const tinygltf::Value& ext,
-                                                     const std::string& where) const {
+GlbDecoder::Primitive GlbDecoder::ReadDracoPrimitive(const tinygltf::Value& ext, const std::string& where) const {
   const std::string at = where + ".extensions." + kDracoExtension;
   const tinygltf::Value& view_value = ext.Get("bufferView");
   const tinygltf::Value& attributes = ext.Get("attributes");
@@ -359,7 +357,7 @@ void GlbDecoder::AddMesh(int mesh_index, const Eigen::Matrix4d& gltf_from_mesh, 
     if (mode != kModeTriangles && mode != kModeTriangleStrip && mode != kModeTriangleFan) continue;
     const auto ext = p.extensions.find(kDracoExtension);
     const Primitive prim =
-        ext != p.extensions.end() ? ReadDracoPrimitive(p, ext->second, where) : ReadPlainPrimitive(p, where);
+        ext != p.extensions.end() ? ReadDracoPrimitive(ext->second, where) : ReadPlainPrimitive(p, where);
     if (prim.indices.empty()) continue;
     const int material = MaterialIndex(p.material, out);
     const Eigen::Vector4f factor = material >= 0 ? out->materials[material].base_color_factor : Eigen::Vector4f::Ones();
