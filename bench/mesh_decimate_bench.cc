@@ -9,7 +9,8 @@
 //   mesh_decimate_bench [--faces N] [--ratio R | --ratios R1,R2,...] [--samples S] [--methods a,b,...]
 //                       [--qem-endpoints] [--qem-unweighted] [--qem-reach K] [--qem-normal-cos C] [--qem-rcond R]
 //                       [--qem-band-rings B] [--qem-band-cell-faces C] [--qem-light-tile-faces T] [--qem-area-floor F]
-//                       [--qem-distance-check D] [--qem-check-midpoints 0|1] [--qem-light-budget-keep K]
+//                       [--qem-distance-check D] [--qem-check-midpoints 0|1]
+//                       [--qem-check-new-edges 0|1] [--qem-light-budget-keep K]
 //                       [--qem-spike-pass S] [--qem-refit R]
 //                       [--error-goals E1,E2,...]
 //                       [--bound [--bound-depth N] [--bound-tolerance M]] [--sample-counts a,b,...]
@@ -352,6 +353,8 @@ std::optional<int> ParseArgs(int argc, char** argv, BenchArgs& args) {
       qem.distance_check = std::stod(next());
     else if (arg == "--qem-check-midpoints")
       qem.distance_check_midpoints = std::stoi(next()) != 0;
+    else if (arg == "--qem-check-new-edges")
+      qem.distance_check_new_edges = std::stoi(next()) != 0;
     else if (arg == "--qem-light-budget-keep")
       qem.light_budget_keep = std::stod(next());
     else if (arg == "--qem-spike-pass")

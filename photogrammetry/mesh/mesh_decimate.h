@@ -75,6 +75,9 @@ struct QemOptions {
   // ... and that distance also from the midpoints of the two vertices' edges: the farthest input
   // points were inside faces whose corners the collapses left on the surface (bench/RESULTS.md, run V).
   bool distance_check_midpoints = true;
+  // ... and the other way: the midpoints of the new edges to the faces before the collapse, where
+  // slivers across a crease stood off the input with their corners on it (bench/RESULTS.md, run Z).
+  bool distance_check_new_edges = true;
   // The spike pass, with a face budget that keeps less than `light_budget_keep` of the faces: once the
   // budget is met, the input vertices the output left farther than this share of the largest such
   // distance are pinned (locked as the cuts are), and the tiles that hold one run again with the band

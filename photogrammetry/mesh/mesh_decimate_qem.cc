@@ -34,9 +34,11 @@ namespace {
 
 // The squared distance from p to the triangle (a, b, c) (C. Ericson, "Real-Time Collision Detection",
 // 5.1.5: the closest point by the Voronoi regions of the vertices, edges and face).
-double SquaredDistanceToTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                 const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+// With its edges ab = b − a and ac = c − a given (a fan's faces are measured many times).
+__attribute__((always_inline)) inline double SquaredDistanceToTriangle(
+    const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+    const Eigen::Vector3d& ab, const Eigen::Vector3d& ac) {
+  const Eigen::Vector3d ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();
   const Eigen::Vector3d bp = p - b;
@@ -55,6 +57,11 @@ double SquaredDistanceToTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d
   }
   const double denom = 1 / (va + vb + vc);
   return (ap - vb * denom * ab - vc * denom * ac).squaredNorm();
+}
+
+double SquaredDistanceToTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                 const Eigen::Vector3d& c) {
+  return SquaredDistanceToTriangle(p, a, b, c, b - a, c - a);
 }
 
 struct HeapEntry {
@@ -363,43 +370,54 @@ class QemSimplifier {
   // The largest squared distance from the points the collapse of (keep, gone) to p takes off the surface
   // to the faces around keep and gone after it (the two faces of the edge gone): the two vertices, and
   // with `midpoints` the midpoints of their edges (an input face whose corners stay on the surface can
-  // still leave it in between, where the new faces cut across its edges). A point's search stops once
-  // it is nearer than the largest so far (which leaves the maximum exact), and an edge's midpoint is
-  // measured first against the new faces at its far end, usually the nearest. With `floor2` > 0 only
-  // a largest above it is exact (the result is floor2 when every point is within it): a point's
-  // search stops at the first face within floor2, which is most of a collapse that passes the check.
-  double FanSquaredDistance(uint32_t keep, uint32_t gone, const Eigen::Vector3d& p, bool midpoints, double floor2) {
+  // still leave it in between, where the new faces cut across its edges). With `new_edges` also the
+  // other way: the midpoints of the new edges (from p to the two vertices' neighbours) to the faces
+  // before the collapse (a new face whose corners lie on the surface can still stand off it in between,
+  // as a sliver across a crease does). `opposite`: the two vertices both are joined to. A point's search
+  // stops once it is nearer than the largest so far (which leaves the maximum exact), and starts with
+  // the faces at the edge's far end, usually the nearest. With `floor2` > 0 only a largest above it is
+  // exact (the result is floor2 when every point is within it): a point's search stops at the first face
+  // within floor2, which is most of a collapse that passes the check.
+  double FanSquaredDistance(uint32_t keep, uint32_t gone, const uint32_t (&opposite)[2], const Eigen::Vector3d& p,
+                            bool midpoints, bool new_edges, double floor2) {
     fan_.clear();
-    const auto gather = [&](uint32_t f) {
+    old_fan_.clear();
+    const auto gather = [&](uint32_t f, bool around_gone) {
       const auto& t = faces_[f];
-      if (Contains(t, keep) && Contains(t, gone)) return;
+      const bool shared = Contains(t, keep) && Contains(t, gone);
+      // The faces before: each once (a shared face is around both ends).
+      if (new_edges && !(shared && around_gone)) old_fan_.push_back(MakeFanFace(pos_[t[0]], pos_[t[1]], pos_[t[2]], t));
+      if (shared) return;
       const auto at = [&](uint32_t v) -> const Eigen::Vector3d& { return v == keep || v == gone ? p : pos_[v]; };
-      fan_.push_back({{at(t[0]), at(t[1]), at(t[2])}, t});
+      fan_.push_back(MakeFanFace(at(t[0]), at(t[1]), at(t[2]), t));
     };
-    ForFaces(keep, gather);
-    ForFaces(gone, gather);
+    ForFaces(keep, [&](uint32_t f) { gather(f, false); });
+    ForFaces(gone, [&](uint32_t f) { gather(f, true); });
     double worst = floor2;
-    // Measures x against the faces with corner `first` (kNone: none), then the others.
-    const auto measure = [&](const Eigen::Vector3d& x, uint32_t first) {
+    // Measures x against `faces`, those with corner `first` (kNone: none) first.
+    const auto measure = [&](const std::vector<FanFace>& faces, const Eigen::Vector3d& x, uint32_t first) {
       double best = INFINITY;
       for (int pass = 0; pass < 2; ++pass) {
-        for (const FanFace& f : fan_) {
+        for (const FanFace& f : faces) {
           if (Contains(f.v, first) != (pass == 0)) continue;
-          best = std::min(best, SquaredDistanceToTriangle(x, f.p[0], f.p[1], f.p[2]));
+          best = std::min(best, SquaredDistanceToTriangle(x, f.p[0], f.p[1], f.p[2], f.ab, f.ac));
           if (best <= worst) return;
         }
       }
       worst = best;
     };
-    measure(pos_[gone], kNone);
-    measure(pos_[keep], kNone);
-    if (midpoints) {
-      for (const uint32_t v : {gone, keep}) {
-        ForNeighbours(v, [&](uint32_t w) {
-          if (v == keep && w == gone) return;  // the edge itself, measured from gone
-          measure(0.5 * (pos_[v] + pos_[w]), w);
-        });
-      }
+    measure(fan_, pos_[gone], kNone);
+    measure(fan_, pos_[keep], kNone);
+    if (!midpoints && !new_edges) return worst;
+    for (const uint32_t v : {gone, keep}) {
+      ForNeighbours(v, [&](uint32_t w) {
+        if (v == keep && w == gone) return;  // the edge itself, measured from gone
+        if (midpoints) measure(fan_, 0.5 * (pos_[v] + pos_[w]), w);
+        // The new edges: to gone's neighbours, then to keep's others (the opposite two once).
+        if (new_edges && w != keep && !(v == keep && (w == opposite[0] || w == opposite[1]))) {
+          measure(old_fan_, 0.5 * (p + pos_[w]), w);
+        }
+      });
     }
     return worst;
   }
@@ -454,7 +472,8 @@ class QemSimplifier {
       // under the cost's share (and kept to where the comparison below still passes, to rounding).
       double floor2 = (1 - 1e-6) * static_cast<double>(e.cost) / scale;
       if (!(floor2 > 0) || !std::isfinite(floor2) || static_cast<float>(scale * floor2) > e.cost) floor2 = 0;
-      const double d2 = FanSquaredDistance(keep, gone, p, options_.distance_check_midpoints, floor2);
+      const double d2 = FanSquaredDistance(keep, gone, opposite, p, options_.distance_check_midpoints,
+                                           options_.distance_check_new_edges, floor2);
       const double fan_cost = scale * d2;
       if (static_cast<float>(fan_cost) > e.cost) {
         *checked_cost = fan_cost;
@@ -507,9 +526,14 @@ class QemSimplifier {
   bool heap_built_ = false;
   struct FanFace {
     std::array<Eigen::Vector3d, 3> p;
+    Eigen::Vector3d ab, ac;  // p[1] − p[0], p[2] − p[0]
     std::array<uint32_t, 3> v;
   };
-  std::vector<FanFace> fan_;  // FanSquaredDistance's scratch
+  static FanFace MakeFanFace(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                             const std::array<uint32_t, 3>& v) {
+    return {{a, b, c}, b - a, c - a, v};
+  }
+  std::vector<FanFace> fan_, old_fan_;  // FanSquaredDistance's scratch: the faces after and before
   static constexpr size_t kPriceBatch = 256;
   std::vector<std::array<uint32_t, 2>> edges_;  // PushAll's edges, and their costs
   std::vector<double> costs_;
