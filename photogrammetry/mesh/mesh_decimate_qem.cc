@@ -406,8 +406,8 @@ class QemSimplifier {
       }
       worst = best;
     };
-    measure(fan_, pos_[gone], kNone);
-    measure(fan_, pos_[keep], kNone);
+    measure(fan_, pos_[gone], gone);  // first the faces that were gone's (their ids still name it)
+    measure(fan_, pos_[keep], keep);
     if (!midpoints && !new_edges) return worst;
     for (const uint32_t v : {gone, keep}) {
       ForNeighbours(v, [&](uint32_t w) {
