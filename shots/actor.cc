@@ -169,16 +169,16 @@ Eigen::Vector3d ParsePosition(const JsonField& parent, const char* enu_key, cons
     parent.Fail(std::string("give exactly one of \"") + enu_key + "\" (ENU metres) or \"" + geo_key +
                 "\" (lat/lon/height)");
   }
-  const std::optional<double> above =
-      parent.Has("above_ground_m") ? std::optional(parent["above_ground_m"].AsDouble()) : std::nullopt;
+  const bool has_above = parent.Has("above_ground_m");
+  const double above_m = has_above ? parent["above_ground_m"].AsDouble() : 0.0;
   if (has_enu) {
     const JsonField f = parent[enu_key];
     if (f.IsArray() && f.size() == 2) {
       const double e = f.At(0).AsDouble(), n = f.At(1).AsDouble();
-      return {e, n, GroundUpM(f, context.ground, e, n) + above.value_or(0.0)};
+      return {e, n, GroundUpM(f, context.ground, e, n) + above_m};
     }
     if (!f.IsArray() || f.size() != 3) f.Fail("expected [east_m, north_m, up_m], or [east_m, north_m] on the ground");
-    if (above) parent["above_ground_m"].Fail("give it with [east_m, north_m], not with an up value");
+    if (has_above) parent["above_ground_m"].Fail("give it with [east_m, north_m], not with an up value");
     return {f.At(0).AsDouble(), f.At(1).AsDouble(), f.At(2).AsDouble()};
   }
   const JsonField g = parent[geo_key];
