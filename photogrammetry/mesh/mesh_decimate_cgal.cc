@@ -2,8 +2,9 @@
 // its own translation unit: internal::DecimateCgal in mesh_decimate.h.
 //
 // GCC 12 warns that the Garland–Heckbert policies' per-vertex 4 × 4 quadric (a CGAL dynamic property
-// of Eigen matrices) "may be used uninitialized" where CGAL copies it: the property map fills every
-// entry before use, a false positive inside CGAL's headers, silenced for this file alone.
+// of Eigen matrices) "may be used uninitialized" where CGAL copies it; the policy's initialize() puts a
+// zero matrix at every vertex before any is read, so it is a false positive inside CGAL's headers,
+// silenced for this file alone.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
